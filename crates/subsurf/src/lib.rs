@@ -17,6 +17,8 @@
 pub mod error;
 pub mod mesh;
 pub mod options;
+pub mod refine;
+pub mod rules;
 pub mod shapes;
 pub mod topology;
 
@@ -26,6 +28,7 @@ pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
     TriangleSubdivision,
 };
+pub use refine::{Refiner, StencilTable};
 pub use topology::Topology;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).
