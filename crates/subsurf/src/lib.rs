@@ -15,6 +15,7 @@
 //! that a GPU backend can upload the very same vectors.
 
 pub mod error;
+pub mod io;
 pub mod mesh;
 pub mod options;
 pub mod refine;
