@@ -376,8 +376,12 @@ int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *o
                         return -1;
                     }
                     // EvaluateBasis takes the ptex (u,v), normalises it to the patch and
-                    // scales the derivative weights, so du/dv are w.r.t. the ptex face.
+                    // scales the derivative weights by 2^depth. On the sub-faces of an
+                    // n-gon that depth counts the split into quads too (the parameter
+                    // fraction is 2^-(depth-1)), so halve them: du/dv are then w.r.t. the
+                    // ptex face's own (u,v), as for quads.
                     pt.EvaluateBasis(*h, u, v, wP, wDu, wDv);
+                    float dscale = pt.GetPatchParam(*h).NonQuadRoot() ? 0.5f : 1.0f;
                     Far::ConstIndexArray cvs = pt.GetPatchVertices(*h);
                     osd_limit_sample &s = out[count++];
                     s.face = (uint32_t)face;
@@ -388,8 +392,8 @@ int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *o
                         const Vec3 &x = a->points[cvs[c]];
                         for (int k = 0; k < 3; ++k) {
                             s.p[k] += wP[c] * x.v[k];
-                            s.du[k] += wDu[c] * x.v[k];
-                            s.dv[k] += wDv[c] * x.v[k];
+                            s.du[k] += dscale * wDu[c] * x.v[k];
+                            s.dv[k] += dscale * wDv[c] * x.v[k];
                         }
                     }
                 }

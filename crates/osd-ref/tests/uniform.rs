@@ -1,17 +1,10 @@
 //! Self-tests of the uniform-refinement side of the shim against closed-form results.
 
+#[macro_use]
 mod common;
 
-use common::{dist, load_shape, osd_or_skip, unique_edges};
+use common::{dist, load_shape, unique_edges};
 use osd_ref::{refine_uniform, Error, OsdBoundary, OsdMesh, OsdRefiner, OsdScheme, OsdStencils};
-
-macro_rules! require_osd {
-    () => {
-        if !osd_or_skip(module_path!()) {
-            return;
-        }
-    };
-}
 
 fn add(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
@@ -247,4 +240,21 @@ fn bad_input_is_an_error_not_a_crash() {
     mesh.options.scheme = OsdScheme::Loop;
     let err = refine_uniform(&mesh, 1).unwrap_err();
     assert!(matches!(err, Error::Osd(_)), "{err}");
+}
+
+/// Without OpenSubdiv every entry point reports `Unavailable`; with it, they work.
+#[test]
+fn entry_points_follow_availability() {
+    let (pos, counts, idx) = unit_cube();
+    let mesh = OsdMesh::new(&pos, &counts, &idx);
+    let uniform = refine_uniform(&mesh, 1);
+    let limit = osd_ref::eval_limit_grid(&mesh, 2, 2, false, osd_ref::EndCap::Gregory);
+    if osd_ref::available() {
+        assert_eq!(uniform.unwrap()[1].positions.len(), 26);
+        assert_eq!(limit.unwrap().len(), 6 * 4);
+    } else {
+        assert_eq!(uniform.unwrap_err(), Error::Unavailable);
+        assert_eq!(limit.unwrap_err(), Error::Unavailable);
+        assert_eq!(OsdRefiner::new(&mesh, 1).unwrap_err(), Error::Unavailable);
+    }
 }

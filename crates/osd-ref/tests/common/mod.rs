@@ -9,6 +9,18 @@ use subsurf::{
     BoundaryInterpolation, Corner, Crease, CreaseMethod, FaceVarying, Mesh, TriangleSubdivision,
 };
 
+/// `require_osd!()` at the top of a test: returns from it (after a loud message) when
+/// OpenSubdiv is missing, and fails under CI.
+macro_rules! require_osd {
+    () => {{
+        fn here() {}
+        let name = std::any::type_name_of_val(&here);
+        if !common::osd_or_skip(name.strip_suffix("::here").unwrap_or(name)) {
+            return;
+        }
+    }};
+}
+
 /// Returns false (after a loud message) when OpenSubdiv is missing; panics under CI.
 pub fn osd_or_skip(test: &str) -> bool {
     if osd_ref::available() {
@@ -19,7 +31,12 @@ pub fn osd_or_skip(test: &str) -> bool {
         !ci,
         "OpenSubdiv not installed but CI is set: {test} must run"
     );
-    eprintln!("!!!!! OpenSubdiv not installed: SKIPPED {test} (apt-get install libosd-dev) !!!!!");
+    // Straight to the process's stderr, past the test harness's output capture.
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "!!!!! OpenSubdiv not installed: SKIPPED {test} (apt-get install libosd-dev) !!!!!"
+    );
     false
 }
 
