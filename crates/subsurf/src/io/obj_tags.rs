@@ -205,12 +205,14 @@ pub(super) fn parse_tag(line: usize, tokens: &[&str], tags: &mut Tags) -> Result
             tags.options.triangle_subdivision = match args.strings[0] {
                 "catmark" => TriangleSubdivision::Catmark,
                 "smooth" => TriangleSubdivision::Smooth,
-                s => return Err(parse_error(
-                    line,
-                    format!(
+                s => {
+                    return Err(parse_error(
+                        line,
+                        format!(
                         "tag 'smoothtriangles': unknown rule '{s}' (expected catmark or smooth)"
                     ),
-                )),
+                    ))
+                }
             };
         }
         // Hierarchical edits: OpenSubdiv 3 dropped them; the arity was checked above.

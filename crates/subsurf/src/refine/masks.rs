@@ -65,9 +65,9 @@ pub(crate) struct Scratch {
 
 fn add_face_point(p: &Topology, f: usize, w: f32, b: &mut RowBuilder) {
     let fv = p.face_vertices(f);
-    let wf = w / fv.len() as f32;
+    let wf = w as f64 / fv.len() as f64;
     for &u in fv {
-        b.add(u, wf);
+        b.add_f64(u, wf);
     }
 }
 

@@ -86,7 +86,7 @@ impl StencilTable {
                         let (m, w) = (other.indices[j] as usize, other.weights[j]);
                         let (ms, me) = (self.offsets[m] as usize, self.offsets[m + 1] as usize);
                         for q in ms..me {
-                            builder.add(self.indices[q], w * self.weights[q]);
+                            builder.add_f64(self.indices[q], w as f64 * self.weights[q] as f64);
                         }
                     }
                     counts.push(builder.len() as u32);
@@ -117,7 +117,7 @@ impl StencilTable {
 #[derive(Debug)]
 pub(crate) struct RowBuilder {
     idx: Vec<u32>,
-    wts: Vec<f32>,
+    wts: Vec<f64>,
     marker: Vec<u32>,
 }
 
@@ -131,6 +131,11 @@ impl RowBuilder {
     }
     #[inline]
     pub(crate) fn add(&mut self, i: u32, w: f32) {
+        self.add_f64(i, w as f64);
+    }
+    /// Adds with a weight kept in double precision until the row is drained.
+    #[inline]
+    pub(crate) fn add_f64(&mut self, i: u32, w: f64) {
         let m = self.marker[i as usize];
         if m != u32::MAX {
             self.wts[m as usize] += w;
@@ -148,7 +153,7 @@ impl RowBuilder {
             self.marker[i as usize] = u32::MAX;
         }
         idx.extend_from_slice(&self.idx);
-        wts.extend_from_slice(&self.wts);
+        wts.extend(self.wts.iter().map(|&w| w as f32));
         self.idx.clear();
         self.wts.clear();
     }
