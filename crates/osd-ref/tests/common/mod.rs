@@ -11,6 +11,7 @@ use subsurf::{
 
 /// `require_osd!()` at the top of a test: returns from it (after a loud message) when
 /// OpenSubdiv is missing, and fails under CI.
+#[allow(unused_macros)]
 macro_rules! require_osd {
     () => {{
         fn here() {}
