@@ -71,13 +71,23 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
         face_sizes,
         valences,
         boundary_edges: t.boundary_edges().len(),
-        boundary_vertices: (0..t.num_vertices()).filter(|&v| t.is_boundary_vertex(v)).count(),
+        boundary_vertices: (0..t.num_vertices())
+            .filter(|&v| t.is_boundary_vertex(v))
+            .count(),
         non_manifold_edges: t.non_manifold_edges().len(),
         non_manifold_vertices: t.non_manifold_vertices().len(),
         degenerate_faces: t.degenerate_faces().len(),
         unused_vertices: t.unused_vertices().len(),
-        semi_sharp_edges: t.edge_tags.iter().filter(|&&e| e & tags::E_SEMI_SHARP != 0).count(),
-        infinitely_sharp_edges_tagged: mesh.creases.iter().filter(|c| c.sharpness >= subsurf::SHARPNESS_INFINITE).count(),
+        semi_sharp_edges: t
+            .edge_tags
+            .iter()
+            .filter(|&&e| e & tags::E_SEMI_SHARP != 0)
+            .count(),
+        infinitely_sharp_edges_tagged: mesh
+            .creases
+            .iter()
+            .filter(|c| c.sharpness >= subsurf::SHARPNESS_INFINITE)
+            .count(),
         corners: mesh.corners.len(),
         holes: mesh.holes.len(),
         has_uvs: mesh.uvs.is_some(),
@@ -91,22 +101,52 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
         println!("{}", serde_json::to_string_pretty(&info)?);
         return Ok(());
     }
-    let hist = |h: &BTreeMap<usize, usize>| h.iter().map(|(k, v)| format!("{k}:{v}")).collect::<Vec<_>>().join(" ");
+    let hist = |h: &BTreeMap<usize, usize>| {
+        h.iter()
+            .map(|(k, v)| format!("{k}:{v}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
     println!("file              {}", info.file);
-    println!("scheme            {} (boundary {}, creases {})", info.scheme, info.boundary_interpolation, info.crease_method);
+    println!(
+        "scheme            {} (boundary {}, creases {})",
+        info.scheme, info.boundary_interpolation, info.crease_method
+    );
     println!("vertices          {}", info.vertices);
-    println!("faces             {}  sizes {}", info.faces, hist(&info.face_sizes));
+    println!(
+        "faces             {}  sizes {}",
+        info.faces,
+        hist(&info.face_sizes)
+    );
     println!("edges             {}", info.edges);
     println!("valences          {}", hist(&info.valences));
-    println!("boundary          {} edges, {} vertices", info.boundary_edges, info.boundary_vertices);
-    println!("non-manifold      {} edges, {} vertices", info.non_manifold_edges, info.non_manifold_vertices);
+    println!(
+        "boundary          {} edges, {} vertices",
+        info.boundary_edges, info.boundary_vertices
+    );
+    println!(
+        "non-manifold      {} edges, {} vertices",
+        info.non_manifold_edges, info.non_manifold_vertices
+    );
     println!("degenerate faces  {}", info.degenerate_faces);
     println!("unused vertices   {}", info.unused_vertices);
-    println!("creases           {} semi-sharp edges, {} infinitely sharp tags", info.semi_sharp_edges, info.infinitely_sharp_edges_tagged);
+    println!(
+        "creases           {} semi-sharp edges, {} infinitely sharp tags",
+        info.semi_sharp_edges, info.infinitely_sharp_edges_tagged
+    );
     println!("corners           {}", info.corners);
     println!("holes             {}", info.holes);
-    println!("uvs               {}", if info.has_uvs { "yes" } else { "no" });
-    println!("manifold {}  closed {}  all quads {}", info.manifold, info.closed, info.all_quads);
-    println!("bounding box      {:?} .. {:?}", info.bbox_min, info.bbox_max);
+    println!(
+        "uvs               {}",
+        if info.has_uvs { "yes" } else { "no" }
+    );
+    println!(
+        "manifold {}  closed {}  all quads {}",
+        info.manifold, info.closed, info.all_quads
+    );
+    println!(
+        "bounding box      {:?} .. {:?}",
+        info.bbox_min, info.bbox_max
+    );
     Ok(())
 }

@@ -84,5 +84,6 @@ pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
 
 /// Writes a mesh file, with the path in the error.
 pub fn write_mesh(path: &Path, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> anyhow::Result<()> {
-    subsurf::io::write_path(path, mesh, normals).with_context(|| format!("writing {}", path.display()))
+    subsurf::io::write_path(path, mesh, normals)
+        .with_context(|| format!("writing {}", path.display()))
 }

@@ -5,7 +5,10 @@ use subsurf::Topology;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args.get(1).map(String::as_str).unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = args
+        .get(1)
+        .map(String::as_str)
+        .unwrap_or("testdata/shapes/catmark_car.obj");
     let level: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     let mesh = subsurf::io::read_path(path)?;
     let t = Instant::now();
@@ -18,7 +21,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t = Instant::now();
         let s = level_stencils(&topo, &child);
         let t2 = t.elapsed().as_secs_f64() * 1e3;
-        println!("level {l}: {} vertices; topology {t1:.2} ms, stencils {t2:.2} ms ({} entries)", child.num_vertices(), s.num_entries());
+        println!(
+            "level {l}: {} vertices; topology {t1:.2} ms, stencils {t2:.2} ms ({} entries)",
+            child.num_vertices(),
+            s.num_entries()
+        );
         topo = child;
     }
     Ok(())
