@@ -73,7 +73,7 @@
 //! | `V1` (`v = 1`, grid row 2) | `v` | `v` |
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
-use super::bspline::{bspline_curve, bspline_curve_bounded};
+use super::bspline::{bspline_curve, bspline_curve_bounded, bspline_patch_weights};
 use super::real::Real;
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
@@ -185,6 +185,14 @@ pub fn single_crease_patch_weights<T: Real>(
     edge: PatchEdge,
     s: T,
 ) -> PatchWeights<T, 16> {
+    // The two limits are the plain and the boundary (phantom point) patch; delegating keeps
+    // them bit-identical to those patches in every orientation.
+    if s.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
+        return bspline_patch_weights(u, v, 0);
+    }
+    if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
+        return bspline_patch_weights(u, v, edge.mask());
+    }
     match edge {
         PatchEdge::U1 => {
             PatchWeights::tensor(&crease_curve_td(u, T::ONE - u, s), &bspline_curve(v))
