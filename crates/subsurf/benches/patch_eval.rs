@@ -17,13 +17,13 @@ fn grid() -> [[f32; 3]; 16] {
     })
 }
 
-/// A fixed tessellation pattern over the patch, denser towards the crease edge u = 1.
+/// A uniform tessellation pattern over the patch.
 fn params() -> Vec<(f32, f32)> {
     (0..SAMPLES * SAMPLES)
         .map(|k| {
             let a = (k % SAMPLES) as f32 / (SAMPLES - 1) as f32;
             let b = (k / SAMPLES) as f32 / (SAMPLES - 1) as f32;
-            (1.0 - (1.0 - a) * (1.0 - a), b)
+            (a, b)
         })
         .collect()
 }
@@ -43,8 +43,10 @@ fn bench(c: &mut Criterion) {
             acc
         })
     });
-    for s in [1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 9.5, 10.0] {
-        g.bench_with_input(BenchmarkId::new("single_crease", s), &s, |b, &s| {
+    // Uniform samples over the patch: the share of samples in the transition parts
+    // shrinks like 2^-s, so this is the average cost of a tessellated patch.
+    for s in [1.0f32, 2.0, 4.0, 6.0, 8.0, 10.0] {
+        g.bench_with_input(BenchmarkId::new("single_crease_uniform", s), &s, |b, &s| {
             b.iter(|| {
                 let mut acc = 0.0f32;
                 for &(u, v) in &uv {
@@ -54,6 +56,28 @@ fn bench(c: &mut Criterion) {
                 acc
             })
         });
+    }
+    // Every sample inside the transition parts u > 1 - 2^-floor(s): the worst case, which
+    // would grow with s if the cost depended on the number of crease levels.
+    for s in [1.0f32, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 9.5] {
+        let near: Vec<(f32, f32)> = uv
+            .iter()
+            .map(|&(u, v)| (1.0 - (1.0 - u) * (s.floor()).exp2().recip(), v))
+            .collect();
+        g.bench_with_input(
+            BenchmarkId::new("single_crease_transition", s),
+            &s,
+            |b, &s| {
+                b.iter(|| {
+                    let mut acc = 0.0f32;
+                    for &(u, v) in &near {
+                        let e = eval_single_crease_patch(black_box(&pts), u, v, PatchEdge::U1, s);
+                        acc += e.p[2] + e.du[2];
+                    }
+                    acc
+                })
+            },
+        );
     }
     let greg: [[f32; 3]; 20] = std::array::from_fn(|k| [k as f32, (k * k) as f32, 1.0]);
     g.bench_function("gregory", |b| {

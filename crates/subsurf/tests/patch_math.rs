@@ -122,6 +122,54 @@ fn bspline_partition_of_unity_all_boundary_masks() {
     }
 }
 
+/// OpenSubdiv's boundary handling, as it is specified on the 16 tensor weights (index
+/// `4*row + column`): for each boundary bit, the weight of every missing point is added
+/// twice to its neighbour on the boundary line and subtracted once from the next point
+/// inwards, then zeroed. Bits: 1 → row 0, 2 → column 3, 4 → row 3, 8 → column 0.
+fn osd_style_fold(mask: u8, w: &mut [f64; 16]) {
+    // (bit, missing index, boundary-line index, inner index) as functions of the lane k.
+    type Lane = fn(usize) -> (usize, usize, usize);
+    let rules: [(u8, Lane); 4] = [
+        (1, |k| (k, k + 4, k + 8)),
+        (2, |k| (4 * k + 3, 4 * k + 2, 4 * k + 1)),
+        (4, |k| (k + 12, k + 8, k + 4)),
+        (8, |k| (4 * k, 4 * k + 1, 4 * k + 2)),
+    ];
+    for (bit, lane) in rules {
+        if mask & bit != 0 {
+            for k in 0..4 {
+                let (miss, edge, inner) = lane(k);
+                w[edge] += 2.0 * w[miss];
+                w[inner] -= w[miss];
+                w[miss] = 0.0;
+            }
+        }
+    }
+}
+
+#[test]
+fn boundary_folding_matches_opensubdiv_tensor_adjustment() {
+    for mask in 0..16u8 {
+        for (u, v) in [(0.0, 0.0), (0.3, 0.7), (1.0, 0.5), (0.9, 1.0)] {
+            let plain = bspline_patch_weights(u, v, 0);
+            let ours = bspline_patch_weights(u, v, mask);
+            for (mut a, b) in [
+                (plain.p, ours.p),
+                (plain.du, ours.du),
+                (plain.dv, ours.dv),
+                (plain.duu, ours.duu),
+                (plain.duv, ours.duv),
+                (plain.dvv, ours.dvv),
+            ] {
+                osd_style_fold(mask, &mut a);
+                for k in 0..16 {
+                    assert!((a[k] - b[k]).abs() < 1e-15, "mask {mask} weight {k}");
+                }
+            }
+        }
+    }
+}
+
 /// Polar forms (blossoms) of `1, x, x², x³` at the knots `(i−1, i, i+1)` of a uniform cubic
 /// B-spline with knots at the integers: Marsden's identity gives the control points that
 /// reproduce each monomial exactly.

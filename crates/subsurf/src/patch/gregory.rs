@@ -81,11 +81,12 @@ pub const GREGORY_INTERIOR: [(usize, usize, usize, usize); 4] =
     [(3, 4, 1, 1), (8, 9, 2, 1), (13, 14, 2, 2), (18, 19, 1, 2)];
 
 /// Rational weight of the `f+` point of corner `k` at `(u, v)` with its partial derivatives
-/// `(g, g_u, g_v, g_uu, g_uv, g_vv)`; the `f−` weight is `1 − g`.
+/// `(g, g_u, g_v, g_uu, g_uv, g_vv)`; the `f−` weight is `1 − g`. `None` where the
+/// denominator vanishes (at the corner itself).
 ///
 /// `g = N / D` with `N`, `D` linear: corner 0 `u/(u+v)`, corner 1 `v/(1−u+v)`,
 /// corner 2 `(1−u)/(2−u−v)`, corner 3 `(1−v)/(1+u−v)`.
-fn rational<T: Real>(k: usize, u: T, v: T) -> [T; 6] {
+fn rational<T: Real>(k: usize, u: T, v: T) -> Option<[T; 6]> {
     let one = T::ONE;
     let (n, nu, nv, d, du, dv) = match k {
         0 => (u, one, T::ZERO, u + v, one, one),
@@ -94,20 +95,20 @@ fn rational<T: Real>(k: usize, u: T, v: T) -> [T; 6] {
         _ => (one - v, T::ZERO, -one, u + (one - v), one, -one),
     };
     if d <= T::ZERO {
-        return [T::ZERO; 6];
+        return None;
     }
     let g = n / d;
     let gu = (nu - g * du) / d;
     let gv = (nv - g * dv) / d;
     let two = T::from_f64(2.0);
-    [
+    Some([
         g,
         gu,
         gv,
         -two * du * gu / d,
         -(dv * gu + du * gv) / d,
         -two * dv * gv / d,
-    ]
+    ])
 }
 
 /// Weights of the 20 Gregory points at `(u, v)`.
@@ -129,16 +130,10 @@ pub fn gregory_patch_weights<T: Real>(
     }
     let two = T::from_f64(2.0);
     for (k, &(plus, minus, i, j)) in GREGORY_INTERIOR.iter().enumerate() {
-        let r = rational(k, u, v);
-        // (f+ weight, f- weight) with derivatives: (g, 1 - g).
+        // (f+ weight, f- weight) with derivatives: (g, 1 - g); at a degenerate corner
+        // (0, 1) without derivative contribution.
+        let r = rational(k, u, v).unwrap_or([T::ZERO; 6]);
         let mut pair = [r, [T::ONE - r[0], -r[1], -r[2], -r[3], -r[4], -r[5]]];
-        if r == [T::ZERO; 6] {
-            // Degenerate corner: weights (0, 1), no derivative contribution.
-            pair = [
-                [T::ZERO; 6],
-                [T::ONE, T::ZERO, T::ZERO, T::ZERO, T::ZERO, T::ZERO],
-            ];
-        }
         if derivatives == GregoryDerivatives::BezierApproximation {
             for q in pair.iter_mut() {
                 for x in q[1..].iter_mut() {

@@ -42,10 +42,14 @@
 //!
 //! Bit `k` of a boundary mask (and of a transition mask) stands for edge `k`.
 //!
+//! [`patch_weights`] is the single entry point for a patch of any [`PatchKind`] at base-face
+//! coordinates.
+//!
 //! Every basis function returns a [`PatchWeights`]: one weight per control point for the
 //! position and for the first and second partial derivatives, in the patch's own `(u, v)`.
 //! [`PatchParam::deriv_scale`] converts derivatives to the base face's parameterization.
 
+pub mod basis;
 pub mod bezier;
 pub mod bspline;
 pub mod gregory;
@@ -54,6 +58,7 @@ pub mod real;
 pub mod single_crease;
 pub mod weights;
 
+pub use basis::{patch_weights, patch_weights_normalized, AnyPatchWeights, PatchKind};
 pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch};
 pub use bspline::{
     bspline_curve, bspline_patch_weights, eval_bspline_patch, BOUNDARY_U0, BOUNDARY_U1,

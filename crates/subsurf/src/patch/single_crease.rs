@@ -66,6 +66,10 @@
 //! stores `1 << k` for its crease edge `k` in the [`super::PatchParam`] boundary field (the
 //! patch is interior, so the field is free), and the sharpness separately.
 //!
+//! The evaluation is exact for the sharpness it is given. OpenSubdiv's patch table builder
+//! stores `min(edge sharpness, max isolation level − patch level)` for a single-crease patch;
+//! whether to replicate that cap is the builder's choice.
+//!
 //! | crease edge | transformed direction | curve parameter `t` (crease at `t = 1`) |
 //! |---|---|---|
 //! | `U1` (`u = 1`, grid column 2) | `u` | `u` |
