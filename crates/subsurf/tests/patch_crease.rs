@@ -3,8 +3,8 @@
 //! vectors of `shared/spec/creases.md` §6, continuity in the sharpness and the parameter, and
 //! the stability of the `f32` path.
 
-mod common;
-use common::*;
+mod patch_common;
+use patch_common::*;
 
 use subsurf::patch::{
     bspline_curve, crease_curve, eval_bspline_patch, eval_single_crease_patch,

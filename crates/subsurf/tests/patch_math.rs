@@ -2,8 +2,8 @@
 //! closed forms (polynomial reproduction, boundary curves), finite differences, brute-force
 //! boundary refinement, OpenSubdiv's boundary weight adjustment and the PatchParam bit layout.
 
-mod common;
-use common::*;
+mod patch_common;
+use patch_common::*;
 
 use subsurf::patch::{
     bezier::BSPLINE_TO_BEZIER, bspline_curve, bspline_patch_weights, eval_bezier_patch,
