@@ -195,9 +195,11 @@ mod tests {
 
     #[test]
     fn indexed_evaluation_gathers_and_checks_indices() {
-        let mut w = PatchWeights::<f64, 4>::default();
-        w.p = [0.1, 0.2, 0.3, 0.4];
-        w.du = [1.0, 0.0, -1.0, 0.0];
+        let w = PatchWeights::<f64, 4> {
+            p: [0.1, 0.2, 0.3, 0.4],
+            du: [1.0, 0.0, -1.0, 0.0],
+            ..Default::default()
+        };
         let pts = [[1.0], [2.0], [3.0], [4.0], [5.0]];
         let e = w.eval_indexed(&pts, &[4, 3, 2, 1]).unwrap();
         assert!((e.p[0] - (0.5 + 0.8 + 0.9 + 0.8)).abs() < 1e-15);
