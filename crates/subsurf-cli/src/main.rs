@@ -1,9 +1,13 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_compare;
 mod cmd_info;
 mod cmd_refine;
+mod cmd_render;
 mod common;
+mod progress;
+mod render_mesh;
 
 use clap::{Parser, Subcommand};
 
@@ -11,6 +15,9 @@ use clap::{Parser, Subcommand};
 #[derive(Debug, Parser)]
 #[command(name = "subsurf", version, about)]
 struct Cli {
+    /// No progress output or notes on stderr.
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -23,14 +30,21 @@ enum Command {
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
+    /// Render a surface to PNG (headless GPU).
+    Render(cmd_render::RenderArgs),
+    /// Render two surfaces side by side.
+    Compare(cmd_compare::CompareArgs),
 }
 
 fn main() {
     let cli = Cli::parse();
+    progress::set_quiet(cli.quiet);
     let result = match &cli.command {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Render(a) => cmd_render::run(a),
+        Command::Compare(a) => cmd_compare::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -6,6 +6,13 @@
 //! the horizontal one `atan(aspect · tan(fov_y / 2))`), a sphere of radius `r` seen from
 //! distance `D` subtends the half-angle `asin(r / D)`, so `D = r / sin α` makes it touch the
 //! narrower image border. A margin factor `m ≥ 1` leaves a border: `D = m · r / sin α`.
+//!
+//! The tight fit ([`Camera::frame_points`]) frames the points themselves: with view axes
+//! `(r̂, û, d̂)` and `(x, y, z)` a point's coordinates relative to the target, the point lies
+//! at depth `D − z` and inside the frustum when `|x| ≤ tan(α_x)(D − z)` and
+//! `|y| ≤ tan(α_y)(D − z)`, so `D = max_p max(z + m|x| / tan α_x, z + m|y| / tan α_y)`.
+//! The target is first moved to the middle of the points' extent across the view
+//! direction, so that elongated models fill the image.
 
 /// Named view directions. With `up = Y`: front looks down `-Z` (the eye on `+Z`), right
 /// looks from `+X`, top from `+Y`; `iso` is a three-quarter view from front-right-above.
@@ -157,6 +164,88 @@ impl Camera {
         }
     }
 
+    /// Frames `points` tightly from `view` (see the module docs); `None` without points.
+    pub fn frame_points<'a>(
+        points: impl Iterator<Item = &'a [f32; 3]> + Clone,
+        view: View,
+        up_axis: UpAxis,
+        aspect: f32,
+        fov_y: f32,
+        margin: f32,
+    ) -> Option<Camera> {
+        let (dir, up0) = view.directions(up_axis);
+        let dir = normalize(dir);
+        let right = normalize(cross(up0, dir));
+        let up = cross(dir, right);
+        let ty = (0.5 * fov_y).tan() / margin;
+        let tx = ty * aspect;
+        // Extent across the view direction: centre the target on it.
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for p in points.clone() {
+            let q = [dot(*p, right), dot(*p, up), dot(*p, dir)];
+            for k in 0..3 {
+                lo[k] = lo[k].min(q[k]);
+                hi[k] = hi[k].max(q[k]);
+            }
+        }
+        if !lo[0].is_finite() {
+            return None;
+        }
+        let mid = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+        let mut target = add(
+            add(scale(right, mid[0]), scale(up, mid[1])),
+            scale(dir, mid[2]),
+        );
+        let fit = |target: [f32; 3]| {
+            let mut dist = 0.0f32;
+            for p in points.clone() {
+                let v = sub(*p, target);
+                let (x, y, z) = (dot(v, right), dot(v, up), dot(v, dir));
+                dist = dist.max(z + x.abs() / tx).max(z + y.abs() / ty);
+            }
+            dist
+        };
+        // Perspective enlarges the near side: shift the target by the middle of the
+        // projected extent (in units of the view half-width at the target's depth) and fit
+        // again, a few times.
+        let mut dist = fit(target);
+        for _ in 0..4 {
+            let (mut x0, mut x1, mut y0, mut y1) = (f32::MAX, f32::MIN, f32::MAX, f32::MIN);
+            for p in points.clone() {
+                let v = sub(*p, target);
+                let depth = (dist - dot(v, dir)).max(1e-6);
+                let (x, y) = (dot(v, right) / depth, dot(v, up) / depth);
+                (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+            }
+            let shift = add(
+                scale(right, 0.5 * (x0 + x1) * dist),
+                scale(up, 0.5 * (y0 + y1) * dist),
+            );
+            target = add(target, shift);
+            dist = fit(target);
+        }
+        let mut radius = 0.0f32;
+        for p in points {
+            let v = sub(*p, target);
+            radius = radius.max(dot(v, v));
+        }
+        let radius = radius.sqrt().max(1e-6);
+        let dist = dist.max(1e-3 * radius);
+        let eye = add(target, scale(dir, dist));
+        Some(Camera {
+            eye,
+            target,
+            up,
+            right,
+            fov_y,
+            aspect,
+            near: (dist - 1.5 * radius).max(dist * 1e-3),
+            far: dist + 1.5 * radius,
+            radius,
+        })
+    }
+
     /// World-to-clip matrix (right-handed view, wgpu depth range 0..1).
     pub fn view_proj(&self) -> Mat4 {
         let f = normalize(sub(self.target, self.eye)); // forward = -z in view space
@@ -245,6 +334,43 @@ mod tests {
         // The centre projects to the image centre.
         let c = cam.project(cam.target, 100, 100);
         assert!((c[0] - 50.0).abs() < 1e-3 && (c[1] - 50.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn tight_fit_touches_the_border_and_contains_every_point() {
+        // A long box seen from the front in a square image.
+        let pts: Vec<[f32; 3]> = (0..8)
+            .map(|i| {
+                [
+                    if i & 1 == 0 { -4.0 } else { 4.0 },
+                    if i & 2 == 0 { 0.0 } else { 1.0 },
+                    if i & 4 == 0 { -1.0 } else { 1.0 },
+                ]
+            })
+            .collect();
+        for view in [View::Front, View::Iso, View::Top] {
+            let cam = Camera::frame_points(pts.iter(), view, UpAxis::Y, 1.0, 0.6, 1.0).unwrap();
+            let mut extreme = 0.0f32;
+            for p in &pts {
+                let px = cam.project(*p, 100, 100);
+                assert!((-1e-3..=100.001).contains(&px[0]), "{view:?} {px:?}");
+                assert!((-1e-3..=100.001).contains(&px[1]), "{view:?} {px:?}");
+                extreme = extreme.max((px[0] - 50.0).abs()).max((px[1] - 50.0).abs());
+            }
+            // Some corner touches the border.
+            assert!((extreme - 50.0).abs() < 1e-2, "{view:?} {extreme}");
+            // Centred: the projected extent has equal margins on opposite sides (to within
+            // the convergence of the centring iterations).
+            let px: Vec<[f32; 2]> = pts.iter().map(|p| cam.project(*p, 100, 100)).collect();
+            let (x0, x1) = px
+                .iter()
+                .fold((f32::MAX, f32::MIN), |a, p| (a.0.min(p[0]), a.1.max(p[0])));
+            let (y0, y1) = px
+                .iter()
+                .fold((f32::MAX, f32::MIN), |a, p| (a.0.min(p[1]), a.1.max(p[1])));
+            assert!((x0 - (100.0 - x1)).abs() < 1.0, "{view:?} x {x0} {x1}");
+            assert!((y0 - (100.0 - y1)).abs() < 1.0, "{view:?} y {y0} {y1}");
+        }
     }
 
     #[test]

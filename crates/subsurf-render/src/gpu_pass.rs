@@ -40,8 +40,8 @@ fn uniforms(cam: &Camera, o: &RenderOptions) -> Uniforms {
         add(scale(cam.right, -0.45), scale(cam.up, 0.75)),
         scale(normalize(crate::camera::sub(cam.eye, cam.target)), 0.5),
     ));
-    let key_intensity = if o.key_light { 0.45 } else { 0.0 };
-    let headlight = if o.key_light { 0.55 } else { 0.85 };
+    let key_intensity = if o.key_light { 0.5 } else { 0.0 };
+    let headlight = if o.key_light { 0.5 } else { 0.85 };
     Uniforms {
         view_proj: cam.view_proj(),
         eye: [e[0], e[1], e[2], 1.0],
@@ -58,7 +58,7 @@ fn uniforms(cam: &Camera, o: &RenderOptions) -> Uniforms {
             o.line_width,
             2e-3 * cam.radius,
         ],
-        shading: [0.12, headlight, 0.12, 24.0],
+        shading: [0.1, headlight, 0.15, 32.0],
     }
 }
 

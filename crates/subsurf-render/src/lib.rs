@@ -79,7 +79,8 @@ impl RenderMesh {
         self.indices.len() / 3
     }
 
-    fn points(&self) -> impl Iterator<Item = &[f32; 3]> {
+    /// Vertices and line ends.
+    pub fn points(&self) -> impl Iterator<Item = &[f32; 3]> + Clone {
         self.positions
             .iter()
             .chain(self.lines.iter().flat_map(|l| l.iter()))
@@ -123,6 +124,16 @@ pub const PALETTE: [[u8; 3]; 8] = [
     [80, 190, 190],  // 7 teal
 ];
 
+/// Camera framing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Fit {
+    /// The bounding sphere (about the box centre) touches the narrower border: the same
+    /// distance from every view direction.
+    Sphere,
+    /// The points themselves touch the border: elongated models fill the image.
+    Tight,
+}
+
 /// How to render.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderOptions {
@@ -151,6 +162,8 @@ pub struct RenderOptions {
     pub samples: u32,
     /// Vertical field of view in degrees.
     pub fov_y_degrees: f32,
+    /// How the camera distance is chosen.
+    pub fit: Fit,
     /// Camera distance over the distance at which the bounding sphere touches the narrower
     /// image border (1 = touching; larger leaves a border).
     pub margin: f32,
@@ -172,6 +185,7 @@ impl Default for RenderOptions {
             samples: 4,
             fov_y_degrees: 30.0,
             margin: 1.05,
+            fit: Fit::Sphere,
         }
     }
 }
@@ -179,6 +193,16 @@ impl Default for RenderOptions {
 impl RenderOptions {
     /// The camera these options give for `mesh`, or `None` for an empty mesh.
     pub fn camera(&self, mesh: &RenderMesh) -> Option<Camera> {
+        if self.fit == Fit::Tight {
+            return Camera::frame_points(
+                mesh.points(),
+                self.view,
+                self.up,
+                self.width as f32 / self.height.max(1) as f32,
+                self.fov_y_degrees.to_radians(),
+                self.margin,
+            );
+        }
         let (center, radius) = mesh.bounding_sphere()?;
         Some(Camera::frame(
             center,
