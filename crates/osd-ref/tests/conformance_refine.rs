@@ -4,50 +4,14 @@
 #[macro_use]
 mod common;
 
-use std::borrow::Cow;
-
-use osd_ref::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
-use subsurf::{
-    BoundaryInterpolation, CreaseMethod, Mesh, Refiner, Scheme, Topology, TriangleSubdivision,
-};
-
-fn osd_options(m: &Mesh) -> OsdOptions {
-    OsdOptions {
-        scheme: match m.options.scheme {
-            Scheme::Catmark => OsdScheme::Catmark,
-            Scheme::Bilinear => OsdScheme::Bilinear,
-            Scheme::Loop => OsdScheme::Loop,
-        },
-        boundary: match m.options.boundary {
-            BoundaryInterpolation::None => OsdBoundary::None,
-            BoundaryInterpolation::EdgeOnly => OsdBoundary::EdgeOnly,
-            BoundaryInterpolation::EdgeAndCorner => OsdBoundary::EdgeAndCorner,
-        },
-        crease_method: match m.options.crease_method {
-            CreaseMethod::Uniform => OsdCreaseMethod::Uniform,
-            CreaseMethod::Chaikin => OsdCreaseMethod::Chaikin,
-        },
-        triangle_smooth: m.options.triangle_subdivision == TriangleSubdivision::Smooth,
-        fvar_interp: 5,
-    }
-}
+use osd_ref::OsdMesh;
+use subsurf::{Mesh, Refiner, Topology};
 
 fn osd_mesh(m: &Mesh) -> OsdMesh<'_> {
-    OsdMesh {
-        positions: &m.positions,
-        face_counts: &m.face_counts,
-        face_indices: &m.face_indices,
-        creases: Cow::Owned(
-            m.creases
-                .iter()
-                .map(|c| (c.v0, c.v1, c.sharpness))
-                .collect(),
-        ),
-        corners: Cow::Owned(m.corners.iter().map(|c| (c.vertex, c.sharpness)).collect()),
-        holes: &m.holes,
-        uvs: None,
-        options: osd_options(m),
-    }
+    let mut o = OsdMesh::from(m);
+    // Compare geometry only; UVs are compared separately.
+    o.uvs = None;
+    o
 }
 
 fn diagonal(points: &[[f32; 3]]) -> f32 {
