@@ -17,6 +17,7 @@
 pub mod error;
 pub mod mesh;
 pub mod options;
+pub mod prep;
 
 pub use error::{Error, MeshError, Result};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
