@@ -18,7 +18,7 @@
 
 use rayon::prelude::*;
 
-use super::constants::ValenceTable;
+use super::constants::{Valence, ValenceTable};
 use super::ring::PrepTopology;
 use super::scalar::{add, axpy, scale, zero3, Real, V3};
 
@@ -60,6 +60,46 @@ fn pos<T: Real>(p: &[[f32; 3]], i: u32) -> V3<T> {
     [T::from_f32(q[0]), T::from_f32(q[1]), T::from_f32(q[2])]
 }
 
+/// `(g00, e1, e2)` from `p0` and its ring (equations (2) and (3)): `ring(j)` returns
+/// `(p_{2j+1}, p_{2j+2})`, the edge and diagonal neighbour of sector `j`, for `j = 0..n-1`.
+#[inline]
+pub fn frame_from_ring<T: Real>(
+    c: &Valence<T>,
+    p0: V3<T>,
+    ring: impl Fn(usize) -> (V3<T>, V3<T>),
+) -> (V3<T>, V3<T>, V3<T>) {
+    let (mut se, mut sd) = (zero3::<T>(), zero3::<T>());
+    let (mut e1, mut e2) = (zero3::<T>(), zero3::<T>());
+    for j in 0..c.n {
+        let (pe, pd) = ring(j);
+        se = add(se, pe);
+        sd = add(sd, pd);
+        e1 = axpy(axpy(e1, c.e1[j][0], pe), c.e1[j][1], pd);
+        e2 = axpy(axpy(e2, c.e2[j][0], pe), c.e2[j][1], pd);
+    }
+    let g00 = axpy(axpy(scale(c.limit[0], p0), c.limit[1], se), c.limit[2], sd);
+    (g00, e1, e2)
+}
+
+/// Tangent coefficient `T(k) = g00 + c^k e1 + s^k e2` (3).
+#[inline]
+pub fn tangent_coeff<T: Real>(c: &Valence<T>, k: usize, g00: V3<T>, e1: V3<T>, e2: V3<T>) -> V3<T> {
+    axpy(axpy(g00, c.cos[k], e1), c.sin[k], e2)
+}
+
+/// Interior coefficient `I(k) = (4 p0 + 2 (p_{2k+1} + p_{2k+3}) + p_{2k+2}) / 9` (4).
+#[inline]
+pub fn interior_coeff<T: Real>(p0: V3<T>, p1: V3<T>, p2: V3<T>, p3: V3<T>) -> V3<T> {
+    let sum = add(
+        add(
+            scale(T::from_f64(4.0), p0),
+            scale(T::from_f64(2.0), add(p1, p3)),
+        ),
+        p2,
+    );
+    scale(T::from_f64(1.0 / 9.0), sum)
+}
+
 /// `(g00, e1, e2)` of vertex `v`: equations (2) and (3).
 #[inline]
 pub fn vertex_frame<T: Real>(
@@ -74,19 +114,9 @@ pub fn vertex_frame<T: Real>(
     if n == 0 {
         return (p0, zero3(), zero3());
     }
-    let k = consts.get(n);
-    let (mut se, mut sd) = (zero3::<T>(), zero3::<T>());
-    let (mut e1, mut e2) = (zero3::<T>(), zero3::<T>());
-    for j in 0..n {
-        let pe = pos::<T>(positions, ring[2 * j]);
-        let pd = pos::<T>(positions, ring[2 * j + 1]);
-        se = add(se, pe);
-        sd = add(sd, pd);
-        e1 = axpy(axpy(e1, k.e1[j][0], pe), k.e1[j][1], pd);
-        e2 = axpy(axpy(e2, k.e2[j][0], pe), k.e2[j][1], pd);
-    }
-    let g00 = axpy(axpy(scale(k.limit[0], p0), k.limit[1], se), k.limit[2], sd);
-    (g00, e1, e2)
+    frame_from_ring(consts.get(n), p0, |j| {
+        (pos(positions, ring[2 * j]), pos(positions, ring[2 * j + 1]))
+    })
 }
 
 /// `(T(k), I(k))` of sector `s` (global sector index): equations (3) and (4).
@@ -102,20 +132,14 @@ pub fn sector_coeffs<T: Real>(
     let ring = topo.ring(v);
     let n = ring.len() / 2;
     let k = s - topo.sector_base(v);
-    let c = consts.get(n);
-    let t = axpy(axpy(frame.0[v], c.cos[k], frame.1[v]), c.sin[k], frame.2[v]);
-    let p0 = pos::<T>(positions, v as u32);
-    let a = pos::<T>(positions, ring[2 * k]);
-    let d = pos::<T>(positions, ring[2 * k + 1]);
-    let b = pos::<T>(positions, ring[(2 * k + 2) % (2 * n)]);
-    let sum = add(
-        add(
-            scale(T::from_f64(4.0), p0),
-            scale(T::from_f64(2.0), add(a, b)),
-        ),
-        d,
+    let t = tangent_coeff(consts.get(n), k, frame.0[v], frame.1[v], frame.2[v]);
+    let i = interior_coeff(
+        pos(positions, v as u32),
+        pos(positions, ring[2 * k]),
+        pos(positions, ring[2 * k + 1]),
+        pos(positions, ring[(2 * k + 2) % (2 * n)]),
     );
-    (t, scale(T::from_f64(1.0 / 9.0), sum))
+    (t, i)
 }
 
 /// Parallel vertex pass (rayon, chunks of [`CHUNK`] elements).
