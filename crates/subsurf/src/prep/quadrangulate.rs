@@ -63,7 +63,7 @@ pub fn quadrangulate(mesh: &Mesh) -> Result<Mesh> {
         }
     }
     let mut out = Mesh::from_faces(positions, &faces);
-    out.options = mesh.options.clone();
+    out.options = mesh.options;
     Ok(out)
 }
 

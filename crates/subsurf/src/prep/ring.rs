@@ -368,7 +368,7 @@ mod tests {
             }
         }
         // Each edge appears in exactly two face corners.
-        let mut count = vec![0; 12];
+        let mut count = [0; 12];
         for &e in &t.face_edges {
             count[e as usize] += 1;
         }

@@ -22,6 +22,9 @@ use super::constants::{Valence, ValenceTable};
 use super::ring::PrepTopology;
 use super::scalar::{add, axpy, scale, zero3, Real, V3};
 
+/// Per-vertex `(limit, e1, e2)` arrays, read by the sector step.
+pub type Frames<'a, T> = (&'a [V3<T>], &'a [V3<T>], &'a [V3<T>]);
+
 /// Elements per parallel work item.
 pub const CHUNK: usize = 256;
 
@@ -125,7 +128,7 @@ pub fn sector_coeffs<T: Real>(
     topo: &PrepTopology,
     consts: &ValenceTable<T>,
     positions: &[[f32; 3]],
-    frame: (&[V3<T>], &[V3<T>], &[V3<T>]),
+    frame: Frames<'_, T>,
     s: usize,
 ) -> (V3<T>, V3<T>) {
     let v = topo.sector_vertex[s] as usize;
