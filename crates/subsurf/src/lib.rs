@@ -15,9 +15,14 @@
 //! that a GPU backend can upload the very same vectors.
 
 pub mod error;
+pub mod io;
 pub mod mesh;
 pub mod options;
 pub mod prep;
+pub mod refine;
+pub mod rules;
+pub mod shapes;
+pub mod topology;
 
 pub use error::{Error, MeshError, Result};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
@@ -25,6 +30,8 @@ pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
     TriangleSubdivision,
 };
+pub use refine::{Refiner, StencilTable};
+pub use topology::Topology;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).
 pub const SHARPNESS_INFINITE: f32 = 10.0;
