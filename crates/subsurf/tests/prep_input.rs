@@ -2,8 +2,12 @@
 
 mod prep_shapes;
 
-use subsurf::prep::{check_input, PrepPatches};
-use subsurf::{Error, Mesh, MeshError};
+use subsurf::prep::{check_input as check_topology, PrepPatches};
+use subsurf::{Error, Mesh, MeshError, Topology};
+
+fn check_input(m: &Mesh) -> subsurf::Result<()> {
+    check_topology(&Topology::new(m)?)
+}
 
 fn details(r: subsurf::Result<()>) -> String {
     match r {
@@ -44,7 +48,7 @@ fn boundary_edges_are_named() {
     m.face_indices.truncate(20); // drop face [1,5,7,3]
     let d = details(check_input(&m));
     assert!(d.contains("4 boundary edges"), "{d}");
-    for e in ["1-3", "3-7", "7-5", "5-1"] {
+    for e in ["(1-3)", "(3-7)", "(5-7)", "(1-5)"] {
         assert!(d.contains(e), "{e} missing in: {d}");
     }
 }
@@ -58,7 +62,7 @@ fn non_manifold_edge_is_named() {
     m.face_indices.extend_from_slice(&[0, 1, 9, 8]); // a fin on edge 0-1 (same direction as face 0)
     let d = details(check_input(&m));
     assert!(
-        d.contains("directed edge used twice") && d.contains("0->1"),
+        d.contains("1 non-manifold edges") && d.contains("edge 0 (0-1)"),
         "{d}"
     );
 }
@@ -87,7 +91,7 @@ fn non_manifold_vertex_is_named() {
     let m = Mesh::from_faces(p, &f);
     let d = details(check_input(&m));
     assert!(
-        d.contains("1 non-manifold vertices") && d.contains("vertex 7 (6 faces, fan of 3)"),
+        d.contains("1 non-manifold vertices") && d.contains("vertex 7"),
         "{d}"
     );
 }

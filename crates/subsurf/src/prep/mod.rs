@@ -6,7 +6,7 @@
 //! Passes, one file each, all pure functions over flat tables:
 //!
 //! ```text
-//! FaceList ──ring──▶ PrepTopology (rings, sectors, edges; built once per connectivity)
+//! Topology ──ring──▶ PrepTopology (rings, sectors, edges; built once per connectivity)
 //! positions ──vertex_pass──▶ VertexData (limit point, e1, e2 per vertex; T(k), I(k) per sector)
 //!           ──patch_pass──▶ g (16 per face), h (16 per non-B-quad)
 //!           ──eval──▶ points / normals / watertight tessellation     ──bezier──▶ bi-5 b (36 per face)
@@ -28,12 +28,13 @@ pub mod scalar;
 pub mod vertex_pass;
 
 pub use eval::{Grid, Sample, Tessellation};
-pub use ring::{check_input, FaceList, PrepTopology};
+pub use ring::{check_input, PrepTopology};
 pub use scalar::Real;
 pub use vertex_pass::VertexData;
 
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
+use crate::topology::Topology;
 use constants::ValenceTable;
 use scalar::{zero3, V3};
 
@@ -57,13 +58,16 @@ pub struct PrepPatches<T> {
 impl<T: Real> PrepPatches<T> {
     /// Builds the p-rep of a closed quad mesh (parallel passes).
     pub fn build(mesh: &Mesh) -> Result<Self> {
-        check_finite(mesh)?;
-        let topo = PrepTopology::new(&FaceList::from(mesh))?;
-        Self::from_topology(topo, &mesh.positions)
+        Self::from_topology(&Topology::new(mesh)?, &mesh.positions)
     }
 
-    /// Builds the p-rep from prepared connectivity tables and vertex positions.
-    pub fn from_topology(topology: PrepTopology, positions: &[[f32; 3]]) -> Result<Self> {
+    /// Builds the p-rep from a validated topology and one position per vertex.
+    pub fn from_topology(topo: &Topology, positions: &[[f32; 3]]) -> Result<Self> {
+        Self::from_prep_topology(PrepTopology::new(topo)?, positions)
+    }
+
+    /// Builds the p-rep from prepared ring tables and vertex positions.
+    pub fn from_prep_topology(topology: PrepTopology, positions: &[[f32; 3]]) -> Result<Self> {
         let mut p = Self::allocate(topology);
         p.update(positions)?;
         Ok(p)
@@ -127,8 +131,7 @@ impl<T: Real> PrepPatches<T> {
 
     /// Builds with the sequential reference passes.
     pub fn build_sequential(mesh: &Mesh) -> Result<Self> {
-        check_finite(mesh)?;
-        let mut p = Self::allocate(PrepTopology::new(&FaceList::from(mesh))?);
+        let mut p = Self::allocate(PrepTopology::new(&Topology::new(mesh)?)?);
         p.update_sequential(&mesh.positions)?;
         Ok(p)
     }
@@ -156,13 +159,4 @@ impl<T: Real> PrepPatches<T> {
             .collect();
         npy::write_f64(w, &data, &[self.num_faces(), 6, 6, 3])
     }
-}
-
-fn check_finite(mesh: &Mesh) -> Result<()> {
-    for (v, p) in mesh.positions.iter().enumerate() {
-        if let Some(&value) = p.iter().find(|x| !x.is_finite()) {
-            return Err(MeshError::NonFiniteCoordinate { vertex: v, value }.into());
-        }
-    }
-    Ok(())
 }

@@ -85,6 +85,7 @@ mod tests {
         let q = quadrangulate(&m).unwrap();
         assert_eq!(q.num_vertices(), 4 + 6 + 4);
         assert_eq!(q.num_faces(), 12);
-        assert!(crate::prep::check_input(&q).is_ok());
+        let t = crate::topology::Topology::new(&q).unwrap();
+        assert!(crate::prep::check_input(&t).is_ok());
     }
 }

@@ -15,49 +15,9 @@
 //! Everything is computed once per connectivity and stored in flat tables
 //! ([`PrepTopology`]); the vertex and patch passes only index into them.
 
-use std::collections::HashMap;
-
 use super::constants::{MAX_VALENCE, MIN_VALENCE};
-use crate::error::{MeshError, Result};
-use crate::mesh::Mesh;
-
-/// The faces of a polygon mesh as flat tables: the p-rep's input connectivity.
-#[derive(Debug, Clone)]
-pub struct FaceList<'a> {
-    /// Number of vertices.
-    pub num_vertices: usize,
-    /// `F + 1` offsets into `face_verts`.
-    pub face_offsets: Vec<u32>,
-    /// Vertex indices of all faces, ccw seen from outside.
-    pub face_verts: &'a [u32],
-    /// Faces tagged as holes.
-    pub holes: &'a [u32],
-}
-
-impl<'a> From<&'a Mesh> for FaceList<'a> {
-    fn from(m: &'a Mesh) -> Self {
-        let mut face_offsets = Vec::with_capacity(m.face_counts.len() + 1);
-        let mut o = 0u32;
-        face_offsets.push(0);
-        for &c in &m.face_counts {
-            o = o.saturating_add(c);
-            face_offsets.push(o);
-        }
-        FaceList {
-            num_vertices: m.num_vertices(),
-            face_offsets,
-            face_verts: &m.face_indices,
-            holes: &m.holes,
-        }
-    }
-}
-
-impl FaceList<'_> {
-    /// Number of faces.
-    pub fn num_faces(&self) -> usize {
-        self.face_offsets.len() - 1
-    }
-}
+use crate::error::{Error, MeshError, Result};
+use crate::topology::Topology;
 
 /// Flat connectivity tables of a closed quad mesh, in the p-rep's ring order.
 ///
@@ -106,177 +66,132 @@ fn listing<I: std::fmt::Display>(what: &str, items: &[I]) -> String {
     format!("{} {what}: {}{more}", items.len(), head.join(", "))
 }
 
-fn unsupported(details: Vec<String>) -> crate::error::Error {
-    MeshError::Unsupported {
-        construction: CONSTRUCTION,
-        requirement: REQUIREMENT,
-        details: details.join("; "),
+/// Checks that `topo` is a closed, oriented 2-manifold quad mesh with valences
+/// `3..=MAX_VALENCE` and no holes. The [`MeshError::Unsupported`] error names the offending
+/// faces, edges or vertices (the first few of each kind, with their count).
+pub fn check_input(topo: &Topology) -> Result<()> {
+    let mut bad: Vec<String> = Vec::new();
+    let nf = topo.num_faces();
+    let edge_name = |e: u32| {
+        let [a, b] = topo.edge_verts[e as usize];
+        format!("edge {e} ({}-{})", a.min(b), a.max(b))
+    };
+    let non_quads: Vec<String> = (0..nf)
+        .filter(|&f| topo.face_size(f) != 4)
+        .map(|f| format!("face {f} ({} vertices)", topo.face_size(f)))
+        .collect();
+    if !non_quads.is_empty() {
+        bad.push(listing("non-quad faces", &non_quads));
     }
-    .into()
-}
-
-/// Checks that `input` is a closed, oriented 2-manifold quad mesh with valences
-/// `3..=MAX_VALENCE` and no holes. The error names the offending faces, edges or
-/// vertices (the first few of each kind, with their count).
-pub fn check_input<'a>(input: impl Into<FaceList<'a>>) -> Result<()> {
-    PrepTopology::new(&input.into()).map(|_| ())
+    let holes: Vec<String> = (0..nf)
+        .filter(|&f| topo.face_is_hole[f])
+        .map(|f| format!("face {f}"))
+        .collect();
+    if !holes.is_empty() {
+        bad.push(listing("faces tagged as holes", &holes));
+    }
+    let degenerate: Vec<String> = topo
+        .degenerate_faces()
+        .iter()
+        .map(|f| format!("face {f}"))
+        .collect();
+    if !degenerate.is_empty() {
+        bad.push(listing("degenerate faces (repeated vertex)", &degenerate));
+    }
+    let nm: Vec<String> = topo
+        .non_manifold_edges()
+        .into_iter()
+        .map(edge_name)
+        .collect();
+    if !nm.is_empty() {
+        bad.push(listing(
+            "non-manifold edges (more than two faces, or two faces wound the same way)",
+            &nm,
+        ));
+    }
+    let boundary: Vec<String> = topo.boundary_edges().into_iter().map(edge_name).collect();
+    if !boundary.is_empty() {
+        bad.push(listing("boundary edges", &boundary));
+    }
+    let nmv: Vec<String> = topo
+        .non_manifold_vertices()
+        .iter()
+        .map(|v| format!("vertex {v}"))
+        .collect();
+    if !nmv.is_empty() {
+        bad.push(listing("non-manifold vertices", &nmv));
+    }
+    let valence: Vec<String> = (0..topo.num_vertices)
+        .filter(|&v| {
+            let n = topo.valence(v);
+            !topo.vertex_faces(v).is_empty() && !(MIN_VALENCE..=MAX_VALENCE).contains(&n)
+        })
+        .map(|v| format!("vertex {v} (valence {})", topo.valence(v)))
+        .collect();
+    if !valence.is_empty() {
+        bad.push(listing("vertices with unsupported valence", &valence));
+    }
+    if bad.is_empty() {
+        Ok(())
+    } else {
+        Err(MeshError::Unsupported {
+            construction: CONSTRUCTION,
+            requirement: REQUIREMENT,
+            details: bad.join("; "),
+        }
+        .into())
+    }
 }
 
 impl PrepTopology {
-    /// Builds the ring tables, refusing input the p-rep does not cover (see [`check_input`]).
-    pub fn new(input: &FaceList<'_>) -> Result<Self> {
-        let nf = input.num_faces();
-        let nv = input.num_vertices;
-        // 1. Quads only, indices in range, no holes.
-        let mut bad: Vec<String> = Vec::new();
-        let mut non_quads = Vec::new();
-        let mut out_of_range = Vec::new();
-        for f in 0..nf {
-            let (a, b) = (
-                input.face_offsets[f] as usize,
-                input.face_offsets[f + 1] as usize,
-            );
-            if b < a || b > input.face_verts.len() {
-                return Err(MeshError::FaceIndexCountMismatch {
-                    expected: b,
-                    found: input.face_verts.len(),
-                }
-                .into());
-            }
-            if b - a != 4 {
-                non_quads.push(format!("face {f} ({} vertices)", b - a));
-            }
-            if input.face_verts[a..b].iter().any(|&v| v as usize >= nv) {
-                out_of_range.push(format!("face {f}"));
-            }
-        }
-        if !non_quads.is_empty() {
-            bad.push(listing("non-quad faces", &non_quads));
-        }
-        if !out_of_range.is_empty() {
-            bad.push(listing(
-                "faces with out-of-range vertex indices",
-                &out_of_range,
-            ));
-        }
-        if !input.holes.is_empty() {
-            let h: Vec<String> = input.holes.iter().map(|h| format!("face {h}")).collect();
-            bad.push(listing("faces tagged as holes", &h));
-        }
-        if !bad.is_empty() {
-            return Err(unsupported(bad));
-        }
-        let fv: Vec<u32> = input.face_verts[..4 * nf].to_vec();
-
-        // 2. Directed edges: each once, each with its opposite.
-        let key = |a: u32, b: u32| ((a as u64) << 32) | b as u64;
-        let mut he: HashMap<u64, u32> = HashMap::with_capacity(4 * nf);
-        let mut repeated = Vec::new();
-        let mut degenerate = Vec::new();
-        for f in 0..nf {
-            for c in 0..4 {
-                let (a, b) = (fv[4 * f + c], fv[4 * f + (c + 1) % 4]);
-                if a == b {
-                    degenerate.push(format!("face {f} (repeats vertex {a})"));
-                } else if he.insert(key(a, b), (4 * f + c) as u32).is_some() {
-                    repeated.push(format!("{a}->{b}"));
-                }
-            }
-        }
-        if !degenerate.is_empty() {
-            bad.push(listing("degenerate faces", &degenerate));
-        }
-        if !repeated.is_empty() {
-            bad.push(listing(
-                "non-manifold or inconsistently oriented edges (directed edge used twice)",
-                &repeated,
-            ));
-        }
-        if bad.is_empty() {
-            let mut boundary: Vec<String> = Vec::new();
-            for f in 0..nf {
-                for c in 0..4 {
-                    let (a, b) = (fv[4 * f + c], fv[4 * f + (c + 1) % 4]);
-                    if !he.contains_key(&key(b, a)) {
-                        boundary.push(format!("{a}-{b} (face {f})"));
-                    }
-                }
-            }
-            if !boundary.is_empty() {
-                bad.push(listing("boundary edges", &boundary));
-            }
-        }
-        if !bad.is_empty() {
-            return Err(unsupported(bad));
-        }
-
-        // 3. Rings: walk around each vertex from its first corner.
-        let mut first = vec![u32::MAX; nv];
-        let mut incident = vec![0u32; nv];
-        for (i, &v) in fv.iter().enumerate() {
-            if first[v as usize] == u32::MAX {
-                first[v as usize] = i as u32;
-            }
-            incident[v as usize] += 1;
-        }
+    /// Builds the ring tables from a validated [`Topology`], refusing input the p-rep does not
+    /// cover (see [`check_input`]). Sector `k` of vertex `v` is `topo.vertex_faces(v)[k]`
+    /// (counter-clockwise), so the ring is read off the faces in that order.
+    pub fn new(topo: &Topology) -> Result<Self> {
+        check_input(topo)?;
+        let nv = topo.num_vertices;
+        let nf = topo.num_faces();
+        let fv = &topo.face_verts;
         let mut valence = vec![0u32; nv];
         let mut ring_offsets = Vec::with_capacity(nv + 1);
         let mut ring_indices = Vec::with_capacity(8 * nf);
         let mut sector_vertex = Vec::with_capacity(4 * nf);
         let mut corner_sector = vec![u32::MAX; 4 * nf];
-        let mut non_manifold = Vec::new();
-        let mut bad_valence = Vec::new();
         ring_offsets.push(0u32);
         for v in 0..nv {
-            let start = first[v];
-            if start != u32::MAX {
-                let mut corner = start as usize;
-                let mut k = 0u32;
-                loop {
-                    let (f, c) = (corner / 4, corner % 4);
-                    corner_sector[corner] = k;
-                    ring_indices.push(fv[4 * f + (c + 1) % 4]);
-                    ring_indices.push(fv[4 * f + (c + 2) % 4]);
-                    sector_vertex.push(v as u32);
-                    k += 1;
-                    let z = fv[4 * f + (c + 3) % 4];
-                    corner = he[&key(v as u32, z)] as usize;
-                    if corner == start as usize || k > incident[v] {
-                        break;
-                    }
+            let (faces, local) = (topo.vertex_faces(v), topo.vertex_faces_local(v));
+            let n = faces.len();
+            for k in 0..n {
+                let (f, c) = (faces[k] as usize, local[k] as usize);
+                corner_sector[4 * f + c] = k as u32;
+                ring_indices.push(fv[4 * f + (c + 1) % 4]);
+                ring_indices.push(fv[4 * f + (c + 2) % 4]);
+                sector_vertex.push(v as u32);
+                // The next sector's first edge is this sector's last one (ccw order).
+                let (f2, c2) = (faces[(k + 1) % n] as usize, local[(k + 1) % n] as usize);
+                if fv[4 * f + (c + 3) % 4] != fv[4 * f2 + (c2 + 1) % 4] {
+                    return Err(Error::Internal(format!(
+                        "vertex {v}: faces {f} and {f2} are not consecutive counter-clockwise"
+                    )));
                 }
-                if k != incident[v] {
-                    non_manifold.push(format!("vertex {v} ({} faces, fan of {k})", incident[v]));
-                } else if !(MIN_VALENCE..=MAX_VALENCE).contains(&(k as usize)) {
-                    bad_valence.push(format!("vertex {v} (valence {k})"));
-                }
-                valence[v] = k;
             }
+            valence[v] = n as u32;
             ring_offsets.push(ring_indices.len() as u32);
         }
-        if !non_manifold.is_empty() {
-            bad.push(listing("non-manifold vertices", &non_manifold));
-        }
-        if !bad_valence.is_empty() {
-            bad.push(listing("vertices with unsupported valence", &bad_valence));
-        }
-        if !bad.is_empty() {
-            return Err(unsupported(bad));
-        }
-
-        // 4. Edges (canonical direction: lower vertex index first) and B-quad flags.
-        let mut face_edges = vec![u32::MAX; 4 * nf];
-        let mut edge_verts = Vec::with_capacity(2 * nf);
-        let mut edge_corner = Vec::with_capacity(2 * nf);
-        for i in 0..4 * nf {
-            let (a, b) = (fv[i], fv[i - i % 4 + (i + 1) % 4]);
-            if a < b {
-                let e = edge_verts.len() as u32;
-                edge_verts.push([a, b]);
-                edge_corner.push(i as u32);
-                face_edges[i] = e;
-                face_edges[he[&key(b, a)] as usize] = e;
-            }
+        // Edges: the canonical direction runs from the lower vertex index.
+        let mut edge_verts = Vec::with_capacity(topo.num_edges());
+        let mut edge_corner = Vec::with_capacity(topo.num_edges());
+        for e in 0..topo.num_edges() {
+            let [a, b] = topo.edge_verts[e];
+            edge_verts.push([a.min(b), a.max(b)]);
+            let corner = topo
+                .edge_faces(e)
+                .iter()
+                .zip(topo.edge_faces_local(e))
+                .map(|(&f, &k)| 4 * f as usize + k as usize)
+                .find(|&i| fv[i] < fv[i - i % 4 + (i + 1) % 4])
+                .ok_or_else(|| Error::Internal(format!("edge {e} has no canonical face")))?;
+            edge_corner.push(corner as u32);
         }
         let mut h_index = vec![u32::MAX; nf];
         let mut perturbed_faces = Vec::new();
@@ -296,9 +211,9 @@ impl PrepTopology {
             ring_offsets,
             ring_indices,
             sector_vertex,
-            face_verts: fv,
+            face_verts: fv.clone(),
             corner_sector,
-            face_edges,
+            face_edges: topo.face_edges.clone(),
             edge_verts,
             edge_corner,
             h_index,
@@ -332,6 +247,7 @@ impl PrepTopology {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Mesh;
 
     fn cube() -> Mesh {
         let p: Vec<[f32; 3]> = (0..8)
@@ -353,7 +269,7 @@ mod tests {
     #[test]
     fn cube_rings_follow_spec_order() {
         let m = cube();
-        let t = PrepTopology::new(&FaceList::from(&m)).unwrap();
+        let t = PrepTopology::new(&Topology::new(&m).unwrap()).unwrap();
         assert!(t.valence.iter().all(|&n| n == 3));
         assert_eq!(t.num_edges(), 12);
         for f in 0..6 {
