@@ -367,3 +367,22 @@ fn limit_point_is_invariant_under_catmull_clark() {
         }
     }
 }
+
+/// The row-contracted grid evaluation equals pointwise evaluation to round-off.
+#[test]
+fn grid_equals_pointwise_eval() {
+    let p = PrepPatches::<f64>::build(&wobble(mixed40(), 0.02)).unwrap();
+    let n = 6;
+    let grid = p.eval_grid(n);
+    for f in 0..p.num_faces() {
+        for j in 0..n {
+            for i in 0..n {
+                let s = p.eval(f, i as f64 / 5.0, j as f64 / 5.0);
+                let (a, b) = (grid.positions[f * n * n + j * n + i], s.position);
+                let d = (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+                assert!(d < 1e-14, "face {f} ({i},{j}): {d:e}");
+                assert!(angle(grid.normals[f * n * n + j * n + i], s.normal()) < 1e-12);
+            }
+        }
+    }
+}

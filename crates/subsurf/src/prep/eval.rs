@@ -133,6 +133,70 @@ pub fn eval_patch<T: Real>(
     }
 }
 
+/// Evaluates one patch on the tensor grid `bu × bv`, calling `emit(i, j, sample)`.
+///
+/// Each row `v_j` is first contracted to curve coefficients (`Σ_j g_ij B³_j(v)`, its
+/// `v`-derivative, and the same for the sparse `h`), so a sample costs 10 three-vector
+/// multiply-adds per output instead of 32.
+#[inline]
+pub fn eval_patch_grid<T: Real>(
+    g: &[V3<T>],
+    h: Option<&[V3<T>]>,
+    bu: &[Basis<T>],
+    bv: &[Basis<T>],
+    mut emit: impl FnMut(usize, usize, Sample<T>),
+) {
+    for (j, b) in bv.iter().enumerate() {
+        let (mut cg, mut cgv) = ([zero3::<T>(); 4], [zero3::<T>(); 4]);
+        for i in 0..4 {
+            for jj in 0..4 {
+                let x = g[4 * i + jj];
+                for k in 0..3 {
+                    cg[i][k] += b.b3[jj] * x[k];
+                    cgv[i][k] += b.d3[jj] * x[k];
+                }
+            }
+        }
+        let (mut ch, mut chv) = ([zero3::<T>(); 6], [zero3::<T>(); 6]);
+        if let Some(h) = h {
+            for (s, &(i, jj)) in H_SLOTS.iter().enumerate() {
+                for k in 0..3 {
+                    ch[i][k] += b.b5[jj] * h[s][k];
+                    chv[i][k] += b.d5[jj] * h[s][k];
+                }
+            }
+        }
+        for (i, a) in bu.iter().enumerate() {
+            let (mut p, mut du, mut dv) = (zero3::<T>(), zero3::<T>(), zero3::<T>());
+            for r in 0..4 {
+                for k in 0..3 {
+                    p[k] += a.b3[r] * cg[r][k];
+                    du[k] += a.d3[r] * cg[r][k];
+                    dv[k] += a.b3[r] * cgv[r][k];
+                }
+            }
+            if h.is_some() {
+                for r in 0..6 {
+                    for k in 0..3 {
+                        p[k] += a.b5[r] * ch[r][k];
+                        du[k] += a.d5[r] * ch[r][k];
+                        dv[k] += a.b5[r] * chv[r][k];
+                    }
+                }
+            }
+            emit(
+                i,
+                j,
+                Sample {
+                    position: p,
+                    du,
+                    dv,
+                },
+            );
+        }
+    }
+}
+
 /// A tessellated surface: shared vertices, per-vertex normals, ccw triangles.
 #[derive(Debug, Clone, Default)]
 pub struct Tessellation<T> {
@@ -196,14 +260,10 @@ impl<T: Real> PrepPatches<T> {
             .zip(normals.par_chunks_mut(n * n))
             .enumerate()
             .for_each(|(f, (p, nr))| {
-                let (g, h) = (self.face_g(f), self.face_h(f));
-                for j in 0..n {
-                    for i in 0..n {
-                        let s = eval_patch(g, h, &b[i], &b[j]);
-                        p[j * n + i] = s.position;
-                        nr[j * n + i] = s.normal();
-                    }
-                }
+                eval_patch_grid(self.face_g(f), self.face_h(f), &b, &b, |i, j, s| {
+                    p[j * n + i] = s.position;
+                    nr[j * n + i] = s.normal();
+                });
             });
         Grid {
             n,
@@ -271,14 +331,11 @@ impl<T: Real> PrepPatches<T> {
                 .zip(nf_.par_chunks_mut(m * m))
                 .enumerate()
                 .for_each(|(f, (p, nr))| {
-                    let (g, h) = (self.face_g(f), self.face_h(f));
-                    for j in 1..=m {
-                        for i in 1..=m {
-                            let s = eval_patch(g, h, &b[i], &b[j]);
-                            p[(j - 1) * m + i - 1] = s.position;
-                            nr[(j - 1) * m + i - 1] = s.normal();
-                        }
-                    }
+                    let inner = &b[1..=m];
+                    eval_patch_grid(self.face_g(f), self.face_h(f), inner, inner, |i, j, s| {
+                        p[j * m + i] = s.position;
+                        nr[j * m + i] = s.normal();
+                    });
                 });
         }
         let mut triangles = vec![[0u32; 3]; 2 * nf * (n - 1) * (n - 1)];
