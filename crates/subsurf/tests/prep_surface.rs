@@ -386,3 +386,18 @@ fn grid_equals_pointwise_eval() {
         }
     }
 }
+
+/// High valences: G1 holds for poles of valence 12, 16 and 32 (f64); valence 65 is refused.
+/// Measured: 5.7e-15, 6.5e-15, 1.1e-14 rad.
+#[test]
+fn high_valence_poles() {
+    for n in [12, 16, 32] {
+        let a = max_normal_angle(&PrepPatches::<f64>::build(&spindle(n, 2)).unwrap(), 33);
+        eprintln!("spindle {n}: {a:.2e} rad");
+        assert!(a < 1e-11, "valence {n}: {a:e} rad");
+    }
+    let err = PrepPatches::<f32>::build(&spindle(65, 1))
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("vertex 0 (valence 65)"), "{err}");
+}

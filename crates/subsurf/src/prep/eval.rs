@@ -250,14 +250,22 @@ impl<T: Real> PrepPatches<T> {
 
     /// Positions and normals on an `n×n` grid of every face (`n >= 2`), in parallel.
     pub fn eval_grid(&self, n: usize) -> Grid<T> {
+        let mut grid = Grid::default();
+        self.eval_grid_into(n, &mut grid);
+        grid
+    }
+
+    /// [`Self::eval_grid`] into existing buffers (reused from frame to frame).
+    pub fn eval_grid_into(&self, n: usize, grid: &mut Grid<T>) {
         let n = n.max(2);
         let b = params::<T>(n);
-        let nf = self.num_faces();
-        let mut positions = vec![zero3(); nf * n * n];
-        let mut normals = vec![zero3(); nf * n * n];
-        positions
+        let len = self.num_faces() * n * n;
+        grid.n = n;
+        grid.positions.resize(len, zero3());
+        grid.normals.resize(len, zero3());
+        grid.positions
             .par_chunks_mut(n * n)
-            .zip(normals.par_chunks_mut(n * n))
+            .zip(grid.normals.par_chunks_mut(n * n))
             .enumerate()
             .for_each(|(f, (p, nr))| {
                 eval_patch_grid(self.face_g(f), self.face_h(f), &b, &b, |i, j, s| {
@@ -265,11 +273,6 @@ impl<T: Real> PrepPatches<T> {
                     nr[j * n + i] = s.normal();
                 });
             });
-        Grid {
-            n,
-            positions,
-            normals,
-        }
     }
 
     /// Point of the edge curve leaving corner `c` of `face` at local parameter `t`: the
