@@ -362,7 +362,7 @@ int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *o
             for (int j = 0; j < n; ++j) {
                 for (int i = 0; i < n; ++i) {
                     float u = (float)i / (float)(n - 1), v = (float)j / (float)(n - 1);
-                    if (triangles && u + v > 1.0f) continue;  // triangular ptex domain
+                    if (triangles && i + j > n - 1) continue;  // triangular ptex domain u + v <= 1
                     const Far::PatchTable::PatchHandle *h = a->map->FindPatch(face, u, v);
                     if (!h) continue;  // hole, or no limit surface here
                     Far::PatchDescriptor::Type t = pt.GetPatchDescriptor(*h).GetType();

@@ -5,12 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use subsurf::{
-    BoundaryInterpolation, Corner, Crease, CreaseMethod, FaceVarying, Mesh, TriangleSubdivision,
-};
+use subsurf::Mesh;
 
 /// `require_osd!()` at the top of a test: returns from it (after a loud message) when
 /// OpenSubdiv is missing, and fails under CI.
+#[allow(unused_macros)]
 macro_rules! require_osd {
     () => {{
         fn here() {}
@@ -60,105 +59,11 @@ pub fn shapes_dir() -> PathBuf {
         .unwrap_or_else(|| panic!("no shapes directory near {}", repo.display()))
 }
 
-/// Reads `<shapes_dir>/<name>.obj`.
+/// Reads `<shapes_dir>/<name>.obj` with subsurf's OBJ reader (tags, UVs, scheme from the
+/// name prefix).
 pub fn load_shape(name: &str) -> Mesh {
     let path = shapes_dir().join(format!("{name}.obj"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    parse_obj(&text)
-}
-
-/// A minimal reader for the shapes' OBJ dialect: `v`, `vt`, `f` (1-based `v[/vt[/vn]]`)
-/// and the `t` tags crease, corner, hole, interpolateboundary, creasemethod,
-/// smoothtriangles. UVs are kept only when every face corner has one.
-pub fn parse_obj(text: &str) -> Mesh {
-    let mut m = Mesh::default();
-    let mut uv_values = Vec::new();
-    let mut uv_indices = Vec::new();
-    let mut all_uvs = true;
-    for line in text.lines() {
-        let mut w = line.split_whitespace();
-        match w.next() {
-            Some("v") => {
-                let p: Vec<f32> = w.take(3).map(|x| x.parse().unwrap()).collect();
-                m.positions.push([p[0], p[1], p[2]]);
-            }
-            Some("vt") => {
-                let p: Vec<f32> = w.take(2).map(|x| x.parse().unwrap()).collect();
-                uv_values.push([p[0], p[1]]);
-            }
-            Some("f") => {
-                let mut n = 0;
-                for c in w {
-                    let mut parts = c.split('/');
-                    m.face_indices
-                        .push(parts.next().unwrap().parse::<u32>().unwrap() - 1);
-                    match parts.next().filter(|s| !s.is_empty()) {
-                        Some(t) => uv_indices.push(t.parse::<u32>().unwrap() - 1),
-                        None => all_uvs = false,
-                    }
-                    n += 1;
-                }
-                m.face_counts.push(n);
-            }
-            Some("t") => parse_tag(&mut m, w.collect()),
-            _ => {}
-        }
-    }
-    if all_uvs && !uv_values.is_empty() {
-        m.uvs = Some(FaceVarying {
-            values: uv_values,
-            indices: uv_indices,
-        });
-    }
-    m
-}
-
-fn parse_tag(m: &mut Mesh, w: Vec<&str>) {
-    let counts: Vec<usize> = w[1].split('/').map(|x| x.parse().unwrap()).collect();
-    let ints: Vec<u32> = w[2..2 + counts[0]]
-        .iter()
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let floats: Vec<f32> = w[2 + counts[0]..2 + counts[0] + counts[1]]
-        .iter()
-        .map(|x| x.parse().unwrap())
-        .collect();
-    let strings = &w[2 + counts[0] + counts[1]..];
-    match w[0] {
-        "crease" => {
-            for (k, pair) in ints.chunks_exact(2).enumerate() {
-                let s = floats[k.min(floats.len() - 1)];
-                m.creases.push(Crease {
-                    v0: pair[0],
-                    v1: pair[1],
-                    sharpness: s,
-                });
-            }
-        }
-        "corner" => {
-            for (k, &v) in ints.iter().enumerate() {
-                m.corners.push(Corner {
-                    vertex: v,
-                    sharpness: floats[k.min(floats.len() - 1)],
-                });
-            }
-        }
-        "hole" => m.holes.extend(ints),
-        "interpolateboundary" => {
-            m.options.boundary = match ints[0] {
-                0 => BoundaryInterpolation::None,
-                1 => BoundaryInterpolation::EdgeAndCorner,
-                _ => BoundaryInterpolation::EdgeOnly,
-            }
-        }
-        "creasemethod" if strings.first() == Some(&"chaikin") => {
-            m.options.crease_method = CreaseMethod::Chaikin
-        }
-        "smoothtriangles" if strings.first() == Some(&"smooth") => {
-            m.options.triangle_subdivision = TriangleSubdivision::Smooth
-        }
-        _ => {}
-    }
+    subsurf::io::obj::read_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// Undirected edges of a face list, each once.

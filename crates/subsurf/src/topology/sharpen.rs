@@ -51,11 +51,10 @@ pub(super) fn apply_tags_and_boundary_sharpness(t: &mut Topology) {
         let nedges = t.vertex_edges(v).len();
         let mut vt = t.vert_tags[v] & tags::V_NON_MANIFOLD;
         let topological_corner = nfaces == 1 && nedges == 2;
-        if topological_corner && sharpen_corners {
-            t.vert_sharpness[v] = SHARPNESS_INFINITE;
-        } else if vt & tags::V_NON_MANIFOLD != 0
-            && !(nonman == 2 && boundary == 0 && nfaces > nedges)
-        {
+        // A non-manifold vertex is sharpened unless it lies on an interior non-manifold crease.
+        let non_manifold_corner =
+            vt & tags::V_NON_MANIFOLD != 0 && !(nonman == 2 && boundary == 0 && nfaces > nedges);
+        if (topological_corner && sharpen_corners) || non_manifold_corner {
             t.vert_sharpness[v] = SHARPNESS_INFINITE;
         }
         let s = t.vert_sharpness[v];
