@@ -1,15 +1,8 @@
 //! The `subsurf` command-line tool.
 
-<<<<<<< HEAD
-use clap::{Parser, Subcommand};
-
-mod cmd_prep;
-
-#[derive(Parser, Debug)]
-#[command(name = "subsurf", version, about = "Subdivision surfaces in pure Rust")]
-=======
 mod cmd_bench;
 mod cmd_info;
+mod cmd_prep;
 mod cmd_refine;
 mod common;
 
@@ -18,23 +11,11 @@ use clap::{Parser, Subcommand};
 /// Subdivision surfaces: Catmull-Clark refinement, limit surfaces and p-rep conversion.
 #[derive(Debug, Parser)]
 #[command(name = "subsurf", version, about)]
->>>>>>> main
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
 
-<<<<<<< HEAD
-#[derive(Subcommand, Debug)]
-enum Command {
-    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
-    Prep(cmd_prep::PrepArgs),
-}
-
-fn main() -> anyhow::Result<()> {
-    match Cli::parse().command {
-        Command::Prep(a) => cmd_prep::run(&a),
-=======
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Print counts, histograms and features of a mesh.
@@ -43,6 +24,8 @@ enum Command {
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
+    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
+    Prep(cmd_prep::PrepArgs),
 }
 
 fn main() {
@@ -51,6 +34,7 @@ fn main() {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Prep(a) => cmd_prep::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");
@@ -58,6 +42,5 @@ fn main() {
             eprintln!("  caused by: {cause}");
         }
         std::process::exit(1);
->>>>>>> main
     }
 }
