@@ -21,32 +21,32 @@ use crate::topology::Topology;
 
 /// Flat connectivity tables of a closed quad mesh, in the p-rep's ring order.
 ///
-/// Counts per element are given in brackets. `V` vertices, `F` faces, `E = 2F` edges,
+/// Counts per element are given as `(count: ..)`. `V` vertices, `F` faces, `E = 2F` edges,
 /// `S = Σ valence = 4F` sectors (one per face corner).
 #[derive(Debug, Clone, Default)]
 pub struct PrepTopology {
     /// Number of vertices `V`.
     pub num_vertices: usize,
-    /// Valence of each vertex [V]; 0 for a vertex used by no face.
+    /// Valence of each vertex (count: V); 0 for a vertex used by no face.
     pub valence: Vec<u32>,
-    /// Offsets into `ring_indices` [V + 1]; vertex v's ring is `2 valence(v)` long.
+    /// Offsets into `ring_indices` (count: V + 1); vertex v's ring is `2 valence(v)` long.
     pub ring_offsets: Vec<u32>,
-    /// `p1 … p2n` of every vertex, concatenated [2 S].
+    /// `p1 … p2n` of every vertex, concatenated (count: 2 S).
     pub ring_indices: Vec<u32>,
-    /// The vertex of each sector [S]; vertex v's sectors are `ring_offsets[v]/2 ..`.
+    /// The vertex of each sector (count: S); vertex v's sectors are `ring_offsets[v]/2 ..`.
     pub sector_vertex: Vec<u32>,
-    /// Vertex of each face corner [4 F] (faces are quads).
+    /// Vertex of each face corner (count: 4 F) (faces are quads).
     pub face_verts: Vec<u32>,
-    /// Sector number `k` of face f at corner c [4 F], i.e. the face is `(p0, p_{2k+1}, p_{2k+2}, p_{2k+3})`
+    /// Sector number `k` of face f at corner c (count: 4 F), i.e. the face is `(p0, p_{2k+1}, p_{2k+2}, p_{2k+3})`
     /// of the corner's vertex.
     pub corner_sector: Vec<u32>,
-    /// Edge of each face corner [4 F]: edge c of a face joins corner c and corner c+1.
+    /// Edge of each face corner (count: 4 F): edge c of a face joins corner c and corner c+1.
     pub face_edges: Vec<u32>,
-    /// End vertices of each edge [E], lower index first (the canonical direction).
+    /// End vertices of each edge (count: E), lower index first (the canonical direction).
     pub edge_verts: Vec<[u32; 2]>,
-    /// For each edge [E], the face corner `4 f + c` whose edge runs in the canonical direction.
+    /// For each edge (count: E), the face corner `4 f + c` whose edge runs in the canonical direction.
     pub edge_corner: Vec<u32>,
-    /// Index of each face's block of 16 `h` coefficients [F], `u32::MAX` for a B-quad
+    /// Index of each face's block of 16 `h` coefficients (count: F), `u32::MAX` for a B-quad
     /// (all four vertices of valence 4).
     pub h_index: Vec<u32>,
     /// The faces that are not B-quads, in `h_index` order.

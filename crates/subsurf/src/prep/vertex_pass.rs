@@ -31,15 +31,15 @@ pub const CHUNK: usize = 256;
 /// Outputs of the vertex pass.
 #[derive(Debug, Clone, Default)]
 pub struct VertexData<T> {
-    /// Limit point `g00` of each vertex [V].
+    /// Limit point `g00` of each vertex (count: V).
     pub limit: Vec<V3<T>>,
-    /// Tangent vector `e1` of each vertex [V].
+    /// Tangent vector `e1` of each vertex (count: V).
     pub e1: Vec<V3<T>>,
-    /// Tangent vector `e2` of each vertex [V].
+    /// Tangent vector `e2` of each vertex (count: V).
     pub e2: Vec<V3<T>>,
-    /// `T(k) = g^k_10` of each sector [S].
+    /// `T(k) = g^k_10` of each sector (count: S).
     pub tangent: Vec<V3<T>>,
-    /// `I(k) = g^k_11` of each sector [S].
+    /// `I(k) = g^k_11` of each sector (count: S).
     pub interior: Vec<V3<T>>,
 }
 
