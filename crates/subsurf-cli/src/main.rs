@@ -2,6 +2,7 @@
 
 mod cmd_bench;
 mod cmd_info;
+mod cmd_prep;
 mod cmd_refine;
 mod common;
 
@@ -23,6 +24,8 @@ enum Command {
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
+    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
+    Prep(cmd_prep::PrepArgs),
 }
 
 fn main() {
@@ -31,6 +34,7 @@ fn main() {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Prep(a) => cmd_prep::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");
