@@ -1,6 +1,46 @@
 //! The `subsurf` command-line tool.
 
-fn main() -> anyhow::Result<()> {
-    println!("subsurf {}", env!("CARGO_PKG_VERSION"));
-    Ok(())
+mod cmd_bench;
+mod cmd_info;
+mod cmd_prep;
+mod cmd_refine;
+mod common;
+
+use clap::{Parser, Subcommand};
+
+/// Subdivision surfaces: Catmull-Clark refinement, limit surfaces and p-rep conversion.
+#[derive(Debug, Parser)]
+#[command(name = "subsurf", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Print counts, histograms and features of a mesh.
+    Info(cmd_info::InfoArgs),
+    /// Refine a mesh uniformly (Catmull-Clark or bilinear).
+    Refine(cmd_refine::RefineArgs),
+    /// Time refinement on a mesh.
+    Bench(cmd_bench::BenchArgs),
+    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
+    Prep(cmd_prep::PrepArgs),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Info(a) => cmd_info::run(a),
+        Command::Refine(a) => cmd_refine::run(a),
+        Command::Bench(a) => cmd_bench::run(a),
+        Command::Prep(a) => cmd_prep::run(a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e}");
+        for cause in e.chain().skip(1) {
+            eprintln!("  caused by: {cause}");
+        }
+        std::process::exit(1);
+    }
 }

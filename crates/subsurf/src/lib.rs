@@ -15,8 +15,15 @@
 //! that a GPU backend can upload the very same vectors.
 
 pub mod error;
+pub mod io;
 pub mod mesh;
 pub mod options;
+pub mod patch;
+pub mod prep;
+pub mod refine;
+pub mod rules;
+pub mod shapes;
+pub mod topology;
 
 pub use error::{Error, MeshError, Result};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
@@ -24,6 +31,8 @@ pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
     TriangleSubdivision,
 };
+pub use refine::{Refiner, StencilTable};
+pub use topology::Topology;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).
 pub const SHARPNESS_INFINITE: f32 = 10.0;

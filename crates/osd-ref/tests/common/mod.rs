@@ -1,0 +1,89 @@
+//! Helpers shared by the shim's self-tests: locating and reading the regression shapes,
+//! and skipping loudly when OpenSubdiv is absent.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use subsurf::Mesh;
+
+/// `require_osd!()` at the top of a test: returns from it (after a loud message) when
+/// OpenSubdiv is missing, and fails under CI.
+#[allow(unused_macros)]
+macro_rules! require_osd {
+    () => {{
+        fn here() {}
+        let name = std::any::type_name_of_val(&here);
+        if !common::osd_or_skip(name.strip_suffix("::here").unwrap_or(name)) {
+            return;
+        }
+    }};
+}
+
+/// Returns false (after a loud message) when OpenSubdiv is missing; panics under CI.
+pub fn osd_or_skip(test: &str) -> bool {
+    if osd_ref::available() {
+        return true;
+    }
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "0" && v != "false");
+    assert!(
+        !ci,
+        "OpenSubdiv not installed but CI is set: {test} must run"
+    );
+    // Straight to the process's stderr, past the test harness's output capture.
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "!!!!! OpenSubdiv not installed: SKIPPED {test} (apt-get install libosd-dev) !!!!!"
+    );
+    false
+}
+
+/// Directory of the OpenSubdiv regression shapes: `$SUBSURF_SHAPES_DIR`, else
+/// `<repo>/testdata/shapes`, else the first `shared/shapes` beside the repository or one
+/// of its ancestors.
+pub fn shapes_dir() -> PathBuf {
+    if let Some(dir) = std::env::var_os("SUBSURF_SHAPES_DIR") {
+        return PathBuf::from(dir);
+    }
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let local = repo.join("testdata/shapes");
+    if local.is_dir() {
+        return local;
+    }
+    let repo = repo.canonicalize().expect("repository root");
+    repo.ancestors()
+        .skip(1)
+        .map(|a| a.join("shared/shapes"))
+        .find(|d| d.is_dir())
+        .unwrap_or_else(|| panic!("no shapes directory near {}", repo.display()))
+}
+
+/// Reads `<shapes_dir>/<name>.obj` with subsurf's OBJ reader (tags, UVs, scheme from the
+/// name prefix).
+pub fn load_shape(name: &str) -> Mesh {
+    let path = shapes_dir().join(format!("{name}.obj"));
+    subsurf::io::obj::read_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Undirected edges of a face list, each once.
+pub fn unique_edges(face_counts: &[u32], face_indices: &[u32]) -> Vec<[u32; 2]> {
+    let mut edges = Vec::new();
+    let mut k = 0;
+    for &n in face_counts {
+        let f = &face_indices[k..k + n as usize];
+        for i in 0..f.len() {
+            let (a, b) = (f[i], f[(i + 1) % f.len()]);
+            edges.push([a.min(b), a.max(b)]);
+        }
+        k += n as usize;
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+}
+
+/// Euclidean distance.
+pub fn dist(a: [f32; 3], b: [f32; 3]) -> f32 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}

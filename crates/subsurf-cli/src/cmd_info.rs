@@ -1,0 +1,152 @@
+//! `subsurf info`: what a mesh file contains.
+
+use crate::common::{read_mesh, SchemeArgs};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use subsurf::topology::tags;
+use subsurf::Topology;
+
+/// Print counts, histograms, features and problems of a mesh.
+#[derive(Debug, clap::Args)]
+pub struct InfoArgs {
+    /// Input mesh (.obj or .ply).
+    pub input: PathBuf,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
+}
+
+#[derive(Debug, serde::Serialize)]
+struct Info {
+    file: String,
+    scheme: String,
+    boundary_interpolation: String,
+    crease_method: String,
+    vertices: usize,
+    faces: usize,
+    edges: usize,
+    face_sizes: BTreeMap<usize, usize>,
+    valences: BTreeMap<usize, usize>,
+    boundary_edges: usize,
+    boundary_vertices: usize,
+    non_manifold_edges: usize,
+    non_manifold_vertices: usize,
+    degenerate_faces: usize,
+    unused_vertices: usize,
+    semi_sharp_edges: usize,
+    infinitely_sharp_edges_tagged: usize,
+    corners: usize,
+    holes: usize,
+    has_uvs: bool,
+    manifold: bool,
+    closed: bool,
+    all_quads: bool,
+    bbox_min: [f32; 3],
+    bbox_max: [f32; 3],
+}
+
+pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
+    let mut mesh = read_mesh(&a.input)?;
+    a.scheme.apply(&mut mesh);
+    let t = Topology::new(&mesh)?;
+    let mut face_sizes = BTreeMap::new();
+    for f in 0..t.num_faces() {
+        *face_sizes.entry(t.face_size(f)).or_insert(0) += 1;
+    }
+    let mut valences = BTreeMap::new();
+    for v in 0..t.num_vertices() {
+        *valences.entry(t.valence(v)).or_insert(0) += 1;
+    }
+    let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [0.0; 3]));
+    let info = Info {
+        file: a.input.display().to_string(),
+        scheme: format!("{:?}", mesh.options.scheme),
+        boundary_interpolation: format!("{:?}", mesh.options.boundary),
+        crease_method: format!("{:?}", mesh.options.crease_method),
+        vertices: t.num_vertices(),
+        faces: t.num_faces(),
+        edges: t.num_edges(),
+        face_sizes,
+        valences,
+        boundary_edges: t.boundary_edges().len(),
+        boundary_vertices: (0..t.num_vertices())
+            .filter(|&v| t.is_boundary_vertex(v))
+            .count(),
+        non_manifold_edges: t.non_manifold_edges().len(),
+        non_manifold_vertices: t.non_manifold_vertices().len(),
+        degenerate_faces: t.degenerate_faces().len(),
+        unused_vertices: t.unused_vertices().len(),
+        semi_sharp_edges: t
+            .edge_tags
+            .iter()
+            .filter(|&&e| e & tags::E_SEMI_SHARP != 0)
+            .count(),
+        infinitely_sharp_edges_tagged: mesh
+            .creases
+            .iter()
+            .filter(|c| c.sharpness >= subsurf::SHARPNESS_INFINITE)
+            .count(),
+        corners: mesh.corners.len(),
+        holes: mesh.holes.len(),
+        has_uvs: mesh.uvs.is_some(),
+        manifold: t.is_manifold(),
+        closed: t.is_closed(),
+        all_quads: t.is_all_quads(),
+        bbox_min: lo,
+        bbox_max: hi,
+    };
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&info)?);
+        return Ok(());
+    }
+    let hist = |h: &BTreeMap<usize, usize>| {
+        h.iter()
+            .map(|(k, v)| format!("{k}:{v}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    println!("file              {}", info.file);
+    println!(
+        "scheme            {} (boundary {}, creases {})",
+        info.scheme, info.boundary_interpolation, info.crease_method
+    );
+    println!("vertices          {}", info.vertices);
+    println!(
+        "faces             {}  sizes {}",
+        info.faces,
+        hist(&info.face_sizes)
+    );
+    println!("edges             {}", info.edges);
+    println!("valences          {}", hist(&info.valences));
+    println!(
+        "boundary          {} edges, {} vertices",
+        info.boundary_edges, info.boundary_vertices
+    );
+    println!(
+        "non-manifold      {} edges, {} vertices",
+        info.non_manifold_edges, info.non_manifold_vertices
+    );
+    println!("degenerate faces  {}", info.degenerate_faces);
+    println!("unused vertices   {}", info.unused_vertices);
+    println!(
+        "creases           {} semi-sharp edges, {} infinitely sharp tags",
+        info.semi_sharp_edges, info.infinitely_sharp_edges_tagged
+    );
+    println!("corners           {}", info.corners);
+    println!("holes             {}", info.holes);
+    println!(
+        "uvs               {}",
+        if info.has_uvs { "yes" } else { "no" }
+    );
+    println!(
+        "manifold {}  closed {}  all quads {}",
+        info.manifold, info.closed, info.all_quads
+    );
+    println!(
+        "bounding box      {:?} .. {:?}",
+        info.bbox_min, info.bbox_max
+    );
+    Ok(())
+}

@@ -1,0 +1,184 @@
+//! Uniform Catmull-Clark (and bilinear) refinement, matching OpenSubdiv's `Far::TopologyRefiner`
+//! + `Far::PrimvarRefiner` vertex for vertex.
+//!
+//! Refinement is split like OpenSubdiv's: [`Refiner::new`] refines the topology once and builds
+//! one [`StencilTable`] per level; [`Refiner::refine_positions`] then only applies those tables,
+//! so an animated mesh re-evaluates each frame without rebuilding anything. The tables (and
+//! the composed base-to-last-level table of [`Refiner::stencil_table`]) are what a GPU backend
+//! uploads.
+//!
+//! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
+//! indices), then one face point per parent face, then one edge point per parent edge.
+
+mod level;
+mod masks;
+mod stencil;
+mod uv;
+
+pub use level::refine_topology;
+pub use masks::{level_stencils, limit_stencils, LevelStencils};
+pub use stencil::StencilTable;
+pub use uv::refine_uvs_linear;
+
+use crate::error::{Error, MeshError, Result};
+use crate::mesh::Mesh;
+use crate::options::Scheme;
+use crate::topology::Topology;
+
+/// Refined topology of every level and the stencils between consecutive levels.
+#[derive(Debug, Clone)]
+pub struct Refiner {
+    /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps.
+    pub levels: Vec<Topology>,
+    /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
+    pub stencils: Vec<LevelStencils>,
+}
+
+/// Rough number of bytes the refiner needs for `level` steps of `base` (topology of all levels,
+/// stencils and one set of positions).
+pub fn estimate_bytes(base: &Topology, level: usize) -> u64 {
+    let mut faces = base.num_corners() as u64; // quads after the first step
+    let mut total = 0u64;
+    for _ in 0..level {
+        // ~ per child quad: face verts/edges 32 B, ~2 edges x 30 B, ~1 vertex x (rings 40 B,
+        // stencil row 60 B, tags, positions 12 B).
+        total += faces * 200;
+        faces *= 4;
+    }
+    total
+}
+
+/// Memory available for new allocations, from `/proc/meminfo` where present.
+fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+fn human(bytes: u64) -> String {
+    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB"];
+    let mut v = bytes as f64;
+    let mut u = 0;
+    while v >= 1024.0 && u + 1 < units.len() {
+        v /= 1024.0;
+        u += 1;
+    }
+    format!("{v:.1} {}", units[u])
+}
+
+impl Refiner {
+    /// Refines `base` uniformly `level` times. Refuses up front, with the estimated size, a
+    /// level whose tables would not fit in memory or overflow 32-bit indices.
+    pub fn new(base: Topology, level: usize) -> Result<Refiner> {
+        if base.options.scheme == Scheme::Loop {
+            return Err(Error::Unsupported(
+                "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
+            ));
+        }
+        let bytes = estimate_bytes(&base, level);
+        let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
+        let limit = available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX);
+        if bytes > limit || corners > (u32::MAX as u128) / 2 {
+            return Err(MeshError::TooLarge {
+                what: format!("refining {} faces to level {level}", base.num_faces()),
+                bytes,
+                human: human(bytes),
+                limit_human: if corners > (u32::MAX as u128) / 2 {
+                    "2^31 face corners (32-bit indices)".into()
+                } else {
+                    format!("{} (80% of available memory)", human(limit))
+                },
+            }
+            .into());
+        }
+        let mut levels = vec![base];
+        let mut stencils = Vec::with_capacity(level);
+        for _ in 0..level {
+            let parent = levels
+                .last()
+                .ok_or_else(|| Error::Internal("no base level".into()))?;
+            let child = refine_topology(parent);
+            stencils.push(level_stencils(parent, &child));
+            levels.push(child);
+        }
+        Ok(Refiner { levels, stencils })
+    }
+
+    /// Number of refinement steps.
+    pub fn max_level(&self) -> usize {
+        self.levels.len() - 1
+    }
+
+    /// The last level's topology.
+    pub fn last(&self) -> &Topology {
+        &self.levels[self.levels.len() - 1]
+    }
+
+    /// Vertex data of every level, starting with `base` (`N` components per vertex).
+    pub fn refine_all<const N: usize>(&self, base: &[[f32; N]]) -> Vec<Vec<[f32; N]>> {
+        let mut out = vec![base.to_vec()];
+        for s in &self.stencils {
+            let src = &out[out.len() - 1];
+            let mut dst = vec![[0.0; N]; s.num_rows()];
+            s.apply(src, &mut dst);
+            out.push(dst);
+        }
+        out
+    }
+
+    /// Vertex data of the last level only, applying the per-level tables in turn.
+    pub fn refine_positions<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
+        let mut cur = base.to_vec();
+        for s in &self.stencils {
+            let mut dst = vec![[0.0; N]; s.num_rows()];
+            s.apply(&cur, &mut dst);
+            cur = dst;
+        }
+        cur
+    }
+
+    /// The per-level tables composed into one table from base vertices to the last level.
+    pub fn stencil_table(&self) -> StencilTable {
+        let n = self.levels[0].num_vertices();
+        let mut acc = StencilTable {
+            offsets: (0..=n as u32).collect(),
+            indices: (0..n as u32).collect(),
+            weights: vec![1.0; n],
+            num_inputs: n,
+        };
+        for s in &self.stencils {
+            acc = acc.then(&s.to_table());
+        }
+        acc
+    }
+
+    /// Moves last-level vertex data to the limit surface.
+    pub fn limit<const N: usize>(&self, last: &[[f32; N]]) -> Vec<[f32; N]> {
+        let t = limit_stencils(self.last());
+        let mut out = vec![[0.0; N]; t.num_rows()];
+        t.apply(last, &mut out);
+        out
+    }
+
+    /// The faces of `level` that are not holes, as a [`Mesh`] with the given positions.
+    pub fn to_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Mesh {
+        let t = &self.levels[level];
+        let mut m = Mesh {
+            positions,
+            options: t.options,
+            ..Default::default()
+        };
+        for f in 0..t.num_faces() {
+            if !t.face_is_hole[f] {
+                let fv = t.face_vertices(f);
+                m.face_counts.push(fv.len() as u32);
+                m.face_indices.extend_from_slice(fv);
+            }
+        }
+        m
+    }
+}
+
+#[cfg(test)]
+mod tests;

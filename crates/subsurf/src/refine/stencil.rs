@@ -1,0 +1,160 @@
+//! Sparse stencil tables: each row gives one output vertex as a weighted sum of input vertices.
+//!
+//! Layout (uploaded as is by the GPU backend): `offsets` has `rows + 1` entries; row `i` uses
+//! `indices[offsets[i]..offsets[i + 1]]` and the matching `weights`. Applying a table computes
+//! `dst[i] = Σ_j weights[j] · src[indices[j]]`, accumulated in `f32` in index order.
+
+use rayon::prelude::*;
+
+/// A sparse row-major matrix from input vertices to output vertices.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StencilTable {
+    /// `rows + 1` offsets into `indices` / `weights`.
+    pub offsets: Vec<u32>,
+    /// Input vertex of each entry.
+    pub indices: Vec<u32>,
+    /// Weight of each entry.
+    pub weights: Vec<f32>,
+    /// Number of input vertices the indices refer to.
+    pub num_inputs: usize,
+}
+
+impl StencilTable {
+    /// Number of output vertices.
+    pub fn num_rows(&self) -> usize {
+        self.offsets.len().saturating_sub(1)
+    }
+
+    /// Number of non-zero entries.
+    pub fn num_entries(&self) -> usize {
+        self.indices.len()
+    }
+
+    /// Bytes held by the three arrays.
+    pub fn size_bytes(&self) -> usize {
+        4 * (self.offsets.len() + self.indices.len() + self.weights.len())
+    }
+
+    /// Applies the table to `N`-component values (positions: `N = 3`, UVs: `N = 2`),
+    /// in parallel over rows.
+    pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
+        assert_eq!(dst.len(), self.num_rows(), "destination length");
+        assert!(src.len() >= self.num_inputs, "source length");
+        const CHUNK: usize = 4096;
+        dst.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+            let base = c * CHUNK;
+            for (i, o) in out.iter_mut().enumerate() {
+                *o = self.row_value(base + i, src);
+            }
+        });
+    }
+
+    /// Applies the table on the calling thread only.
+    pub fn apply_serial<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
+        assert_eq!(dst.len(), self.num_rows(), "destination length");
+        for (i, o) in dst.iter_mut().enumerate() {
+            *o = self.row_value(i, src);
+        }
+    }
+
+    #[inline(always)]
+    fn row_value<const N: usize>(&self, i: usize, src: &[[f32; N]]) -> [f32; N] {
+        let (s, e) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+        let mut acc = [0.0f32; N];
+        for (&k, &w) in self.indices[s..e].iter().zip(&self.weights[s..e]) {
+            let p = &src[k as usize];
+            for c in 0..N {
+                acc[c] += w * p[c];
+            }
+        }
+        acc
+    }
+
+    /// Composes two tables: `(other ∘ self)`, i.e. first `self` then `other`.
+    /// Rows of the result are `other`'s rows expressed in `self`'s inputs.
+    pub fn then(&self, other: &StencilTable) -> StencilTable {
+        let rows = other.num_rows();
+        let chunk = 8192;
+        let parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)> = (0..rows.div_ceil(chunk))
+            .into_par_iter()
+            .map(|c| {
+                let mut builder = RowBuilder::new(self.num_inputs);
+                let (mut counts, mut idx, mut wts) = (Vec::new(), Vec::new(), Vec::new());
+                for r in c * chunk..((c + 1) * chunk).min(rows) {
+                    let (s, e) = (other.offsets[r] as usize, other.offsets[r + 1] as usize);
+                    for j in s..e {
+                        let (m, w) = (other.indices[j] as usize, other.weights[j]);
+                        let (ms, me) = (self.offsets[m] as usize, self.offsets[m + 1] as usize);
+                        for q in ms..me {
+                            builder.add_f64(self.indices[q], w as f64 * self.weights[q] as f64);
+                        }
+                    }
+                    counts.push(builder.len() as u32);
+                    builder.drain_into(&mut idx, &mut wts);
+                }
+                (counts, idx, wts)
+            })
+            .collect();
+        let mut out = StencilTable {
+            offsets: vec![0],
+            num_inputs: self.num_inputs,
+            ..Default::default()
+        };
+        for (counts, idx, wts) in parts {
+            for c in counts {
+                let last = *out.offsets.last().unwrap_or(&0);
+                out.offsets.push(last + c);
+            }
+            out.indices.extend(idx);
+            out.weights.extend(wts);
+        }
+        out
+    }
+}
+
+/// Accumulates one row, merging repeated inputs. Short rows merge by linear search; long rows
+/// use a marker array sized to the number of inputs.
+#[derive(Debug)]
+pub(crate) struct RowBuilder {
+    idx: Vec<u32>,
+    wts: Vec<f64>,
+    marker: Vec<u32>,
+}
+
+impl RowBuilder {
+    pub(crate) fn new(num_inputs: usize) -> Self {
+        RowBuilder {
+            idx: Vec::with_capacity(64),
+            wts: Vec::with_capacity(64),
+            marker: vec![u32::MAX; num_inputs],
+        }
+    }
+    #[inline]
+    pub(crate) fn add(&mut self, i: u32, w: f32) {
+        self.add_f64(i, w as f64);
+    }
+    /// Adds with a weight kept in double precision until the row is drained.
+    #[inline]
+    pub(crate) fn add_f64(&mut self, i: u32, w: f64) {
+        let m = self.marker[i as usize];
+        if m != u32::MAX {
+            self.wts[m as usize] += w;
+        } else {
+            self.marker[i as usize] = self.idx.len() as u32;
+            self.idx.push(i);
+            self.wts.push(w);
+        }
+    }
+    pub(crate) fn len(&self) -> usize {
+        self.idx.len()
+    }
+    pub(crate) fn drain_into(&mut self, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+        for &i in &self.idx {
+            self.marker[i as usize] = u32::MAX;
+        }
+        idx.extend_from_slice(&self.idx);
+        wts.extend(self.wts.iter().map(|&w| w as f32));
+        self.idx.clear();
+        self.wts.clear();
+    }
+}
