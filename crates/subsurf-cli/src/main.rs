@@ -1,6 +1,7 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_gpu_info;
 mod cmd_info;
 mod cmd_prep;
 mod cmd_refine;
@@ -26,6 +27,8 @@ enum Command {
     Bench(cmd_bench::BenchArgs),
     /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
     Prep(cmd_prep::PrepArgs),
+    /// Describe the GPU adapter and its limits (SUBSURF_ADAPTER, WGPU_BACKEND respected).
+    GpuInfo(cmd_gpu_info::GpuInfoArgs),
 }
 
 fn main() {
@@ -35,6 +38,7 @@ fn main() {
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
         Command::Prep(a) => cmd_prep::run(a),
+        Command::GpuInfo(a) => cmd_gpu_info::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");
