@@ -12,6 +12,7 @@
 
 mod level;
 mod masks;
+mod par;
 mod stencil;
 mod uv;
 
