@@ -73,12 +73,12 @@ pub fn refine_topology(p: &Topology) -> Topology {
     let face_offsets = iota(cf + 1, |i| 4 * i as u32);
     let mut face_verts = vec![0u32; 4 * cf];
     let mut face_edges = vec![0u32; 4 * cf];
-    let mut face_points = vec![[0u32; 2]; nc];
+    let mut edge_verts = vec![[0u32; 2]; ce];
     fr.clone()
         .into_par_iter()
         .zip(par::split(&mut face_verts, &fb, |f| 4 * fo(f)))
         .zip(par::split(&mut face_edges, &fb, |f| 4 * fo(f)))
-        .zip(par::split(&mut face_points, &fb, fo))
+        .zip(par::split(&mut edge_verts[..nc], &fb, fo))
         .for_each(|(((r, cfv), cfe), cev)| {
             let base = fo(r.start);
             for f in r {
@@ -110,8 +110,6 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
     // children of parent edge e have as many as e.
-    let mut edge_verts = face_points;
-    edge_verts.resize(ce, [0; 2]);
     let mut edge_face_offsets = vec![0u32; ce + 1];
     let total_ef = 2 * nc + 2 * efo(ne);
     let mut edge_faces = vec![0u32; total_ef];

@@ -117,9 +117,11 @@ where
                 idx.clear();
                 wts.clear();
                 row(i, &mut idx, &mut wts, &mut scratch);
-                let (s, e) = (start(i) - base, start(i + 1) - base);
-                io[s..e].copy_from_slice(&idx);
-                wo[s..e].copy_from_slice(&wts);
+                let s = start(i) - base;
+                for (k, (&x, &w)) in idx.iter().zip(&wts).enumerate() {
+                    io[s + k] = x;
+                    wo[s + k] = w;
+                }
             }
         });
     StencilTable {
