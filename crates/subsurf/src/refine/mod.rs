@@ -12,7 +12,7 @@
 
 mod level;
 mod masks;
-mod par;
+pub(crate) mod par;
 mod stencil;
 mod uv;
 
