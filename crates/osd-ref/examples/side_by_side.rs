@@ -30,7 +30,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 static CPU_TIME: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
 
 /// CPU time of the calling thread in ms (`/proc/thread-self/schedstat`, nanoseconds on a core).
+/// The kernel updates that figure at scheduler ticks and switches; yielding first forces an
+/// update, so short runs are not rounded to a tick.
 fn thread_cpu_ms() -> f64 {
+    std::thread::yield_now();
     std::fs::read_to_string("/proc/thread-self/schedstat")
         .ok()
         .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
