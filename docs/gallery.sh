@@ -31,3 +31,14 @@ done
 # Side by side: level 0 against level 3.
 $subsurf compare examples/pawn.obj@refine:0 examples/pawn.obj@refine:3 \
   -o "$img/pawn_compare.png" --cage --up z --view iso --size 360x400
+
+# The p-rep (Myles, Yeo and Peters 2008) of a closed quad mesh whose vertices are all
+# extraordinary: without (left) and with (right) the bi-5 perturbation, as in the paper's
+# Figure 7.
+$subsurf compare testdata/shapes/catmark_toroidal_tet.obj@prep-bicubic:12 \
+  testdata/shapes/catmark_toroidal_tet.obj@prep:12 \
+  -o "$img/prep_perturbation.png" --view iso --size 400x360
+
+# Patch kinds of a p-rep: B-quads (blue, bicubic only) and perturbed patches (orange).
+$subsurf render testdata/shapes/catmark_lefthanded.obj -o "$img/prep_patch_kinds.png" \
+  --method prep --tess 8 --color-by patch-kind --cage --view iso --size 640x400

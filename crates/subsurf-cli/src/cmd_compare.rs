@@ -1,12 +1,16 @@
 //! `subsurf compare A B -o OUT.png`: two renders side by side.
 //!
-//! Each argument is a mesh file, optionally followed by `@METHOD` and `:N`, for example
-//! `pawn.obj`, `pawn.obj@refine:1`, `car.obj@limit:8` or `car.obj@:2`. `N` is the refinement
-//! level for `refine` and the tessellation rate for `limit` and `prep`; a missing method is
-//! `refine` and a missing `N` is `--level` (refine) or 8 (limit, prep). The image options
+//! Each argument is `FILE[@[METHOD][:N]]`: a mesh file, optionally followed by `@`, a
+//! method and `:N`, for example `pawn.obj`, `pawn.obj@refine:1`, `pawn.obj@prep:9` or
+//! `car.obj@:2`. Methods: `refine`, `limit`, `prep`, and `prep-bicubic` (the p-rep without
+//! its bi-5 perturbations). `N` is the refinement level for `refine` and the samples per
+//! patch side for the others; a missing method is `refine` and a missing `N` is `--level`
+//! (refine) or 8. The image options
 //! (`--size` per panel, `--view`, `--cage`, ...) apply to both panels.
 
-use crate::cmd_render::{open_gpu, render_spec, save, LookArgs, Method, SurfaceSpec};
+use crate::cmd_render::{
+    open_gpu, prepare_spec, render_prepared, save, LookArgs, Method, SurfaceSpec,
+};
 use crate::common::SchemeArgs;
 use crate::progress::{quiet, Progress};
 use anyhow::{anyhow, Context};
@@ -17,9 +21,9 @@ use subsurf_render::RgbaImage;
 /// Render two surfaces side by side into one PNG.
 #[derive(Debug, clap::Args)]
 pub struct CompareArgs {
-    /// Left surface: FILE[@METHOD][:N].
+    /// Left surface: FILE[@[METHOD][:N]].
     pub left: String,
-    /// Right surface: FILE[@METHOD][:N].
+    /// Right surface: FILE[@[METHOD][:N]].
     pub right: String,
     /// Output image (.png).
     #[arg(short, long)]
@@ -36,7 +40,7 @@ pub struct CompareArgs {
     pub scheme: SchemeArgs,
 }
 
-/// Parses `FILE[@METHOD][:N]`. The part after the last `@` is read as a method only when it
+/// Parses `FILE[@[METHOD][:N]]`. The part after the last `@` is read as a method only when it
 /// has that form, so file names containing `@` still work.
 pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> {
     if let Some((file, tail)) = s.rsplit_once('@') {
@@ -44,10 +48,12 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
             Some((m, n)) => (m, Some(n)),
             None => (tail, None),
         };
-        let method = if m.is_empty() {
-            Some(Method::Refine)
+        let (method, perturbed) = if m.is_empty() {
+            (Some(Method::Refine), true)
+        } else if m.eq_ignore_ascii_case("prep-bicubic") {
+            (Some(Method::Prep), false)
         } else {
-            Method::from_str(m, true).ok()
+            (Method::from_str(m, true).ok(), true)
         };
         let number = n.map(|n| n.parse::<usize>());
         if let (Some(method), false) = (method, matches!(number, Some(Err(_)))) {
@@ -63,6 +69,7 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
                 path: PathBuf::from(file),
                 method,
                 level,
+                perturbed,
             });
         }
     }
@@ -70,6 +77,7 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
         path: PathBuf::from(s),
         method: Method::Refine,
         level: default_level,
+        perturbed: true,
     })
 }
 
@@ -78,13 +86,19 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<()> {
         parse_spec(&a.left, a.level)?,
         parse_spec(&a.right, a.level)?,
     ];
-    let progress = Progress::start("opening the GPU");
+    let progress = Progress::start("reading");
+    let mut meshes = Vec::new();
+    for s in &specs {
+        meshes.push(
+            prepare_spec(s, &a.look, &a.scheme, &progress)
+                .with_context(|| format!("panel {}", s.path.display()))?,
+        );
+    }
+    progress.stage("opening the GPU");
     let gpu = open_gpu()?;
     let mut images = Vec::new();
-    for s in &specs {
-        let (im, _) = render_spec(&gpu, s, &a.look, &a.scheme, &progress)
-            .with_context(|| format!("panel {}", s.path.display()))?;
-        images.push(im);
+    for m in &meshes {
+        images.push(render_prepared(&gpu, m, &a.look, &progress)?);
     }
     let image = RgbaImage::hstack(&images, a.gap, a.look.background);
     save(&image, &a.output)?;
@@ -125,5 +139,8 @@ mod tests {
         let s = parse_spec("me@host.obj", 2).unwrap();
         assert_eq!((s.path, s.method), ("me@host.obj".into(), Method::Refine));
         assert!(parse_spec("@refine:2", 2).is_err());
+        let s = parse_spec("p.obj@prep-bicubic:9", 2).unwrap();
+        assert_eq!((s.method, s.level, s.perturbed), (Method::Prep, 9, false));
+        assert!(parse_spec("p.obj@prep", 2).unwrap().perturbed);
     }
 }

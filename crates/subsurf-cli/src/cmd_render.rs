@@ -1,8 +1,10 @@
 //! `subsurf render`: a PNG image of a subdivision surface, rendered headlessly with wgpu.
 //!
-//! Methods: `refine` (uniform refinement to `--level`, triangulated). Colouring by
-//! `sharpness` marks the faces next to tagged creases of the base mesh (orange: semi-sharp,
-//! red: infinitely sharp).
+//! Methods: `refine` (uniform refinement to `--level`, triangulated) and `prep` (the p-rep
+//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side). Colouring by `sharpness`
+//! marks the faces next to tagged creases of the base mesh (orange: semi-sharp, red:
+//! infinitely sharp); `patch-kind` on a p-rep marks B-quads (blue) and perturbed patches
+//! (orange), as in the paper's Figure 7.
 
 use crate::common::{read_mesh, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
@@ -28,7 +30,7 @@ pub enum Method {
 pub enum ColorBy {
     /// One colour.
     None,
-    /// Patch kind (regular, single crease, adaptive level, end cap).
+    /// Patch kind: p-rep B-quad (blue) or perturbed patch (orange).
     PatchKind,
     /// Adaptive refinement level of the patch.
     Level,
@@ -102,9 +104,12 @@ pub struct RenderArgs {
     /// Refinement level (method refine).
     #[arg(short, long, conflicts_with = "tess")]
     pub level: Option<usize>,
-    /// Tessellation rate per patch edge (methods limit and prep).
+    /// Samples per patch side (methods limit and prep).
     #[arg(long)]
     pub tess: Option<usize>,
+    /// Method prep: leave out the bi-5 perturbations (bicubic part only).
+    #[arg(long)]
+    pub no_perturbation: bool,
     #[command(flatten)]
     pub look: LookArgs,
     #[command(flatten)]
@@ -182,6 +187,8 @@ pub struct SurfaceSpec {
     pub method: Method,
     /// Level (refine) or tessellation rate (limit, prep).
     pub level: usize,
+    /// Method prep: with the bi-5 perturbations.
+    pub perturbed: bool,
 }
 
 /// Builds the triangles of `spec` for `mesh`.
@@ -192,13 +199,19 @@ pub fn build(
     progress: &Progress,
 ) -> anyhow::Result<RenderMesh> {
     let color_by = match (spec.method, look.color_by) {
-        (Method::Refine, c @ (ColorBy::Level | ColorBy::PatchKind)) => {
+        (Method::Refine, c @ (ColorBy::Level | ColorBy::PatchKind))
+        | (Method::Prep, c @ (ColorBy::Level | ColorBy::Sharpness)) => {
             note(format!(
-                "--color-by {} needs --method limit; drawing without colours",
-                if c == ColorBy::Level {
-                    "level"
+                "--color-by {} is not available with --method {}; drawing without colours",
+                match c {
+                    ColorBy::Level => "level",
+                    ColorBy::PatchKind => "patch-kind",
+                    _ => "sharpness",
+                },
+                if spec.method == Method::Prep {
+                    "prep"
                 } else {
-                    "patch-kind"
+                    "refine"
                 }
             ));
             ColorBy::None
@@ -214,37 +227,67 @@ pub fn build(
             ));
             render_mesh::refined(mesh, spec.level, color_by == ColorBy::Sharpness, look.cage)
         }
-        Method::Limit | Method::Prep => bail!(
-            "--method {} is not available in this build; use --method refine",
-            if spec.method == Method::Limit {
-                "limit"
-            } else {
-                "prep"
+        Method::Prep => {
+            progress.stage(format!(
+                "p-rep of {} at {} samples per side",
+                spec.path.display(),
+                spec.level
+            ));
+            if !mesh.creases.is_empty() || !mesh.corners.is_empty() {
+                note("the p-rep ignores crease and corner tags");
             }
-        ),
+            let (rm, nf, np) = render_mesh::prep(
+                mesh,
+                spec.level,
+                color_by == ColorBy::PatchKind,
+                spec.perturbed,
+                look.cage,
+            )?;
+            if !quiet() {
+                eprintln!(
+                    "p-rep: {nf} patches, {} B-quads, {np} perturbed{}",
+                    nf - np,
+                    if spec.perturbed {
+                        ""
+                    } else {
+                        " (perturbation left out)"
+                    }
+                );
+            }
+            Ok(rm)
+        }
+        Method::Limit => {
+            bail!("--method limit is not available in this build; use --method refine or prep")
+        }
     }
 }
 
-/// Reads, builds and renders one surface on `gpu`.
-pub fn render_spec(
-    gpu: &Gpu,
+/// Reads and builds the triangles of one surface.
+pub fn prepare_spec(
     spec: &SurfaceSpec,
     look: &LookArgs,
     scheme: &SchemeArgs,
     progress: &Progress,
-) -> anyhow::Result<(RgbaImage, usize)> {
+) -> anyhow::Result<RenderMesh> {
     let mut mesh = read_mesh(&spec.path)?;
     scheme.apply(&mut mesh);
-    let rm = build(&mesh, spec, look, progress)?;
+    build(&mesh, spec, look, progress)
+}
+
+/// Renders prepared triangles on `gpu`.
+pub fn render_prepared(
+    gpu: &Gpu,
+    rm: &RenderMesh,
+    look: &LookArgs,
+    progress: &Progress,
+) -> anyhow::Result<RgbaImage> {
     progress.stage(format!("rendering {} triangles", rm.num_triangles()));
-    let image = subsurf_render::render_with(gpu, &rm, &look.options())
-        .with_context(|| format!("rendering {}", spec.path.display()))?;
-    Ok((image, rm.num_triangles()))
+    Ok(subsurf_render::render_with(gpu, rm, &look.options())?)
 }
 
 /// Opens the GPU with a hint on failure.
 pub fn open_gpu() -> anyhow::Result<Gpu> {
-    Gpu::new().context("opening a GPU adapter for rendering")
+    subsurf_render::open().context("opening a GPU adapter for rendering")
 }
 
 /// Writes a PNG, with the path in the error.
@@ -261,14 +304,21 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
         (_, Some(_), _) => bail!("--level applies to --method refine; use --tess"),
         (_, None, t) => t.unwrap_or(8),
     };
+    if a.no_perturbation && a.method != Method::Prep {
+        bail!("--no-perturbation applies to --method prep");
+    }
     let spec = SurfaceSpec {
         path: a.input.clone(),
         method: a.method,
         level,
+        perturbed: !a.no_perturbation,
     };
-    let progress = Progress::start("opening the GPU");
+    let progress = Progress::start("reading");
+    let rm = prepare_spec(&spec, &a.look, &a.scheme, &progress)?;
+    progress.stage("opening the GPU");
     let gpu = open_gpu()?;
-    let (image, tris) = render_spec(&gpu, &spec, &a.look, &a.scheme, &progress)?;
+    let image = render_prepared(&gpu, &rm, &a.look, &progress)?;
+    let tris = rm.num_triangles();
     progress.stage("writing PNG");
     save(&image, &a.output)?;
     drop(progress);
@@ -280,7 +330,7 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
             level,
             image.width,
             image.height,
-            gpu.describe(),
+            subsurf_render::describe(&gpu),
             a.output.display()
         );
     }

@@ -2,7 +2,9 @@
 
 mod cmd_bench;
 mod cmd_compare;
+mod cmd_gpu_info;
 mod cmd_info;
+mod cmd_prep;
 mod cmd_refine;
 mod cmd_render;
 mod common;
@@ -34,6 +36,10 @@ enum Command {
     Render(cmd_render::RenderArgs),
     /// Render two surfaces side by side.
     Compare(cmd_compare::CompareArgs),
+    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
+    Prep(cmd_prep::PrepArgs),
+    /// Describe the GPU adapter and its limits (SUBSURF_ADAPTER, WGPU_BACKEND respected).
+    GpuInfo(cmd_gpu_info::GpuInfoArgs),
 }
 
 fn main() {
@@ -45,6 +51,8 @@ fn main() {
         Command::Bench(a) => cmd_bench::run(a),
         Command::Render(a) => cmd_render::run(a),
         Command::Compare(a) => cmd_compare::run(a),
+        Command::Prep(a) => cmd_prep::run(a),
+        Command::GpuInfo(a) => cmd_gpu_info::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -6,6 +6,8 @@
 //! Schumacker 1974), which is robust for non-planar quads.
 
 use anyhow::{bail, Context};
+use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::PrepPatches;
 use subsurf::topology::tags;
 use subsurf::{Mesh, Refiner, Topology};
 use subsurf_render::RenderMesh;
@@ -18,6 +20,10 @@ pub mod class {
     pub const SEMI_SHARP: u8 = 1;
     /// Next to an infinitely sharp crease.
     pub const INF_SHARP: u8 = 4;
+    /// A p-rep B-quad (bicubic patch, no perturbation).
+    pub const B_QUAD: u8 = 2;
+    /// A p-rep patch with the bi-5 perturbation.
+    pub const PERTURBED: u8 = 1;
 }
 
 /// Newell's normal of a polygon (twice its vector area).
@@ -162,6 +168,71 @@ pub fn refined(
         out.lines = cage_lines(&refiner.levels[0], &mesh.positions);
     }
     Ok(out)
+}
+
+/// The p-rep of `mesh` (Myles, Yeo and Peters 2008), tessellated with `n` samples per patch
+/// side. Non-quad meshes get one Catmull-Clark step first. With `perturbed = false` the bi-5
+/// perturbations are dropped (every patch drawn as its bicubic `g` part), which shows what
+/// they correct (the paper's Figure 7). Classes: B-quad or perturbed patch.
+pub fn prep(
+    mesh: &Mesh,
+    n: usize,
+    patch_classes: bool,
+    perturbed: bool,
+    cage: bool,
+) -> anyhow::Result<(RenderMesh, usize, usize)> {
+    let quads;
+    let input = if mesh.face_counts.iter().any(|&c| c != 4) {
+        crate::progress::note("the p-rep needs quads: one Catmull-Clark step first");
+        quads = quadrangulate(mesh)?;
+        &quads
+    } else {
+        mesh
+    };
+    let mut p = PrepPatches::<f32>::build(input)
+        .context("building the p-rep (closed, oriented quad meshes only)")?;
+    let nf = p.num_faces();
+    let num_perturbed = p.topology.perturbed_faces.len();
+    let face_class: Vec<u8> = p
+        .h_index
+        .iter()
+        .map(|&h| {
+            if h == u32::MAX {
+                class::B_QUAD
+            } else {
+                class::PERTURBED
+            }
+        })
+        .collect();
+    if !perturbed {
+        p.h_index = vec![u32::MAX; nf];
+    }
+    let n = n.max(2);
+    let t = p.tessellate(n);
+    let per_face = 2 * (n - 1) * (n - 1);
+    if t.triangles.len() != nf * per_face {
+        bail!(
+            "p-rep tessellation: {} triangles for {nf} patches of {per_face}",
+            t.triangles.len()
+        );
+    }
+    let mut out = RenderMesh {
+        positions: t.positions,
+        normals: t.normals,
+        indices: t.triangles.iter().flatten().copied().collect(),
+        triangle_class: patch_classes.then(|| {
+            face_class
+                .iter()
+                .flat_map(|&c| std::iter::repeat_n(c, per_face))
+                .collect()
+        }),
+        lines: vec![],
+    };
+    if cage {
+        let topo = Topology::new(mesh)?;
+        out.lines = cage_lines(&topo, &mesh.positions);
+    }
+    Ok((out, nf, num_perturbed))
 }
 
 #[cfg(test)]

@@ -28,7 +28,7 @@ mod image;
 mod prepare;
 
 pub use camera::{Camera, Mat4, UpAxis, View};
-pub use device::{Gpu, INSTALL_HINT};
+pub use device::{describe, open, Gpu};
 pub use image::RgbaImage;
 
 /// Errors of the renderer.
@@ -115,8 +115,8 @@ impl RenderMesh {
 /// A categorical palette (sRGB): neutral grey first, then well-separated hues.
 pub const PALETTE: [[u8; 3]; 8] = [
     [200, 203, 210], // 0 grey
-    [230, 140, 50],  // 1 orange
-    [70, 130, 200],  // 2 blue
+    [240, 160, 80],  // 1 orange
+    [125, 165, 220], // 2 blue
     [90, 175, 90],   // 3 green
     [210, 70, 70],   // 4 red
     [150, 100, 190], // 5 purple
@@ -220,7 +220,7 @@ impl RenderOptions {
 /// and call [`render_with`].
 pub fn render(mesh: &RenderMesh, options: &RenderOptions) -> Result<RgbaImage, RenderError> {
     prepare::validate(mesh, options)?;
-    let gpu = Gpu::new()?;
+    let gpu = open()?;
     render_with(&gpu, mesh, options)
 }
 

@@ -10,9 +10,9 @@ use subsurf_render::{render_with, Gpu, RenderMesh, RenderOptions, RgbaImage, UpA
 
 fn gpu() -> Option<&'static Gpu> {
     static GPU: OnceLock<Option<Gpu>> = OnceLock::new();
-    GPU.get_or_init(|| match Gpu::new() {
+    GPU.get_or_init(|| match subsurf_render::open() {
         Ok(g) => {
-            eprintln!("rendering on {}", g.describe());
+            eprintln!("rendering on {}", subsurf_render::describe(&g));
             Some(g)
         }
         Err(e) => {

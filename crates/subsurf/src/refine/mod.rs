@@ -12,6 +12,7 @@
 
 mod level;
 mod masks;
+pub(crate) mod par;
 mod stencil;
 mod uv;
 
