@@ -75,42 +75,12 @@ struct Corner {
     fm_copied: bool,
 }
 
-/// Tangent scale of OpenSubdiv's interior limit masks (from the subdominant eigenvalue).
+/// Tangent scale of the interior limit masks, from the subdominant eigenvalue of the
+/// Catmull-Clark subdivision matrix: `16 / (n ((c + 5) + √((c + 9)(c + 1))))`, `c = cos 2π/n`
+/// (0 below valence 3, where OpenSubdiv uses no tangent).
 fn tangent_coefficient(n: usize) -> f64 {
-    const TABLE: [f64; 30] = [
-        0.0,
-        0.0,
-        0.0,
-        8.1281572906372312e-01,
-        0.5,
-        3.6364406329142801e-01,
-        2.8751379706077085e-01,
-        2.3868786685851678e-01,
-        2.0454364190756097e-01,
-        1.7922903958061159e-01,
-        1.5965737079986253e-01,
-        1.4404233443011302e-01,
-        1.3127568415883017e-01,
-        1.2063172212675841e-01,
-        1.1161437506676930e-01,
-        1.0387245516114274e-01,
-        9.7150019090724835e-02,
-        9.1255917505950648e-02,
-        8.6044378511602668e-02,
-        8.1402211336798411e-02,
-        7.7240129516184072e-02,
-        7.3486719751997026e-02,
-        7.0084157479797987e-02,
-        6.6985104030725440e-02,
-        6.4150420569810074e-02,
-        6.1547457638637268e-02,
-        5.9148757447233989e-02,
-        5.6931056818776957e-02,
-        5.4874512279256417e-02,
-        5.2962091433796134e-02,
-    ];
-    if n < 30 {
-        return TABLE[n];
+    if n < 3 {
+        return 0.0;
     }
     let c = (2.0 * PI / n as f64).cos();
     16.0 / n as f64 / ((c + 5.0) + ((c + 9.0) * (c + 1.0)).sqrt())
