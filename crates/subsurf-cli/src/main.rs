@@ -1,7 +1,9 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_eval;
 mod cmd_info;
+mod cmd_limit;
 mod cmd_refine;
 mod common;
 
@@ -23,6 +25,10 @@ enum Command {
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
+    /// Tessellate the limit surface (watertight, with normals).
+    Limit(cmd_limit::LimitArgs),
+    /// Sample limit positions and derivatives on every ptex face.
+    Eval(cmd_eval::EvalArgs),
 }
 
 fn main() {
@@ -31,6 +37,8 @@ fn main() {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Limit(a) => cmd_limit::run(a),
+        Command::Eval(a) => cmd_eval::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -52,6 +52,7 @@ fn compare(name: &str, level: u32, n: usize) -> Deviation {
         &PatchOptions {
             isolation_level: level,
             single_crease: true,
+            cap_crease_sharpness: true,
         },
     )
     .unwrap();
@@ -167,7 +168,7 @@ fn non_manifold_shapes_evaluate() {
         let topo = Topology::new(&mesh).unwrap();
         let o = PatchOptions {
             isolation_level: 2,
-            single_crease: true,
+            ..Default::default()
         };
         let s = LimitSurface::new(PatchTable::build(&topo, &o).unwrap(), &mesh.positions);
         for f in 0..s.table.num_ptex_faces() {

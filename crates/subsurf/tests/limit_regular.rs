@@ -32,7 +32,7 @@ fn surface(mesh: &Mesh, level: u32) -> LimitSurface {
         &t,
         &PatchOptions {
             isolation_level: level,
-            single_crease: true,
+            ..Default::default()
         },
     )
     .unwrap();
@@ -136,9 +136,9 @@ fn brute_force(
     limit[refiner.levels[k].face_vertices(face)[0] as usize]
 }
 
-fn crease_matches_refinement(s: f32, along_u: bool) {
+fn crease_matches_refinement(s: f32, along_u: bool, level: u32) {
     let mesh = creased_torus(s, along_u);
-    let surf = surface(&mesh, 4);
+    let surf = surface(&mesh, level);
     let counts = surf.table.counts();
     assert_eq!(counts.single_crease, 16, "s = {s}: {counts:?}");
     assert_eq!(counts.gregory, 0);
@@ -163,17 +163,38 @@ fn crease_matches_refinement(s: f32, along_u: bool) {
     assert!(worst < 1e-5, "s = {s}: worst {worst:e} of the diagonal");
 }
 
-/// Single-crease patches (integer and fractional sharpness, crease along `u` and `v`) equal
-/// the limit of brute-force refinement with the crease rules (DeRose, Kass & Truong 1998):
-/// after `k = 5 > s` steps every edge is smooth and the limit masks are exact.
+/// Single-crease patches (integer and fractional sharpness, crease along `u` and `v`, also
+/// sharper than the isolation level) equal the limit of brute-force refinement with the
+/// crease rules (DeRose, Kass & Truong 1998): after `k = 5 > s` steps every edge is smooth
+/// and the limit masks are exact.
 #[test]
 fn single_crease_patches_match_refinement() {
     for s in [1.0, 2.0, 1.5, 2.7] {
-        crease_matches_refinement(s, true);
+        crease_matches_refinement(s, true, 4);
     }
     for s in [1.0, 3.3] {
-        crease_matches_refinement(s, false);
+        crease_matches_refinement(s, false, 4);
     }
+    // Sharpness above the isolation level is kept, not capped: still exact.
+    crease_matches_refinement(4.6, true, 1);
+}
+
+/// With OpenSubdiv's cap, the stored sharpness is `min(s, L − level)`.
+#[test]
+fn capped_sharpness_is_opensubdivs() {
+    let mesh = creased_torus(4.6, true);
+    let t = Topology::new(&mesh).unwrap();
+    let o = PatchOptions {
+        isolation_level: 2,
+        cap_crease_sharpness: true,
+        ..Default::default()
+    };
+    let table = PatchTable::build(&t, &o).unwrap();
+    let creased: Vec<f32> = (0..table.num_patches())
+        .filter(|&p| table.patch_type(p) == PatchType::SingleCrease)
+        .map(|p| table.sharpness[p])
+        .collect();
+    assert_eq!(creased, vec![2.0; 16]);
 }
 
 /// The fractional crease blends: on the crease the limit point moves monotonically outwards

@@ -15,9 +15,11 @@
 //! Leaf faces become:
 //! - a regular bicubic B-spline patch (16 points, boundary mask for boundary/corner patches)
 //!   when no corner is extraordinary or non-manifold ([`super::features::is_patch_regular`]);
-//! - a single-crease patch when, in addition, the face is interior, lies below `L` and has one
-//!   regular semi-sharp (or infinitely sharp) crease edge; like OpenSubdiv, the stored
-//!   sharpness is `min(s, L − level)`;
+//! - a single-crease patch when, in addition, the face is interior and has one regular
+//!   semi-sharp (or infinitely sharp) crease edge (Nießner, Loop & Greiner 2012). The stored
+//!   sharpness is the level's own, evaluated exactly; with
+//!   [`PatchOptions::cap_crease_sharpness`] it is OpenSubdiv's `min(s, L − level)` and crease
+//!   faces at level `L` stay plain B-spline patches;
 //! - a Gregory-basis end cap otherwise ([`super::endcap`]), whose 20 points are extra *local
 //!   points* given as stencils over the refined vertices.
 //!
@@ -54,6 +56,11 @@ pub struct PatchOptions {
     pub isolation_level: u32,
     /// Evaluate regular faces with one semi-sharp crease directly (default `true`).
     pub single_crease: bool,
+    /// Store `min(s, L − level)` as a single-crease patch's sharpness and make crease faces
+    /// at the isolation level plain B-spline patches, as OpenSubdiv 3.5 does (default
+    /// `false`: the level's own sharpness is stored, which [`crate::patch::single_crease`]
+    /// evaluates exactly for any value).
+    pub cap_crease_sharpness: bool,
 }
 
 impl Default for PatchOptions {
@@ -61,6 +68,7 @@ impl Default for PatchOptions {
         PatchOptions {
             isolation_level: 4,
             single_crease: true,
+            cap_crease_sharpness: false,
         }
     }
 }
@@ -143,6 +151,7 @@ struct Builder<'a> {
     mask: FeatureMask,
     max_level: usize,
     single_crease: bool,
+    cap: bool,
     level_offsets: Vec<u32>,
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
@@ -196,7 +205,7 @@ impl Builder<'_> {
         let regular = is_patch_regular(t, tags, f);
         let (kind, boundary, sharp) = if regular {
             let bmask = boundary_mask(t, f);
-            let crease = if self.single_crease && bmask == 0 && d < self.max_level {
+            let crease = if self.single_crease && bmask == 0 && (d < self.max_level || !self.cap) {
                 single_crease(t, tags, f)
             } else {
                 None
@@ -208,7 +217,11 @@ impl Builder<'_> {
                 Some((k, s)) => (
                     PatchType::SingleCrease,
                     1u8 << k,
-                    s.min((self.max_level - d) as f32),
+                    if self.cap {
+                        s.min((self.max_level - d) as f32)
+                    } else {
+                        s
+                    },
                 ),
                 None => (PatchType::Regular, bmask, 0.0),
             }
@@ -280,6 +293,7 @@ impl PatchTable {
             mask: FeatureMask::new(options.single_crease),
             max_level: level,
             single_crease: options.single_crease,
+            cap: options.cap_crease_sharpness,
             level_offsets: level_offsets.clone(),
             kinds: Vec::new(),
             cv_offsets: vec![0],
