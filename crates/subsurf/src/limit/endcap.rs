@@ -29,6 +29,7 @@
 
 use super::features::is_smooth_corner;
 use super::gather::ring_position;
+use super::span::{neighbours, span};
 use crate::topology::tags;
 use crate::topology::Topology;
 use std::f64::consts::PI;
@@ -183,24 +184,47 @@ fn boundary_weights(nf: usize, r: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 
 fn corner_topology(t: &Topology, f: usize, k: usize) -> Corner {
     let v = t.face_vertices(f)[k] as usize;
-    let faces = t.vertex_faces(v);
-    let locals = t.vertex_faces_local(v);
-    let edges = t.vertex_edges(v);
     let vt = t.vert_tags[v];
-    let boundary = vt & tags::V_BOUNDARY != 0;
-    let sharp = vt & tags::V_CORNER != 0 || is_smooth_corner(t, v);
-    let nf = faces.len();
-    let r = ring_position(t, v, f, k).unwrap_or(0);
-    let mut ring = Vec::with_capacity(2 * nf + 1);
-    for i in 0..nf {
-        let e = edges.get(i).copied().unwrap_or(edges[0]);
-        ring.push(t.other_vertex(e as usize, v as u32));
-        let g = faces[i] as usize;
-        let fv = t.face_vertices(g);
-        ring.push(fv[(locals[i] as usize + 2) % fv.len()]);
-    }
-    if boundary && edges.len() > nf {
-        ring.push(t.other_vertex(edges[nf] as usize, v as u32));
+    let mut ring = Vec::new();
+    let (boundary, sharp, nf, r);
+    if vt & tags::V_NON_MANIFOLD != 0 {
+        // The manifold span around the corner stands for the vertex's ring.
+        let sp = span(t, f, k);
+        nf = sp.faces.len();
+        boundary = !sp.cyclic;
+        sharp = vt & tags::V_CORNER != 0 || t.vert_sharpness[v] >= crate::SHARPNESS_INFINITE;
+        r = sp
+            .faces
+            .iter()
+            .position(|&(g, c)| g as usize == f && c as usize == k)
+            .unwrap_or(0);
+        for &(g, c) in &sp.faces {
+            let (next, _, opp) = neighbours(t, g as usize, c as usize);
+            ring.push(next);
+            ring.push(opp);
+        }
+        if boundary {
+            let (g, c) = sp.faces[nf - 1];
+            ring.push(neighbours(t, g as usize, c as usize).1);
+        }
+    } else {
+        let faces = t.vertex_faces(v);
+        let locals = t.vertex_faces_local(v);
+        let edges = t.vertex_edges(v);
+        boundary = vt & tags::V_BOUNDARY != 0;
+        sharp = vt & tags::V_CORNER != 0 || is_smooth_corner(t, v);
+        nf = faces.len();
+        r = ring_position(t, v, f, k).unwrap_or(0);
+        for i in 0..nf {
+            let e = edges.get(i).copied().unwrap_or(edges[0]);
+            ring.push(t.other_vertex(e as usize, v as u32));
+            let g = faces[i] as usize;
+            let fv = t.face_vertices(g);
+            ring.push(fv[(locals[i] as usize + 2) % fv.len()]);
+        }
+        if boundary && edges.len() > nf {
+            ring.push(t.other_vertex(edges[nf] as usize, v as u32));
+        }
     }
     let regular = (nf << boundary as usize) == 4 && !sharp;
     let angle = if regular {

@@ -241,7 +241,8 @@ pub fn face_has_features(
 
 /// Whether the leaf face `f` is a regular B-spline patch (`IsPatchRegular` with infinitely
 /// sharp features approximated as smooth and OpenSubdiv's default
-/// `generateLegacySharpCornerPatches`): a quad without non-manifold corners whose
+/// `generateLegacySharpCornerPatches`): a quad whose non-manifold corners have regular spans
+/// ([`super::span`]) and whose
 /// extraordinary corners, if any, are smooth corners — boundary vertices with one face, both
 /// of whose face edges are boundary edges — which are treated as sharp corners.
 pub fn is_patch_regular(t: &Topology, tags: &[VTag], f: usize) -> bool {
@@ -251,7 +252,17 @@ pub fn is_patch_regular(t: &Topology, tags: &[VTag], f: usize) -> bool {
     let v = face_tags(t, tags, f);
     let c = VTag::or(&v);
     if c.has(T_NON_MANIFOLD) {
-        return false;
+        // A non-manifold corner is regular when its manifold span is a regular boundary
+        // (two faces) or, at an infinitely sharp vertex, a regular corner (one face).
+        for k in 0..4 {
+            if v[k].has(T_NON_MANIFOLD) {
+                let sp = super::span::span(t, f, k);
+                let want = if v[k].has(T_INF_SHARP) { 1 } else { 2 };
+                if sp.cyclic || sp.faces.len() != want {
+                    return false;
+                }
+            }
+        }
     }
     if !c.has(T_XORDINARY) {
         return true;

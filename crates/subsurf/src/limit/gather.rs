@@ -20,6 +20,8 @@
 //! whose weights the boundary mask makes zero. Missing points are filled with the corner
 //! vertex itself so every index stays valid.
 
+use super::span::span;
+use crate::topology::tags;
 use crate::topology::Topology;
 
 const P: [(i32, i32); 4] = [(1, 1), (2, 1), (2, 2), (1, 2)];
@@ -52,6 +54,10 @@ pub fn regular_points(t: &Topology, f: usize) -> [u32; 16] {
         let v = fv[k] as usize;
         let (p, a, b) = (P[k], A[k], B[k]);
         pts[at(p)] = fv[k];
+        if t.vert_tags[v] & tags::V_NON_MANIFOLD != 0 {
+            span_points(t, f, k, &mut pts);
+            continue;
+        }
         let Some(r) = ring_position(t, v, f, k) else {
             continue;
         };
@@ -82,4 +88,49 @@ pub fn regular_points(t: &Topology, f: usize) -> [u32; 16] {
         }
     }
     pts
+}
+
+/// The points of corner `k`'s quadrant gathered from the manifold span of a non-manifold
+/// corner: `−a` from the next face of the span, `−b` from the previous one, the diagonal
+/// from the face after next.
+fn span_points(t: &Topology, f: usize, k: usize, pts: &mut [u32; 16]) {
+    let (p, a, b) = (P[k], A[k], B[k]);
+    let sp = span(t, f, k);
+    let n = sp.faces.len();
+    let Some(r) = sp
+        .faces
+        .iter()
+        .position(|&(g, c)| g as usize == f && c as usize == k)
+    else {
+        return;
+    };
+    let get = |i: isize| -> Option<(usize, usize)> {
+        let i = if sp.cyclic {
+            i.rem_euclid(n as isize)
+        } else {
+            i
+        };
+        (0..n as isize).contains(&i).then(|| {
+            (
+                sp.faces[i as usize].0 as usize,
+                sp.faces[i as usize].1 as usize,
+            )
+        })
+    };
+    let corner = |g: usize, c: usize, d: usize| {
+        let gv = t.face_vertices(g);
+        gv[(c + d) % gv.len()]
+    };
+    let r = r as isize;
+    if let Some((g, c)) = get(r + 1) {
+        pts[at((p.0 - a.0, p.1 - a.1))] = corner(g, c, 3);
+    }
+    if let Some((g, c)) = get(r - 1) {
+        pts[at((p.0 - b.0, p.1 - b.1))] = corner(g, c, 1);
+    }
+    if let Some((g, c)) = get(r + 2) {
+        if n >= 4 || !sp.cyclic {
+            pts[at((p.0 - a.0 - b.0, p.1 - a.1 - b.1))] = corner(g, c, 2);
+        }
+    }
 }

@@ -11,6 +11,7 @@
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
+//! - [`span`]: manifold fans around non-manifold vertices;
 //! - [`patch_map`]: the quadtree per ptex face;
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling.
 //!
@@ -27,6 +28,7 @@ pub mod eval;
 pub mod features;
 pub mod gather;
 pub mod patch_map;
+pub mod span;
 pub mod table;
 pub mod tessellate;
 
