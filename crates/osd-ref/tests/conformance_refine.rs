@@ -128,3 +128,70 @@ fn every_catmark_and_bilinear_shape_matches_opensubdiv() {
     }
     eprintln!("{}", report.join("\n"));
 }
+
+/// Linear face-varying UVs (`FVAR_LINEAR_ALL`): every refined face corner's value.
+#[test]
+fn linear_uvs_match_opensubdiv() {
+    require_osd!();
+    for name in [
+        "catmark_car",
+        "catmark_fvar_bound0",
+        "catmark_gregory_test8",
+        "catmark_val2_back2back",
+        "catmark_pyramid",
+    ] {
+        let mesh =
+            subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();
+        let fv = mesh
+            .uvs
+            .as_ref()
+            .unwrap_or_else(|| panic!("{name} has UVs"));
+        let level = 3;
+        let mut om = osd_mesh(&mesh);
+        om.uvs = Some((&fv.values, &fv.indices));
+        let osd = osd_ref::refine_uniform(&om, level).unwrap();
+        let refiner = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+        let mut corner: Vec<[f32; 2]> = fv.indices.iter().map(|&i| fv.values[i as usize]).collect();
+        for k in 0..level {
+            corner = subsurf::refine::refine_uvs_linear(&refiner.levels[k], &corner);
+            let (values, indices) = osd[k + 1].uvs.as_ref().unwrap();
+            assert_eq!(indices.len(), corner.len(), "{name} level {}", k + 1);
+            for (c, (&i, ours)) in indices.iter().zip(&corner).enumerate() {
+                let theirs = values[i as usize];
+                let d = (ours[0] - theirs[0]).abs().max((ours[1] - theirs[1]).abs());
+                assert!(
+                    d < 1e-6,
+                    "{name} level {} corner {c}: {ours:?} vs {theirs:?}",
+                    k + 1
+                );
+            }
+        }
+    }
+}
+
+/// `--limit`: last-level vertices moved to the limit surface, as `PrimvarRefiner::Limit`.
+#[test]
+fn limit_positions_match_opensubdiv() {
+    require_osd!();
+    for name in [
+        "catmark_car",
+        "catmark_cube_creases1",
+        "catmark_edgecorner",
+        "catmark_pole64",
+        "catmark_chaikin1",
+        "catmark_hole_test2",
+    ] {
+        let mesh =
+            subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();
+        let level = 2;
+        let theirs = osd_ref::limit_stencil_positions(&osd_mesh(&mesh), level).unwrap();
+        let refiner = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+        let ours = refiner.limit(&refiner.refine_positions(&mesh.positions));
+        let diag = diagonal(&mesh.positions);
+        assert_eq!(ours.len(), theirs.len());
+        for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+            let d = common::dist(*a, *b) / diag;
+            assert!(d <= 1e-5, "{name} vertex {i}: {a:?} vs {b:?}");
+        }
+    }
+}

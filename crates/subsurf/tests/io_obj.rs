@@ -500,3 +500,41 @@ fn unknown_statement() {
     assert_parse_error(&format!("{SQUARE}vx 1 2 3\n"), 5, "unknown statement");
     assert_parse_error("cstype bspline\n", 1, "free-form");
 }
+
+/// Every shape builds a topology. On manifold shapes (no non-manifold edge or vertex in the
+/// index) boundary-edge count and maximum valence match the index; non-manifold and
+/// degenerate configurations are counted by topology's own conventions (OpenSubdiv's), which
+/// the index's simple edge census does not follow, so they are left to topology's tests.
+#[test]
+fn every_shape_builds_a_topology_matching_the_index() {
+    use subsurf::topology::Topology;
+    let mut manifold = 0;
+    for row in common::index() {
+        let name = row.get("name");
+        let mesh = obj::read_file(common::shape_path(name)).unwrap();
+        let t = Topology::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(t.num_faces(), row.usize("faces"), "{name}");
+        assert_eq!(t.num_vertices(), row.usize("verts"), "{name}");
+        assert_eq!(
+            t.unused_vertices().len(),
+            row.usize("unused_verts"),
+            "{name}: unused"
+        );
+        if row.usize("nonman_edges") != 0 || row.usize("nonman_verts") != 0 {
+            continue;
+        }
+        manifold += 1;
+        assert!(t.is_manifold(), "{name}");
+        assert_eq!(
+            t.boundary_edges().len(),
+            row.usize("boundary_edges"),
+            "{name}: boundary edges"
+        );
+        let max_valence = (0..t.num_vertices())
+            .map(|v| t.valence(v))
+            .max()
+            .unwrap_or(0);
+        assert_eq!(max_valence, row.usize("max_valence"), "{name}: max valence");
+    }
+    assert!(manifold > 80, "{manifold} manifold shapes");
+}

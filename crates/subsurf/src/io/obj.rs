@@ -12,7 +12,7 @@
 //! OBJ has no subdivision scheme: [`read`] gives Catmull-Clark, [`read_with_scheme`] takes it
 //! from the caller and [`read_file`] from the file name prefix ([`scheme_from_name`]).
 //!
-//! Write: [`write`] emits `v`, `vt`, `f` and every tag and non-default option as `t` lines, so
+//! Write: [`write()`] emits `v`, `vt`, `f` and every tag and non-default option as `t` lines, so
 //! that reading the output gives back the same [`Mesh`] (floats use Rust's shortest
 //! round-trip formatting). [`write_with_normals`] adds one `vn` per vertex.
 

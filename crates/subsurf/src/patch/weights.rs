@@ -132,6 +132,32 @@ impl<T: Real, const N: usize> PatchWeights<T, N> {
     }
 }
 
+impl<T: Real, const N: usize> PatchWeights<T, N> {
+    /// Applies the weights to the points `points[indices[k]]`, `k < min(N, indices.len())`
+    /// (a patch's control-vertex indices into a vertex buffer). `None` if an index is out of
+    /// range.
+    pub fn eval_indexed<const D: usize>(
+        &self,
+        points: &[[T; D]],
+        indices: &[u32],
+    ) -> Option<PatchEval<T, D>> {
+        let mut r = PatchEval::<T, D>::default();
+        for (k, &i) in indices.iter().take(N).enumerate() {
+            let pt = points.get(i as usize)?;
+            for c in 0..D {
+                let x = pt[c];
+                r.p[c] += self.p[k] * x;
+                r.du[c] += self.du[k] * x;
+                r.dv[c] += self.dv[k] * x;
+                r.duu[c] += self.duu[k] * x;
+                r.duv[c] += self.duv[k] * x;
+                r.dvv[c] += self.dvv[k] * x;
+            }
+        }
+        Some(r)
+    }
+}
+
 /// A point on a patch with its first and second partial derivatives.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PatchEval<T, const D: usize> {
@@ -160,5 +186,26 @@ impl<T: Real, const D: usize> Default for PatchEval<T, D> {
             duv: z,
             dvv: z,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn indexed_evaluation_gathers_and_checks_indices() {
+        let w = PatchWeights::<f64, 4> {
+            p: [0.1, 0.2, 0.3, 0.4],
+            du: [1.0, 0.0, -1.0, 0.0],
+            ..Default::default()
+        };
+        let pts = [[1.0], [2.0], [3.0], [4.0], [5.0]];
+        let e = w.eval_indexed(&pts, &[4, 3, 2, 1]).unwrap();
+        assert!((e.p[0] - (0.5 + 0.8 + 0.9 + 0.8)).abs() < 1e-15);
+        assert!((e.du[0] - 2.0).abs() < 1e-15);
+        let direct = w.eval(&[[5.0], [4.0], [3.0], [2.0]]);
+        assert_eq!(e, direct);
+        assert!(w.eval_indexed(&pts, &[0, 1, 2, 5]).is_none());
     }
 }

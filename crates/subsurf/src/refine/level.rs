@@ -310,9 +310,13 @@ pub fn refine_topology(p: &Topology) -> Topology {
         vert_sharpness[v] = crease::decrement(p.vert_sharpness[v]);
     }
 
-    let face_is_hole: Vec<bool> = (0..nf)
-        .flat_map(|f| std::iter::repeat_n(p.face_is_hole[f], p.face_size(f)))
-        .collect();
+    let mut face_is_hole = vec![false; nc];
+    for f in 0..nf {
+        if p.face_is_hole[f] {
+            let (s, e) = (p.face_offsets[f] as usize, p.face_offsets[f + 1] as usize);
+            face_is_hole[s..e].fill(true);
+        }
+    }
 
     let mut child = Topology {
         options: p.options,
@@ -340,6 +344,22 @@ pub fn refine_topology(p: &Topology) -> Topology {
     child
 }
 
+fn sharp_vertex_tags(s: f32, inf: usize, semi: usize) -> u16 {
+    let mut vt = 0;
+    if crease::is_infinite(s) {
+        vt |= tags::V_INF_SHARP;
+    } else if s > 0.0 {
+        vt |= tags::V_SEMI_SHARP;
+    }
+    if inf > 0 {
+        vt |= tags::V_INF_SHARP_EDGES;
+    }
+    if semi > 0 {
+        vt |= tags::V_SEMI_SHARP_EDGES;
+    }
+    vt
+}
+
 fn sharp_tag(s: f32) -> u8 {
     if crease::is_infinite(s) {
         tags::E_INF_SHARP
@@ -354,46 +374,41 @@ fn sharp_tag(s: f32) -> u8 {
 /// reclassifySemisharpVertices` and the tag propagation before it).
 fn assign_child_rules(p: &Topology, c: &mut Topology) {
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    for v in 0..c.num_vertices {
+    let count_sharp = |c: &Topology, edges: &[u32]| -> (usize, usize) {
         let (mut inf, mut semi) = (0usize, 0usize);
-        for &e in c.vertex_edges(v) {
+        for &e in edges {
             let et = c.edge_tags[e as usize];
             inf += (et & tags::E_INF_SHARP != 0) as usize;
             semi += (et & tags::E_SEMI_SHARP != 0) as usize;
         }
+        (inf, semi)
+    };
+    // Children of vertices: inherit, and recount where semi-sharp features decayed.
+    for v in 0..nv {
+        let (inf, semi) = count_sharp(c, c.vertex_edges(v));
         let s = c.vert_sharpness[v];
-        let mut vt = c.vert_tags[v];
-        if crease::is_infinite(s) {
-            vt |= tags::V_INF_SHARP;
-        } else if s > 0.0 {
-            vt |= tags::V_SEMI_SHARP;
-        }
-        if inf > 0 {
-            vt |= tags::V_INF_SHARP_EDGES;
-        }
-        if semi > 0 {
-            vt |= tags::V_SEMI_SHARP_EDGES;
-        }
-        c.vert_tags[v] = vt;
-        c.vert_rule[v] = if v < nv {
-            let pt = p.vert_tags[v];
-            if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
-                rule::determine(0.0, inf + semi)
-            } else {
-                p.vert_rule[v]
-            }
-        } else if v < nv + nf {
-            rule::SMOOTH
+        c.vert_tags[v] |= sharp_vertex_tags(s, inf, semi);
+        let pt = p.vert_tags[v];
+        c.vert_rule[v] = if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
+            rule::determine(0.0, inf + semi)
         } else {
-            let e = v - nv - nf;
-            let et = p.edge_tags[e];
-            if et & tags::E_SEMI_SHARP != 0 {
-                rule::determine(0.0, semi)
-            } else if et & tags::E_INF_SHARP != 0 {
-                rule::CREASE
-            } else {
-                rule::SMOOTH
-            }
+            p.vert_rule[v]
+        };
+    }
+    // Face points are smooth and have no sharp edges (already so initialised).
+    // Edge points: only their two child edges can be sharp.
+    let nc = p.num_corners();
+    for e in 0..ne {
+        let v = nv + nf + e;
+        let (inf, semi) = count_sharp(c, &[(nc + 2 * e) as u32, (nc + 2 * e + 1) as u32]);
+        c.vert_tags[v] |= sharp_vertex_tags(0.0, inf, semi);
+        let et = p.edge_tags[e];
+        c.vert_rule[v] = if et & tags::E_SEMI_SHARP != 0 {
+            rule::determine(0.0, semi)
+        } else if et & tags::E_INF_SHARP != 0 {
+            rule::CREASE
+        } else {
+            rule::SMOOTH
         };
     }
     debug_assert_eq!(c.num_vertices, nv + nf + ne);

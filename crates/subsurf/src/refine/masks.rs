@@ -7,6 +7,7 @@
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::Scheme;
 use crate::rules::catmark::{edge_mask, limit_mask, vertex_mask, VertexMask, VertexNeighbourhood};
+use crate::topology::tags::rule;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
@@ -63,88 +64,271 @@ pub(crate) struct Scratch {
     ce: Vec<f32>,
 }
 
-fn add_face_point(p: &Topology, f: usize, w: f32, b: &mut RowBuilder) {
-    let fv = p.face_vertices(f);
-    let wf = w as f64 / fv.len() as f64;
-    for &u in fv {
-        b.add_f64(u, wf);
+/// Builds a table whose rows are written directly (no merging of repeated inputs).
+pub(crate) fn build_direct<F>(rows: usize, num_inputs: usize, row: F) -> StencilTable
+where
+    F: Fn(usize, &mut Vec<u32>, &mut Vec<f32>, &mut Scratch) + Sync,
+{
+    let threads = rayon::current_num_threads().max(1);
+    let chunk = rows.div_ceil(threads * 4).max(4096);
+    let parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)> = (0..rows.div_ceil(chunk))
+        .into_par_iter()
+        .map(|c| {
+            let mut scratch = Scratch::default();
+            let range = c * chunk..((c + 1) * chunk).min(rows);
+            let mut ends = Vec::with_capacity(range.len());
+            let mut idx = Vec::with_capacity(range.len() * 8);
+            let mut wts = Vec::with_capacity(range.len() * 8);
+            for r in range {
+                row(r, &mut idx, &mut wts, &mut scratch);
+                ends.push(idx.len() as u32);
+            }
+            (ends, idx, wts)
+        })
+        .collect();
+    concat_parts(rows, num_inputs, parts)
+}
+
+fn concat_parts(
+    rows: usize,
+    num_inputs: usize,
+    parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)>,
+) -> StencilTable {
+    let total: usize = parts.iter().map(|p| p.1.len()).sum();
+    let mut t = StencilTable {
+        offsets: Vec::with_capacity(rows + 1),
+        indices: Vec::with_capacity(total),
+        weights: Vec::with_capacity(total),
+        num_inputs,
+    };
+    t.offsets.push(0);
+    for (ends, idx, wts) in parts {
+        let base = t.indices.len() as u32;
+        t.offsets.extend(ends.iter().map(|&e| base + e));
+        t.indices.extend_from_slice(&idx);
+        t.weights.extend_from_slice(&wts);
+    }
+    t
+}
+
+/// The stencils of one refinement step, in three tables evaluated in order:
+///
+/// 1. `face`: one row per parent face (its face point), over the parent vertices;
+/// 2. `vertex`: one row per parent vertex (its child), and
+/// 3. `edge`: one row per parent edge (its edge point), both over an input space made of the
+///    parent vertices `0..P` followed by the face points just computed (`P + f` is the face
+///    point of parent face `f`).
+///
+/// Child vertex data is laid out `[vertex rows | face rows | edge rows]`, OpenSubdiv's order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct LevelStencils {
+    /// Number of parent vertices `P`.
+    pub num_parent_vertices: usize,
+    /// Face points over parent vertices.
+    pub face: StencilTable,
+    /// Children of vertices over parent vertices and face points.
+    pub vertex: StencilTable,
+    /// Edge points over parent vertices and face points.
+    pub edge: StencilTable,
+}
+
+impl LevelStencils {
+    /// Number of child vertices.
+    pub fn num_rows(&self) -> usize {
+        self.face.num_rows() + self.vertex.num_rows() + self.edge.num_rows()
+    }
+
+    /// Number of stored entries over the three tables.
+    pub fn num_entries(&self) -> usize {
+        self.face.num_entries() + self.vertex.num_entries() + self.edge.num_entries()
+    }
+
+    /// Bytes held by the three tables.
+    pub fn size_bytes(&self) -> usize {
+        self.face.size_bytes() + self.vertex.size_bytes() + self.edge.size_bytes()
+    }
+
+    /// Applies one refinement step to `N`-component values, in parallel.
+    pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
+        self.apply_with(src, dst, true)
+    }
+
+    /// Applies one refinement step on the calling thread only.
+    pub fn apply_serial<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
+        self.apply_with(src, dst, false)
+    }
+
+    fn apply_with<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]], parallel: bool) {
+        assert_eq!(dst.len(), self.num_rows(), "destination length");
+        let nv = self.vertex.num_rows();
+        let nf = self.face.num_rows();
+        let (vd, rest) = dst.split_at_mut(nv);
+        let (fd, ed) = rest.split_at_mut(nf);
+        if parallel {
+            self.face.apply(src, fd);
+        } else {
+            self.face.apply_serial(src, fd);
+        }
+        let fd: &[[f32; N]] = fd;
+        let p = self.num_parent_vertices;
+        let run = |t: &StencilTable, out: &mut [[f32; N]]| {
+            let eval = |i: usize| {
+                let (s, e) = (t.offsets[i] as usize, t.offsets[i + 1] as usize);
+                let mut acc = [0.0f32; N];
+                for (&k, &w) in t.indices[s..e].iter().zip(&t.weights[s..e]) {
+                    let k = k as usize;
+                    let v = if k < p { &src[k] } else { &fd[k - p] };
+                    for c in 0..N {
+                        acc[c] += w * v[c];
+                    }
+                }
+                acc
+            };
+            if parallel {
+                const CHUNK: usize = 4096;
+                out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
+                    for (i, x) in o.iter_mut().enumerate() {
+                        *x = eval(c * CHUNK + i);
+                    }
+                });
+            } else {
+                for (i, x) in out.iter_mut().enumerate() {
+                    *x = eval(i);
+                }
+            }
+        };
+        run(&self.vertex, vd);
+        run(&self.edge, ed);
+    }
+
+    /// The same step as one table over the parent vertices only (face points expanded and
+    /// repeated inputs merged), rows in child order.
+    pub fn to_table(&self) -> StencilTable {
+        let p = self.num_parent_vertices;
+        let (nv, nf) = (self.vertex.num_rows(), self.face.num_rows());
+        build_rows(self.num_rows(), p, |r, b, _| {
+            let (t, i) = if r < nv {
+                (&self.vertex, r)
+            } else if r < nv + nf {
+                (&self.face, r - nv)
+            } else {
+                (&self.edge, r - nv - nf)
+            };
+            for j in t.offsets[i] as usize..t.offsets[i + 1] as usize {
+                let (k, w) = (t.indices[j] as usize, t.weights[j] as f64);
+                if k < p {
+                    b.add_f64(k as u32, w);
+                } else {
+                    let f = &self.face;
+                    for q in f.offsets[k - p] as usize..f.offsets[k - p + 1] as usize {
+                        b.add_f64(f.indices[q], w * f.weights[q] as f64);
+                    }
+                }
+            }
+        })
     }
 }
 
-/// The stencils mapping parent vertex data to child vertex data (rows in child order).
-pub fn level_stencils(p: &Topology, c: &Topology) -> StencilTable {
-    let (nv, nf) = (p.num_vertices(), p.num_faces());
+/// The stencils mapping parent vertex data to child vertex data (see [`LevelStencils`]).
+pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
     let opts = p.options;
     let bilinear = opts.scheme == Scheme::Bilinear;
-    build_rows(c.num_vertices(), nv, |r, b, s| {
-        if r < nv {
-            let v = r;
-            if bilinear {
-                b.add(v as u32, 1.0);
-                return;
-            }
-            let pe = p.vertex_edges(v);
-            s.pe.clear();
-            s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
-            s.ce.clear();
-            s.ce.extend(
-                c.vertex_edges(v)
-                    .iter()
-                    .map(|&e| c.edge_sharpness[e as usize]),
-            );
-            let faces = p.vertex_faces(v);
-            let h = VertexNeighbourhood {
-                num_faces: faces.len(),
-                parent_sharpness: p.vert_sharpness[v],
-                child_sharpness: c.vert_sharpness[v],
-                parent_edges: &s.pe,
-                child_edges: &s.ce,
-                parent_rule: p.vert_rule[v],
-                child_rule: c.vert_rule[v],
-            };
-            vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
-            for (i, &f) in faces.iter().enumerate() {
-                if let Some(&w) = s.mask.faces.get(i) {
-                    add_face_point(p, f as usize, w, b);
-                }
-            }
-            for (i, &e) in pe.iter().enumerate() {
-                if let Some(&w) = s.mask.edges.get(i) {
-                    b.add(p.other_vertex(e as usize, v as u32), w);
-                }
-            }
-            b.add(v as u32, s.mask.vertex);
-        } else if r < nv + nf {
-            add_face_point(p, r - nv, 1.0, b);
-        } else {
-            let e = r - nv - nf;
-            let ev = p.edge_verts[e];
-            if bilinear {
-                b.add(ev[0], 0.5);
-                b.add(ev[1], 0.5);
-                return;
-            }
-            let faces = p.edge_faces(e);
-            let tri = [
-                faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
-                faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
-            ];
-            let m = edge_mask(
-                p.edge_sharpness[e],
-                c.vert_rule[r],
-                faces.len(),
-                tri,
-                opts.triangle_subdivision,
-            );
-            if m.face != 0.0 {
-                for &f in faces {
-                    add_face_point(p, f as usize, m.face, b);
-                }
-            }
-            b.add(ev[0], m.vertex);
-            b.add(ev[1], m.vertex);
+    let face = build_direct(nf, nv, |f, idx, wts, _| {
+        let fv = p.face_vertices(f);
+        let w = 1.0 / fv.len() as f32;
+        idx.extend_from_slice(fv);
+        wts.extend(std::iter::repeat_n(w, fv.len()));
+    });
+    let inputs = nv + nf;
+    let fp = |f: u32| nv as u32 + f;
+    let vertex = build_direct(nv, inputs, |v, idx, wts, s| {
+        if bilinear {
+            idx.push(v as u32);
+            wts.push(1.0);
+            return;
         }
-    })
+        let pe = p.vertex_edges(v);
+        let faces = p.vertex_faces(v);
+        let (pr, cr) = (p.vert_rule[v], c.vert_rule[v]);
+        if (pr == rule::SMOOTH || pr == rule::DART) && faces.len() == pe.len() {
+            // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
+            let n = faces.len();
+            let w = 1.0 / (n * n) as f32;
+            idx.extend(faces.iter().map(|&f| fp(f)));
+            idx.extend(pe.iter().map(|&e| p.other_vertex(e as usize, v as u32)));
+            wts.extend(std::iter::repeat_n(w, 2 * n));
+            idx.push(v as u32);
+            wts.push((n as f32 - 2.0) / n as f32);
+            return;
+        }
+        s.pe.clear();
+        s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
+        s.ce.clear();
+        s.ce.extend(
+            c.vertex_edges(v)
+                .iter()
+                .map(|&e| c.edge_sharpness[e as usize]),
+        );
+        let h = VertexNeighbourhood {
+            num_faces: faces.len(),
+            parent_sharpness: p.vert_sharpness[v],
+            child_sharpness: c.vert_sharpness[v],
+            parent_edges: &s.pe,
+            child_edges: &s.ce,
+            parent_rule: pr,
+            child_rule: cr,
+        };
+        vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
+        for (&f, &w) in faces.iter().zip(&s.mask.faces) {
+            if w != 0.0 {
+                idx.push(fp(f));
+                wts.push(w);
+            }
+        }
+        for (&e, &w) in pe.iter().zip(&s.mask.edges) {
+            if w != 0.0 {
+                idx.push(p.other_vertex(e as usize, v as u32));
+                wts.push(w);
+            }
+        }
+        idx.push(v as u32);
+        wts.push(s.mask.vertex);
+    });
+    let edge = build_direct(ne, inputs, |e, idx, wts, _| {
+        let ev = p.edge_verts[e];
+        if bilinear {
+            idx.extend_from_slice(&ev);
+            wts.extend_from_slice(&[0.5, 0.5]);
+            return;
+        }
+        let faces = p.edge_faces(e);
+        let tri = [
+            faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
+            faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
+        ];
+        let m = edge_mask(
+            p.edge_sharpness[e],
+            c.vert_rule[nv + nf + e],
+            faces.len(),
+            tri,
+            opts.triangle_subdivision,
+        );
+        if m.face != 0.0 {
+            for &f in faces {
+                idx.push(fp(f));
+                wts.push(m.face);
+            }
+        }
+        idx.extend_from_slice(&ev);
+        wts.extend_from_slice(&[m.vertex, m.vertex]);
+    });
+    LevelStencils {
+        num_parent_vertices: nv,
+        face,
+        vertex,
+        edge,
+    }
 }
 
 /// Stencils moving each vertex of `t` to its limit position (OpenSubdiv

@@ -16,7 +16,7 @@ mod stencil;
 mod uv;
 
 pub use level::refine_topology;
-pub use masks::{level_stencils, limit_stencils};
+pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
@@ -31,7 +31,7 @@ pub struct Refiner {
     /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps.
     pub levels: Vec<Topology>,
     /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
-    pub stencils: Vec<StencilTable>,
+    pub stencils: Vec<LevelStencils>,
 }
 
 /// Rough number of bytes the refiner needs for `level` steps of `base` (topology of all levels,
@@ -148,7 +148,7 @@ impl Refiner {
             num_inputs: n,
         };
         for s in &self.stencils {
-            acc = acc.then(s);
+            acc = acc.then(&s.to_table());
         }
         acc
     }

@@ -2,7 +2,7 @@
 //!
 //! Every relation is stored as separate flat integer arrays with `n + 1` offsets, so that any
 //! backend can upload them as they are. Built in linear time by counting sorts (no edge hash
-//! map); see [`relations`] for the edge numbering, which equals OpenSubdiv's.
+//! map); edges are numbered as OpenSubdiv numbers them (first use by a face).
 
 mod relations;
 mod sharpen;

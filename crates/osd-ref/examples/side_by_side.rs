@@ -1,0 +1,150 @@
+//! OpenSubdiv 3.5 and subsurf refining the same mesh in one process, alternately, so that the
+//! ratio of their medians comes from one run on one machine.
+//!
+//! ```text
+//! cargo run --release -p osd-ref --example side_by_side -- [MESH.obj] [LEVELS] [RUNS]
+//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf
+//! ```
+//!
+//! (a) topology + positions: OpenSubdiv `TopologyRefinerFactory::Create` + `RefineUniform` +
+//!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`.
+//! (b) positions only, tables prebuilt: `PrimvarRefiner::Interpolate` (and `StencilTable::
+//!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
+//!
+//! subsurf runs single-threaded (a one-thread rayon pool) and on all cores. `--memory` runs one
+//! side only and prints the process's peak resident memory.
+
+use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
+use std::time::Instant;
+use subsurf::{Refiner, Topology};
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+fn ms<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    let t = Instant::now();
+    let r = f();
+    (t.elapsed().as_secs_f64() * 1e3, r)
+}
+
+fn peak_rss_mib() -> f64 {
+    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    s.lines()
+        .find(|l| l.starts_with("VmHWM:"))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|v| v.parse::<f64>().ok())
+        .map(|kb| kb / 1024.0)
+        .unwrap_or(f64::NAN)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let default_mesh = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../testdata/shapes/catmark_car.obj"
+    )
+    .to_string();
+    let path = args.first().cloned().unwrap_or(default_mesh);
+    let levels: Vec<usize> = match args.get(1) {
+        Some(s) => vec![s.parse()?],
+        None => vec![3, 4, 5],
+    };
+    let runs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(7);
+    let memory = args
+        .iter()
+        .position(|a| a == "--memory")
+        .and_then(|i| args.get(i + 1))
+        .cloned();
+    if !osd_ref::available() {
+        return Err("OpenSubdiv is not installed (apt-get install libosd-dev)".into());
+    }
+    let mesh = subsurf::io::read_path(&path)?;
+    let osd_mesh = OsdMesh::from(&mesh);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+
+    if let Some(side) = memory {
+        let level = levels[0];
+        if side == "osd" {
+            let r = OsdRefiner::new(&osd_mesh, level)?;
+            let p = r.interpolate(&mesh.positions)?;
+            println!(
+                "OpenSubdiv level {level}: {} vertices, peak RSS {:.1} MiB",
+                p.len(),
+                peak_rss_mib()
+            );
+        } else {
+            let r = one.install(|| Refiner::new(Topology::new(&mesh).unwrap(), level))?;
+            let p = one.install(|| r.refine_positions(&mesh.positions));
+            println!(
+                "subsurf level {level}: {} vertices, peak RSS {:.1} MiB",
+                p.len(),
+                peak_rss_mib()
+            );
+        }
+        return Ok(());
+    }
+
+    println!(
+        "{path}: {} faces; medians of {runs} alternating runs; subsurf on 1 thread unless noted\n",
+        mesh.num_faces()
+    );
+    println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |",
+        rayon::current_num_threads(), rayon::current_num_threads());
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for &level in &levels {
+        let (mut oa, mut sa, mut pa) = (Vec::new(), Vec::new(), Vec::new());
+        let mut nverts = 0;
+        for _ in 0..runs {
+            let (t, p) = ms(|| {
+                let r = OsdRefiner::new(&osd_mesh, level).unwrap();
+                r.interpolate(&mesh.positions).unwrap()
+            });
+            oa.push(t);
+            nverts = p.len();
+            drop(p);
+            let (t, _) = one.install(|| {
+                ms(|| {
+                    let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                    r.refine_positions(&mesh.positions)
+                })
+            });
+            sa.push(t);
+            let (t, _) = ms(|| {
+                let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                r.refine_positions(&mesh.positions)
+            });
+            pa.push(t);
+        }
+        let osd = OsdRefiner::new(&osd_mesh, level)?;
+        let osd_st = OsdStencils::new(&osd)?;
+        let ours = Refiner::new(Topology::new(&mesh)?, level)?;
+        let table = ours.stencil_table();
+        let (mut ob, mut sb, mut pb, mut os, mut ss) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut out = vec![[0.0f32; 3]; table.num_rows()];
+        for _ in 0..runs {
+            ob.push(ms(|| osd.interpolate(&mesh.positions).unwrap()).0);
+            sb.push(one.install(|| ms(|| ours.refine_positions(&mesh.positions)).0));
+            pb.push(ms(|| ours.refine_positions(&mesh.positions)).0);
+            os.push(ms(|| osd_st.update(&mesh.positions).unwrap()).0);
+            ss.push(one.install(|| ms(|| table.apply_serial(&mesh.positions, &mut out)).0));
+        }
+        let (oa, sa, pa, ob, sb, pb, os, ss) = (
+            median(oa),
+            median(sa),
+            median(pa),
+            median(ob),
+            median(sb),
+            median(pb),
+            median(os),
+            median(ss),
+        );
+        println!(
+            "| {level} | {nverts} | {oa:.1} | {sa:.1} | {:.2}x | {pa:.1} | {:.2}x | {ob:.2} | {sb:.2} | {:.2}x | {pb:.2} | {os:.2} | {ss:.2} |",
+            oa / sa, oa / pa, ob / sb
+        );
+    }
+    Ok(())
+}
