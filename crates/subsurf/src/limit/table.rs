@@ -41,7 +41,7 @@ use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
-use crate::refine::{Refiner, StencilTable};
+use crate::refine::{LevelStencils, Refiner, StencilTable};
 use crate::topology::Topology;
 
 /// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv
@@ -113,7 +113,7 @@ pub struct PatchTable {
     /// The base topology.
     pub base: Topology,
     /// Stencils from each level to the next (uniform refinement to the isolation level).
-    pub level_stencils: Vec<StencilTable>,
+    pub level_stencils: Vec<LevelStencils>,
     /// `L + 2` offsets of each level's vertices in the flat point array.
     pub level_offsets: Vec<u32>,
     /// End-cap points as stencils over the level vertices (flat indices).
