@@ -20,6 +20,7 @@ pub mod limit;
 pub mod mesh;
 pub mod options;
 pub mod patch;
+pub mod prep;
 pub mod refine;
 pub mod rules;
 pub mod shapes;
