@@ -52,8 +52,13 @@ impl LimitSurface {
     }
 
     /// Position and first derivatives at `(u, v)` of ptex face `ptex`, without the normal;
-    /// `None` in a hole or for a ptex index out of range.
+    /// `None` in a hole, for a ptex index out of range or a non-finite parameter. `u` and `v`
+    /// are clamped to `[0, 1]`.
     pub fn eval_raw(&self, ptex: usize, u: f32, v: f32) -> Option<LimitPoint> {
+        if !(u.is_finite() && v.is_finite()) {
+            return None;
+        }
+        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
         let kind = t.patch_type(p).kind();
@@ -73,6 +78,7 @@ impl LimitSurface {
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
     pub fn eval(&self, ptex: usize, u: f32, v: f32) -> Option<LimitPoint> {
         let mut r = self.eval_raw(ptex, u, v)?;
+        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
         let fallback = || {
             // Step a little towards the face centre, where the tangent plane is regular.
             let (a, b) = (u + (0.5 - u) * 1e-3, v + (0.5 - v) * 1e-3);

@@ -23,6 +23,20 @@
 //! - a Gregory-basis end cap otherwise ([`super::endcap`]), whose 20 points are extra *local
 //!   points* given as stencils over the refined vertices.
 //!
+//! # Differences from OpenSubdiv 3.5
+//!
+//! - Options: `useInfSharpPatch = false` (infinitely sharp interior features are isolated
+//!   and approximated as smooth in end caps), `generateLegacySharpCornerPatches = true`
+//!   (smooth one-face corners are sharp), Gregory-basis end caps only.
+//! - Construction refines uniformly (see above); the patches are the same.
+//! - Local points are not shared between adjacent end caps (OpenSubdiv shares their corner
+//!   and edge points), so there are 20 per end cap.
+//! - Transition masks (edges shared with a deeper patch) are left 0; evaluation does not
+//!   need them.
+//! - Single-crease sharpness is exact unless [`PatchOptions::cap_crease_sharpness`] is set.
+//!   OpenSubdiv's own CPU `PatchTable::EvaluateBasis` ignores that sharpness and evaluates
+//!   the crease edge as a boundary; [`super::eval`] evaluates the crease.
+//!
 //! # Layout
 //!
 //! Control point indices refer to one flat point array: the vertices of level 0, then level
