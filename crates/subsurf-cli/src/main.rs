@@ -1,8 +1,10 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_eval;
 mod cmd_gpu_info;
 mod cmd_info;
+mod cmd_limit;
 mod cmd_prep;
 mod cmd_refine;
 mod common;
@@ -29,6 +31,10 @@ enum Command {
     Prep(cmd_prep::PrepArgs),
     /// Describe the GPU adapter and its limits (SUBSURF_ADAPTER, WGPU_BACKEND respected).
     GpuInfo(cmd_gpu_info::GpuInfoArgs),
+    /// Tessellate the limit surface (watertight, with normals).
+    Limit(cmd_limit::LimitArgs),
+    /// Sample limit positions and derivatives on every ptex face.
+    Eval(cmd_eval::EvalArgs),
 }
 
 fn main() {
@@ -39,6 +45,8 @@ fn main() {
         Command::Bench(a) => cmd_bench::run(a),
         Command::Prep(a) => cmd_prep::run(a),
         Command::GpuInfo(a) => cmd_gpu_info::run(a),
+        Command::Limit(a) => cmd_limit::run(a),
+        Command::Eval(a) => cmd_eval::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");
