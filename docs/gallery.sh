@@ -42,3 +42,14 @@ $subsurf compare testdata/shapes/catmark_toroidal_tet.obj@prep-bicubic:12 \
 # Patch kinds of a p-rep: B-quads (blue, bicubic only) and perturbed patches (orange).
 $subsurf render testdata/shapes/catmark_lefthanded.obj -o "$img/prep_patch_kinds.png" \
   --method prep --tess 8 --color-by patch-kind --cage --view iso --size 640x400
+
+# Limit surface patches of the car (feature-adaptive, isolation level 4): regular patches of
+# base faces (blue), regular patches at adaptive levels (green), single-crease patches
+# (orange) and Gregory end caps (red).
+$subsurf render examples/car.obj -o "$img/limit_patch_kinds.png" \
+  --method limit --tess 5 --color-by patch-kind --up z --view iso --size 640x360
+
+# The pawn's limit patches coloured by adaptive level (grey 0, orange 1, blue 2, green 3,
+# red 4).
+$subsurf render examples/pawn.obj -o "$img/limit_levels.png" \
+  --method limit --tess 9 --color-by level --up z --view iso --size 400x440

@@ -17,6 +17,12 @@
 //! waiting for a core on a loaded machine is left out; multi-threaded runs stay wall-clock.
 
 use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
+
+/// With `--features mimalloc`, subsurf's allocations (not OpenSubdiv's, which go through C++
+/// `new`) use mimalloc, which reuses freed pages instead of returning them to the kernel.
+#[cfg(feature = "mimalloc")]
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use std::time::Instant;
 use subsurf::{Refiner, Topology};
 

@@ -4,10 +4,15 @@
 //! of Myles, Yeo and Peters 2008, `--tess` samples per patch side). Colouring by `sharpness`
 //! marks the faces next to tagged creases of the base mesh (orange: semi-sharp, red:
 //! infinitely sharp); `patch-kind` on a p-rep marks B-quads (blue) and perturbed patches
-//! (orange), as in the paper's Figure 7.
+//! (orange), as in the paper's Figure 7. `limit` tessellates the limit surface's patches
+//! (`--tess` samples per ptex-face side); `patch-kind` colours regular patches of base faces
+//! (blue), regular patches at adaptive levels (green), single-crease patches (orange) and
+//! Gregory end caps (red); `level` colours by adaptive level (palette order: grey 0, orange
+//! 1, blue 2, green 3, red 4, ...).
 
 use crate::common::{read_mesh, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
+use crate::render_limit::{self, LimitColors};
 use crate::render_mesh;
 use anyhow::{bail, Context};
 use std::path::{Path, PathBuf};
@@ -30,9 +35,10 @@ pub enum Method {
 pub enum ColorBy {
     /// One colour.
     None,
-    /// Patch kind: p-rep B-quad (blue) or perturbed patch (orange).
+    /// Patch kind. Limit: regular (blue), adaptive-level regular (green), single crease
+    /// (orange), end cap (red). P-rep: B-quad (blue) or perturbed (orange).
     PatchKind,
-    /// Adaptive refinement level of the patch.
+    /// Adaptive refinement level of the limit patch.
     Level,
     /// Faces next to semi-sharp (orange) and infinitely sharp (red) creases of the base mesh.
     Sharpness,
@@ -200,7 +206,8 @@ pub fn build(
 ) -> anyhow::Result<RenderMesh> {
     let color_by = match (spec.method, look.color_by) {
         (Method::Refine, c @ (ColorBy::Level | ColorBy::PatchKind))
-        | (Method::Prep, c @ (ColorBy::Level | ColorBy::Sharpness)) => {
+        | (Method::Prep, c @ (ColorBy::Level | ColorBy::Sharpness))
+        | (Method::Limit, c @ ColorBy::Sharpness) => {
             note(format!(
                 "--color-by {} is not available with --method {}; drawing without colours",
                 match c {
@@ -208,10 +215,10 @@ pub fn build(
                     ColorBy::PatchKind => "patch-kind",
                     _ => "sharpness",
                 },
-                if spec.method == Method::Prep {
-                    "prep"
-                } else {
-                    "refine"
+                match spec.method {
+                    Method::Prep => "prep",
+                    Method::Limit => "limit",
+                    Method::Refine => "refine",
                 }
             ));
             ColorBy::None
@@ -257,7 +264,21 @@ pub fn build(
             Ok(rm)
         }
         Method::Limit => {
-            bail!("--method limit is not available in this build; use --method refine or prep")
+            progress.stage(format!(
+                "limit surface of {} at {} samples per side",
+                spec.path.display(),
+                spec.level
+            ));
+            let colors = match color_by {
+                ColorBy::PatchKind => LimitColors::PatchKind,
+                ColorBy::Level => LimitColors::Level,
+                _ => LimitColors::None,
+            };
+            let (rm, summary) = render_limit::limit(mesh, spec.level, colors, look.cage)?;
+            if !quiet() {
+                eprintln!("{summary}");
+            }
+            Ok(rm)
         }
     }
 }

@@ -24,6 +24,14 @@ pub mod class {
     pub const B_QUAD: u8 = 2;
     /// A p-rep patch with the bi-5 perturbation.
     pub const PERTURBED: u8 = 1;
+    /// A regular B-spline limit patch of a base face.
+    pub const REGULAR: u8 = 2;
+    /// A regular B-spline limit patch at an adaptive refinement level.
+    pub const ADAPTIVE: u8 = 3;
+    /// A single-crease limit patch.
+    pub const SINGLE_CREASE: u8 = 1;
+    /// A Gregory end-cap limit patch.
+    pub const END_CAP: u8 = 4;
 }
 
 /// Newell's normal of a polygon (twice its vector area).
