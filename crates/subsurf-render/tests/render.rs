@@ -317,26 +317,3 @@ fn bad_meshes_are_errors_not_panics() {
         "{e:?}"
     );
 }
-
-/// Writes a few images for inspection when `SUBSURF_RENDER_DUMP` names a folder.
-#[test]
-fn dump_examples() {
-    let Ok(dir) = std::env::var("SUBSURF_RENDER_DUMP") else {
-        return;
-    };
-    let Some(gpu) = gpu() else { return };
-    let dir = std::path::PathBuf::from(dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let o = RenderOptions {
-        line_width: 2.0,
-        ..Default::default()
-    };
-    render_with(gpu, &cube(0.3), &o)
-        .unwrap()
-        .save_png(dir.join("cube.png"))
-        .unwrap();
-    render_with(gpu, &sphere(48), &o)
-        .unwrap()
-        .save_png(dir.join("sphere.png"))
-        .unwrap();
-}
