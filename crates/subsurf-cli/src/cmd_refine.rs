@@ -1,6 +1,7 @@
 //! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
 
-use crate::common::{read_mesh, write_mesh, SchemeArgs};
+use crate::common::{gpu_context, read_mesh, write_mesh, Backend, SchemeArgs};
+use anyhow::Context as _;
 use std::path::PathBuf;
 use subsurf::{refine::refine_uvs_linear, FaceVarying, Refiner, Topology};
 
@@ -18,6 +19,9 @@ pub struct RefineArgs {
     /// Move the last level's vertices to their limit positions.
     #[arg(long)]
     pub limit: bool,
+    /// Where the refinement stencils are applied.
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
     #[command(flatten)]
     pub scheme: SchemeArgs,
 }
@@ -27,7 +31,15 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     a.scheme.apply(&mut mesh);
     let topo = Topology::new(&mesh)?;
     let refiner = Refiner::new(topo, a.level)?;
-    let mut positions = refiner.refine_positions(&mesh.positions);
+    let mut positions = match a.backend {
+        Backend::Cpu => refiner.refine_positions(&mesh.positions),
+        Backend::Gpu => {
+            let ctx = gpu_context()?;
+            subsurf_gpu::GpuRefiner::new(&ctx, &refiner)
+                .and_then(|g| g.refine(&ctx, &mesh.positions))
+                .context("--backend gpu: refining on the GPU")?
+        }
+    };
     if a.limit {
         positions = refiner.limit(&positions);
     }

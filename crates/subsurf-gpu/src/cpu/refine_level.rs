@@ -47,7 +47,7 @@ pub fn refine_level_invocation(
         let w = weights[j];
         let k = indices[j];
         let base = k as usize * stride;
-        let src = if k < np { &*parent } else { &*child };
+        let src: &[f32] = if k < np { parent } else { child };
         for c in 0..stride {
             acc[c] += w * src[base + c];
         }
