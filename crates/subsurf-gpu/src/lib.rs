@@ -9,7 +9,9 @@
 //! refinement module (the split of OpenSubdiv's `Far` tables and `Osd` evaluators).
 //!
 //! Entry points: [`GpuContext`] (adapter and device), [`VertexBuffer`] (vertex data resident
-//! on the GPU) and [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer).
+//! on the GPU), [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer),
+//! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
+//! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`).
 
 pub mod buffers;
 pub mod context;
