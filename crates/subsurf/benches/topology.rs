@@ -7,7 +7,9 @@ fn topology(c: &mut Criterion) {
     let mesh = shapes::torus(1000, 1000, 2.0, 0.5);
     let mut g = c.benchmark_group("topology");
     g.sample_size(10);
-    g.bench_function("torus_1M_quads", |b| b.iter(|| Topology::new(&mesh).unwrap()));
+    g.bench_function("torus_1M_quads", |b| {
+        b.iter(|| Topology::new(&mesh).unwrap())
+    });
     g.finish();
 }
 

@@ -10,11 +10,15 @@
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
 
+mod fvar_stencils;
+mod fvar_topology;
 mod level;
 mod masks;
 mod stencil;
 mod uv;
 
+pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
+pub use fvar_topology::FVarTopology;
 pub use level::refine_topology;
 pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
