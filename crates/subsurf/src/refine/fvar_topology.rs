@@ -104,8 +104,11 @@ impl ModeRules {
 struct Span {
     size: u16,
     start: u16,
-    disjoint: u16,
+    /// Seams inside the span, plus one per time the value's faces resume after another
+    /// value (a disjoint, "bowtie" value).
+    discts: u16,
     semi_sharp: u16,
+    inf_sharp: u16,
 }
 
 impl FVarTopology {
@@ -206,18 +209,30 @@ impl FVarTopology {
                     mismatch[v] = true;
                 }
             }
-            // Siblings: index of the first occurrence of each distinct value in ring order.
+            // Siblings, numbered in ring order. As OpenSubdiv does, a value that differs from
+            // its predecessor while two values are known is compared with the first only, so
+            // a value recurring after a third one gets an extra sibling of its own.
             unique.clear();
             let sib = &mut vert_face_siblings[t.vert_face_offsets[v] as usize..];
             for (i, &x) in vals.iter().enumerate() {
-                let s = match unique.iter().position(|&u| u == x) {
-                    Some(s) => s,
-                    None => {
-                        unique.push(x);
-                        unique.len() - 1
-                    }
+                sib[i] = if i == 0 {
+                    unique.push(x);
+                    0
+                } else if x == vals[i - 1] {
+                    sib[i - 1]
+                } else if unique.len() == 1 || (unique.len() == 2 && unique[0] != x) {
+                    unique.push(x);
+                    (unique.len() - 1) as u16
+                } else if let Some(k) = unique.iter().position(|&u| u == x) {
+                    k as u16
+                } else {
+                    unique.push(x);
+                    (unique.len() - 1) as u16
                 };
-                sib[i] = s as u16;
+            }
+            // Several values meeting at a non-manifold vertex without a seam between them.
+            if vt & tags::V_NON_MANIFOLD != 0 && unique.len() > 1 {
+                mismatch[v] = true;
             }
             let count = unique.len().max(1) as u32;
             offsets.push(offsets[v] + count);
@@ -259,33 +274,29 @@ impl FVarTopology {
             }
             let vt = t.vert_tags[v];
             let boundary = vt & tags::V_BOUNDARY != 0;
-            let all_corners = r.linear_boundaries
+            let mut all_corners = r.linear_boundaries
                 || vt & (tags::V_INF_SHARP | tags::V_NON_MANIFOLD) != 0
                 || (r.dependent && count > 2)
                 || (r.sharpen_darts && count == 1 && !boundary);
-            if all_corners {
-                f.value_tags[o..o + count].fill(V_MISMATCH);
-                continue;
-            }
             spans.clear();
             spans.resize(count, Span::default());
             f.gather_spans(t, v, &mut spans);
             let mut dependent = false;
-            if r.dependent && count == 2 {
-                let mut sharp = spans[0].disjoint != 0 || spans[1].disjoint != 0;
+            if !all_corners && r.dependent && count == 2 {
+                all_corners = spans.iter().any(|s| s.inf_sharp > 0 || s.discts > 0);
                 if r.sharpen_both_if_one_corner {
-                    sharp |= spans[0].size == 1 || spans[1].size == 1;
-                }
-                if sharp {
-                    f.value_tags[o..o + count].fill(V_MISMATCH);
-                    continue;
+                    all_corners |= spans[0].size == 1 || spans[1].size == 1;
                 }
                 dependent = (spans[0].semi_sharp > 0) != (spans[1].semi_sharp > 0);
             }
             let nf = faces.len() as u16;
             for (i, s) in spans.iter().enumerate() {
-                if s.disjoint != 0 || (s.size == 1 && r.corners_sharp) {
-                    f.value_tags[o + i] = V_MISMATCH;
+                f.value_tags[o + i] = V_MISMATCH;
+                let corner = all_corners
+                    || s.discts > 0
+                    || s.inf_sharp > 0
+                    || (s.size == 1 && r.corners_sharp);
+                if corner {
                     continue;
                 }
                 f.value_tags[o + i] = if s.semi_sharp > 0 || vt & tags::V_SEMI_SHARP != 0 {
@@ -314,59 +325,66 @@ impl FVarTopology {
         let faces = t.vertex_faces(v);
         let sib = &self.vert_face_siblings[t.vert_face_offsets[v] as usize..][..faces.len()];
         let boundary = edges.len() > faces.len();
-        let inf = |e: u32| t.edge_tags[e as usize] & tags::E_INF_SHARP != 0;
-        let semi = |e: u32| t.edge_tags[e as usize] & tags::E_SEMI_SHARP != 0;
         let seam = |e: u32| self.edge_tags[e as usize] & E_MISMATCH != 0;
-        if spans.len() == 1 {
-            let s = &mut spans[0];
-            for (i, &e) in edges.iter().enumerate() {
-                if seam(e) {
-                    if s.size != 0 {
-                        s.disjoint = 1;
-                        break;
-                    }
-                    s.size = faces.len() as u16;
-                    s.start = i as u16;
-                } else if inf(e) {
-                    s.disjoint = 1;
-                    break;
-                } else if semi(e) {
-                    s.semi_sharp += 1;
-                }
+        // Counts a seam, infinitely sharp or semi-sharp edge inside a span.
+        let count = |s: &mut Span, e: u32| {
+            let et = t.edge_tags[e as usize];
+            if seam(e) {
+                s.discts = s.discts.wrapping_add(1);
+            } else if et & tags::E_INF_SHARP != 0 {
+                s.inf_sharp += 1;
+            } else if et & tags::E_SEMI_SHARP != 0 {
+                s.semi_sharp += 1;
+            }
+        };
+        if t.vert_tags[v] & tags::V_NON_MANIFOLD != 0 {
+            for s in spans.iter_mut() {
+                s.discts = 1;
             }
             return;
         }
         let n = faces.len();
+        if spans.len() == 1 && !boundary {
+            // A dart in the data: one seam edge starts the span; a second one splits it.
+            let s = &mut spans[0];
+            let mut started = false;
+            for (i, &e) in edges.iter().enumerate() {
+                if seam(e) {
+                    if started {
+                        s.discts = 1;
+                        break;
+                    }
+                    started = true;
+                    s.start = i as u16;
+                } else {
+                    count(s, e);
+                }
+            }
+            s.size = n as u16;
+            return;
+        }
+        if n == 0 {
+            return;
+        }
         spans[0].size = 1;
-        spans[0].start = 0;
         let wraps = !boundary && sib[n - 1] == 0;
         if wraps {
-            if seam(edges[0]) || inf(edges[0]) {
-                spans[0].disjoint = 1;
-            } else if semi(edges[0]) {
-                spans[0].semi_sharp += 1;
-            }
+            count(&mut spans[0], edges[0]);
         }
         for i in 1..n {
             let s = &mut spans[sib[i] as usize];
             if sib[i] == sib[i - 1] {
-                if seam(edges[i]) {
-                    s.disjoint = s.disjoint.wrapping_add(1);
-                } else if inf(edges[i]) {
-                    s.disjoint = 1;
-                } else if semi(edges[i]) {
-                    s.semi_sharp += 1;
-                }
+                count(s, edges[i]);
             } else {
                 if s.size > 0 {
-                    s.disjoint = s.disjoint.wrapping_add(1);
+                    s.discts = s.discts.wrapping_add(1);
                 }
                 s.start = i as u16;
             }
             s.size += 1;
         }
         if wraps {
-            spans[0].disjoint = spans[0].disjoint.wrapping_sub(1);
+            spans[0].discts = spans[0].discts.wrapping_sub(1);
         }
     }
 
