@@ -285,3 +285,7 @@ impl Refiner {
             .refine(&uvs.values)
     }
 }
+
+#[cfg(test)]
+#[path = "fvar_tests.rs"]
+mod tests;
