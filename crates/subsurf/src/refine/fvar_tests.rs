@@ -6,6 +6,7 @@
 use super::*;
 use crate::mesh::{FaceVarying, Mesh};
 use crate::options::FVarLinearInterpolation as Mode;
+use crate::refine::refine_uvs_linear;
 
 const W: [f32; 3] = [0.125, 0.75, 0.125];
 const MODES: [Mode; 6] = [
@@ -273,4 +274,37 @@ fn bad_face_varying_input_is_an_error() {
         indices: mesh.face_indices.iter().map(|&v| v + 1).collect(),
     };
     assert!(refiner.refine_uvs(&out_of_range, Mode::None).is_err());
+}
+
+/// In the `All` mode the stencils reproduce [`refine_uvs_linear`] corner for corner.
+#[test]
+fn linear_mode_equals_per_corner_linear_refinement() {
+    let mut mesh = torus(4, 5);
+    // Mixed face sizes: split one quad into two triangles.
+    let q: Vec<u32> = mesh.face_indices[..4].to_vec();
+    mesh.face_counts.splice(0..1, [3, 3]);
+    mesh.face_indices
+        .splice(0..4, [q[0], q[1], q[2], q[0], q[2], q[3]]);
+    let values: Vec<[f32; 2]> = (0..mesh.face_indices.len())
+        .map(|c| data(c as i64 % 7, c as i64 / 7))
+        .collect();
+    let uvs = FaceVarying {
+        values: values.clone(),
+        indices: (0..values.len() as u32).collect(),
+    };
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    let levels = refiner.refine_uvs(&uvs, Mode::All).unwrap();
+    let mut corner = values;
+    for k in 0..2 {
+        corner = refine_uvs_linear(&refiner.levels[k], &corner);
+        let l = &levels[k + 1];
+        assert_eq!(l.indices.len(), corner.len());
+        for (c, (&i, &want)) in l.indices.iter().zip(&corner).enumerate() {
+            assert!(
+                close(l.values[i as usize], want),
+                "level {} corner {c}",
+                k + 1
+            );
+        }
+    }
 }
