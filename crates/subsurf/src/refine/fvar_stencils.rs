@@ -21,7 +21,7 @@
 use super::fvar_topology::{
     span_interior_edges, FVarTopology, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP,
 };
-use super::stencil::{RowBuilder, StencilTable};
+use super::stencil::StencilTable;
 use super::Refiner;
 use crate::error::{MeshError, Result};
 use crate::mesh::FaceVarying;
@@ -29,155 +29,234 @@ use crate::options::{FVarLinearInterpolation, Scheme};
 use crate::rules::catmark::{edge_mask, vertex_mask, VertexMask, VertexNeighbourhood};
 use crate::rules::crease::fractional_weight_at_vertex;
 use crate::topology::Topology;
+use rayon::prelude::*;
 
-/// The table mapping values of level `p` (topology `pf`) to values of its child `c` (`cf`).
+/// The table mapping values of level `p` (topology `pf`) to values of its child `c` (`cf`),
+/// built in parallel over ranges of child vertices.
 pub fn fvar_level_stencils(
     p: &Topology,
     c: &Topology,
     pf: &FVarTopology,
     cf: &FVarTopology,
 ) -> StencilTable {
-    let (nv, nf) = (p.num_vertices(), p.num_faces());
-    let opts = p.options;
-    let linear = pf.mode == FVarLinearInterpolation::All || opts.scheme == Scheme::Bilinear;
+    let ncv = c.num_vertices();
+    let threads = rayon::current_num_threads().max(1);
+    let chunk = ncv.div_ceil(threads * 4).max(2048);
+    let parts: Vec<Part> = (0..ncv.div_ceil(chunk))
+        .into_par_iter()
+        .map(|k| {
+            let mut s = Scratch::default();
+            let mut part = Part::default();
+            for cv in k * chunk..((k + 1) * chunk).min(ncv) {
+                vertex_rows(p, c, pf, cf, cv, &mut s, &mut part);
+            }
+            part
+        })
+        .collect();
+    let total: usize = parts.iter().map(|q| q.idx.len()).sum();
     let mut t = StencilTable {
         offsets: Vec::with_capacity(cf.num_values + 1),
-        indices: Vec::new(),
-        weights: Vec::new(),
+        indices: Vec::with_capacity(total),
+        weights: Vec::with_capacity(total),
         num_inputs: pf.num_values,
     };
     t.offsets.push(0);
-    let mut b = RowBuilder::new(pf.num_values.max(1));
-    let end_row = |b: &mut RowBuilder, t: &mut StencilTable| {
-        b.drain_into(&mut t.indices, &mut t.weights);
-        t.offsets.push(t.indices.len() as u32);
-    };
-    let add_face = |b: &mut RowBuilder, f: usize, w: f64| {
-        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-        for &x in &pf.corner_values[s..s + n] {
-            b.add_f64(x, w / n as f64);
-        }
-    };
-    let (mut mask, mut child_mask) = (VertexMask::default(), VertexMask::default());
-    let (mut pe, mut ce, mut edge_values) = (Vec::new(), Vec::new(), Vec::new());
-    for cv in 0..c.num_vertices() {
-        let ctags = cf.vertex_value_tags(cv);
-        let matches = ctags[0] & V_MISMATCH == 0;
-        if cv < nv {
-            let v = cv;
-            let pvals = pf.vertex_values(v);
-            if matches && linear {
-                b.add(pvals[0], 1.0);
-                end_row(&mut b, &mut t);
-            } else if matches {
-                let faces = p.vertex_faces(v);
-                let edges = p.vertex_edges(v);
-                pe.clear();
-                pe.extend(edges.iter().map(|&e| p.edge_sharpness[e as usize]));
-                ce.clear();
-                ce.extend(
-                    c.vertex_edges(v)
-                        .iter()
-                        .map(|&e| c.edge_sharpness[e as usize]),
-                );
-                let h = VertexNeighbourhood {
-                    num_faces: faces.len(),
-                    parent_sharpness: p.vert_sharpness[v],
-                    child_sharpness: c.vert_sharpness[v],
-                    parent_edges: &pe,
-                    child_edges: &ce,
-                    parent_rule: p.vert_rule[v],
-                    child_rule: c.vert_rule[v],
-                };
-                if faces.is_empty() {
-                    b.add(pvals[0], 1.0);
-                } else {
-                    vertex_mask(&h, opts.crease_method, &mut mask, &mut child_mask);
-                    for (&f, &w) in faces.iter().zip(&mask.faces) {
-                        if w != 0.0 {
-                            add_face(&mut b, f as usize, w as f64);
-                        }
-                    }
-                    if !mask.edges.is_empty() {
-                        pf.vertex_edge_values(p, v, &mut edge_values);
-                        for (&x, &w) in edge_values.iter().zip(&mask.edges) {
-                            if w != 0.0 {
-                                b.add(x, w);
-                            }
-                        }
-                    }
-                    b.add(pvals[0], mask.vertex);
-                }
-                end_row(&mut b, &mut t);
-            } else {
-                let ptags = pf.vertex_value_tags(v);
-                for (s, &ct) in ctags.iter().enumerate() {
-                    if linear || ct & V_CREASE == 0 {
-                        b.add(pvals[s], 1.0);
-                    } else {
-                        let ends = pf.crease_end_values(p, v, s);
-                        let (mut vw, mut ew) = (0.75f32, 0.125f32);
-                        if ptags[s] & V_SEMI_SHARP != 0 {
-                            let q = if ptags[s] & V_DEP_SHARP != 0 {
-                                1 - s.min(1)
-                            } else {
-                                s
-                            };
-                            let wc = fractional_weight(p, c, pf, v, q, &mut pe, &mut ce);
-                            vw = (1.0 - wc) * 0.75 + wc;
-                            ew = (1.0 - wc) * 0.125;
-                        }
-                        b.add(ends[0], ew);
-                        b.add(ends[1], ew);
-                        b.add(pvals[s], vw);
-                    }
-                    end_row(&mut b, &mut t);
-                }
-            }
-        } else if cv < nv + nf {
-            add_face(&mut b, cv - nv, 1.0);
-            end_row(&mut b, &mut t);
-        } else {
-            let e = cv - nv - nf;
-            let faces = p.edge_faces(e);
-            if matches {
-                let ends = pf.edge_face_values(p, e, 0);
-                if linear {
-                    b.add(ends[0], 0.5);
-                    b.add(ends[1], 0.5);
-                } else {
-                    let tri = [
-                        faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
-                        faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
-                    ];
-                    let m = edge_mask(
-                        p.edge_sharpness[e],
-                        c.vert_rule[cv],
-                        faces.len(),
-                        tri,
-                        opts.triangle_subdivision,
-                    );
-                    if m.face != 0.0 {
-                        for &f in faces {
-                            add_face(&mut b, f as usize, m.face as f64);
-                        }
-                    }
-                    b.add(ends[0], m.vertex);
-                    b.add(ends[1], m.vertex);
-                }
-                end_row(&mut b, &mut t);
-            } else {
-                for i in 0..ctags.len() {
-                    let ends = pf.edge_face_values(p, e, i.min(faces.len() - 1));
-                    b.add(ends[0], 0.5);
-                    b.add(ends[1], 0.5);
-                    end_row(&mut b, &mut t);
-                }
-            }
-        }
+    for q in parts {
+        let base = t.indices.len() as u32;
+        t.offsets.extend(q.ends.iter().map(|&e| base + e));
+        t.indices.extend_from_slice(&q.idx);
+        t.weights.extend_from_slice(&q.wts);
     }
     debug_assert_eq!(t.num_rows(), cf.num_values);
     t
+}
+
+/// Rows of one chunk of child vertices: row ends (relative to the chunk), inputs, weights.
+#[derive(Debug, Default)]
+struct Part {
+    ends: Vec<u32>,
+    idx: Vec<u32>,
+    wts: Vec<f32>,
+}
+
+/// One row being accumulated in double precision, repeated inputs merged (rows are short).
+#[derive(Debug, Default)]
+struct Row {
+    idx: Vec<u32>,
+    wts: Vec<f64>,
+}
+
+impl Row {
+    fn add(&mut self, i: u32, w: f32) {
+        self.add_f64(i, w as f64);
+    }
+
+    fn add_f64(&mut self, i: u32, w: f64) {
+        match self.idx.iter().position(|&x| x == i) {
+            Some(k) => self.wts[k] += w,
+            None => {
+                self.idx.push(i);
+                self.wts.push(w);
+            }
+        }
+    }
+
+    fn end_row(&mut self, out: &mut Part) {
+        out.idx.extend_from_slice(&self.idx);
+        out.wts.extend(self.wts.iter().map(|&w| w as f32));
+        out.ends.push(out.idx.len() as u32);
+        self.idx.clear();
+        self.wts.clear();
+    }
+}
+
+/// Per-thread buffers.
+#[derive(Debug, Default)]
+struct Scratch {
+    row: Row,
+    mask: VertexMask,
+    child_mask: VertexMask,
+    pe: Vec<f32>,
+    ce: Vec<f32>,
+    edge_values: Vec<u32>,
+}
+
+/// Appends the rows of the values of child vertex `cv` (one per sibling).
+fn vertex_rows(
+    p: &Topology,
+    c: &Topology,
+    pf: &FVarTopology,
+    cf: &FVarTopology,
+    cv: usize,
+    s: &mut Scratch,
+    out: &mut Part,
+) {
+    let (nv, nf) = (p.num_vertices(), p.num_faces());
+    let opts = p.options;
+    let linear = pf.mode == FVarLinearInterpolation::All || opts.scheme == Scheme::Bilinear;
+    let add_face = |b: &mut Row, f: usize, w: f64| {
+        let (st, n) = (p.face_offsets[f] as usize, p.face_size(f));
+        for &x in &pf.corner_values[st..st + n] {
+            b.add_f64(x, w / n as f64);
+        }
+    };
+    let mut row = std::mem::take(&mut s.row);
+    let b = &mut row;
+    let ctags = cf.vertex_value_tags(cv);
+    let matches = ctags[0] & V_MISMATCH == 0;
+    if cv < nv {
+        let v = cv;
+        let pvals = pf.vertex_values(v);
+        if matches && linear {
+            b.add(pvals[0], 1.0);
+            b.end_row(out);
+        } else if matches {
+            let faces = p.vertex_faces(v);
+            let edges = p.vertex_edges(v);
+            s.pe.clear();
+            s.pe.extend(edges.iter().map(|&e| p.edge_sharpness[e as usize]));
+            s.ce.clear();
+            s.ce.extend(
+                c.vertex_edges(v)
+                    .iter()
+                    .map(|&e| c.edge_sharpness[e as usize]),
+            );
+            let h = VertexNeighbourhood {
+                num_faces: faces.len(),
+                parent_sharpness: p.vert_sharpness[v],
+                child_sharpness: c.vert_sharpness[v],
+                parent_edges: &s.pe,
+                child_edges: &s.ce,
+                parent_rule: p.vert_rule[v],
+                child_rule: c.vert_rule[v],
+            };
+            if faces.is_empty() {
+                b.add(pvals[0], 1.0);
+            } else {
+                vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
+                for (&f, &w) in faces.iter().zip(&s.mask.faces) {
+                    if w != 0.0 {
+                        add_face(b, f as usize, w as f64);
+                    }
+                }
+                if !s.mask.edges.is_empty() {
+                    pf.vertex_edge_values(p, v, &mut s.edge_values);
+                    for (&x, &w) in s.edge_values.iter().zip(&s.mask.edges) {
+                        if w != 0.0 {
+                            b.add(x, w);
+                        }
+                    }
+                }
+                b.add(pvals[0], s.mask.vertex);
+            }
+            b.end_row(out);
+        } else {
+            let ptags = pf.vertex_value_tags(v);
+            for (sib, &ct) in ctags.iter().enumerate() {
+                if linear || ct & V_CREASE == 0 {
+                    b.add(pvals[sib], 1.0);
+                } else {
+                    let ends = pf.crease_end_values(p, v, sib);
+                    let (mut vw, mut ew) = (0.75f32, 0.125f32);
+                    if ptags[sib] & V_SEMI_SHARP != 0 {
+                        let q = if ptags[sib] & V_DEP_SHARP != 0 {
+                            1 - sib.min(1)
+                        } else {
+                            sib
+                        };
+                        let wc = fractional_weight(p, c, pf, v, q, &mut s.pe, &mut s.ce);
+                        vw = (1.0 - wc) * 0.75 + wc;
+                        ew = (1.0 - wc) * 0.125;
+                    }
+                    b.add(ends[0], ew);
+                    b.add(ends[1], ew);
+                    b.add(pvals[sib], vw);
+                }
+                b.end_row(out);
+            }
+        }
+    } else if cv < nv + nf {
+        add_face(b, cv - nv, 1.0);
+        b.end_row(out);
+    } else {
+        let e = cv - nv - nf;
+        let faces = p.edge_faces(e);
+        if matches {
+            let ends = pf.edge_face_values(p, e, 0);
+            if linear {
+                b.add(ends[0], 0.5);
+                b.add(ends[1], 0.5);
+            } else {
+                let tri = [
+                    faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
+                    faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
+                ];
+                let m = edge_mask(
+                    p.edge_sharpness[e],
+                    c.vert_rule[cv],
+                    faces.len(),
+                    tri,
+                    opts.triangle_subdivision,
+                );
+                if m.face != 0.0 {
+                    for &f in faces {
+                        add_face(b, f as usize, m.face as f64);
+                    }
+                }
+                b.add(ends[0], m.vertex);
+                b.add(ends[1], m.vertex);
+            }
+            b.end_row(out);
+        } else {
+            for i in 0..ctags.len() {
+                let ends = pf.edge_face_values(p, e, i.min(faces.len() - 1));
+                b.add(ends[0], 0.5);
+                b.add(ends[1], 0.5);
+                b.end_row(out);
+            }
+        }
+    }
+    s.row = row;
 }
 
 /// Weight of the corner rule for value `sib` of `v` while the semi-sharp edges inside its
