@@ -18,9 +18,8 @@
 //!
 //! In the `All` mode (and for the bilinear scheme) every rule is linear.
 
-use super::fvar_topology::{
-    span_interior_edges, FVarTopology, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP,
-};
+use super::fvar_propagate::span_interior_edges;
+use super::fvar_topology::{FVarTopology, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP};
 use super::stencil::StencilTable;
 use super::Refiner;
 use crate::error::{MeshError, Result};

@@ -10,6 +10,7 @@
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
 
+mod fvar_propagate;
 mod fvar_stencils;
 mod fvar_topology;
 mod level;
