@@ -146,7 +146,10 @@ fn vertex_rows(
     if cv < nv {
         let v = cv;
         let pvals = pf.vertex_values(v);
-        if matches && linear {
+        if p.vertex_faces(v).is_empty() {
+            // A vertex without faces carries no face-varying value: an empty row.
+            b.end_row(out);
+        } else if matches && linear {
             b.add(pvals[0], 1.0);
             b.end_row(out);
         } else if matches {
@@ -169,25 +172,21 @@ fn vertex_rows(
                 parent_rule: p.vert_rule[v],
                 child_rule: c.vert_rule[v],
             };
-            if faces.is_empty() {
-                b.add(pvals[0], 1.0);
-            } else {
-                vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
-                for (&f, &w) in faces.iter().zip(&s.mask.faces) {
-                    if w != 0.0 {
-                        add_face(b, f as usize, w as f64);
-                    }
+            vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
+            for (&f, &w) in faces.iter().zip(&s.mask.faces) {
+                if w != 0.0 {
+                    add_face(b, f as usize, w as f64);
                 }
-                if !s.mask.edges.is_empty() {
-                    pf.vertex_edge_values(p, v, &mut s.edge_values);
-                    for (&x, &w) in s.edge_values.iter().zip(&s.mask.edges) {
-                        if w != 0.0 {
-                            b.add(x, w);
-                        }
-                    }
-                }
-                b.add(pvals[0], s.mask.vertex);
             }
+            if !s.mask.edges.is_empty() {
+                pf.vertex_edge_values(p, v, &mut s.edge_values);
+                for (&x, &w) in s.edge_values.iter().zip(&s.mask.edges) {
+                    if w != 0.0 {
+                        b.add(x, w);
+                    }
+                }
+            }
+            b.add(pvals[0], s.mask.vertex);
             b.end_row(out);
         } else {
             let ptags = pf.vertex_value_tags(v);
