@@ -17,7 +17,11 @@ fuzz_target!(|data: &[u8]| {
             let again = obj::read(std::str::from_utf8(&out).expect("UTF-8 output"))
                 .expect("reading our own output");
             assert_eq!(again, mesh, "read -> write -> read changed the mesh");
-            let _ = Topology::new(&mesh);
+            if let Ok(t) = Topology::new(&mesh) {
+                if let Err(e) = t.check_consistency() {
+                    panic!("inconsistent topology: {e}");
+                }
+            }
         }
         Err(Error::Parse { line, .. }) => {
             assert!(

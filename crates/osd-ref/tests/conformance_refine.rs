@@ -4,50 +4,14 @@
 #[macro_use]
 mod common;
 
-use std::borrow::Cow;
-
-use osd_ref::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
-use subsurf::{
-    BoundaryInterpolation, CreaseMethod, Mesh, Refiner, Scheme, Topology, TriangleSubdivision,
-};
-
-fn osd_options(m: &Mesh) -> OsdOptions {
-    OsdOptions {
-        scheme: match m.options.scheme {
-            Scheme::Catmark => OsdScheme::Catmark,
-            Scheme::Bilinear => OsdScheme::Bilinear,
-            Scheme::Loop => OsdScheme::Loop,
-        },
-        boundary: match m.options.boundary {
-            BoundaryInterpolation::None => OsdBoundary::None,
-            BoundaryInterpolation::EdgeOnly => OsdBoundary::EdgeOnly,
-            BoundaryInterpolation::EdgeAndCorner => OsdBoundary::EdgeAndCorner,
-        },
-        crease_method: match m.options.crease_method {
-            CreaseMethod::Uniform => OsdCreaseMethod::Uniform,
-            CreaseMethod::Chaikin => OsdCreaseMethod::Chaikin,
-        },
-        triangle_smooth: m.options.triangle_subdivision == TriangleSubdivision::Smooth,
-        fvar_interp: 5,
-    }
-}
+use osd_ref::OsdMesh;
+use subsurf::{Mesh, Refiner, Topology};
 
 fn osd_mesh(m: &Mesh) -> OsdMesh<'_> {
-    OsdMesh {
-        positions: &m.positions,
-        face_counts: &m.face_counts,
-        face_indices: &m.face_indices,
-        creases: Cow::Owned(
-            m.creases
-                .iter()
-                .map(|c| (c.v0, c.v1, c.sharpness))
-                .collect(),
-        ),
-        corners: Cow::Owned(m.corners.iter().map(|c| (c.vertex, c.sharpness)).collect()),
-        holes: &m.holes,
-        uvs: None,
-        options: osd_options(m),
-    }
+    let mut o = OsdMesh::from(m);
+    // Compare geometry only; UVs are compared separately.
+    o.uvs = None;
+    o
 }
 
 fn diagonal(points: &[[f32; 3]]) -> f32 {
@@ -59,8 +23,14 @@ fn diagonal(points: &[[f32; 3]]) -> f32 {
 
 /// Compares one shape at every level up to `max_level`; returns the worst relative error.
 fn compare(name: &str, max_level: usize) -> f32 {
+    compare_with(name, max_level, |_| {})
+}
+
+/// As [`compare`], after `edit` changes the mesh's options.
+fn compare_with(name: &str, max_level: usize, edit: impl Fn(&mut Mesh)) -> f32 {
     let path = common::shapes_dir().join(format!("{name}.obj"));
-    let mesh = subsurf::io::obj::read_file(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let mut mesh = subsurf::io::obj::read_file(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    edit(&mut mesh);
     let diag = diagonal(&mesh.positions);
     let osd = osd_ref::refine_uniform(&osd_mesh(&mesh), max_level)
         .unwrap_or_else(|e| panic!("{name}: OpenSubdiv: {e}"));
@@ -192,6 +162,49 @@ fn limit_positions_match_opensubdiv() {
         for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {
             let d = common::dist(*a, *b) / diag;
             assert!(d <= 1e-5, "{name} vertex {i}: {a:?} vs {b:?}");
+        }
+    }
+}
+
+/// Options the regression shapes do not exercise by themselves: the smooth triangle rule,
+/// Chaikin creases on the car, and each boundary mode on open shapes.
+#[test]
+fn option_variants_match_opensubdiv() {
+    require_osd!();
+    use subsurf::{BoundaryInterpolation, CreaseMethod, TriangleSubdivision};
+    for name in [
+        "catmark_pyramid",
+        "catmark_smoothtris0",
+        "catmark_pole8",
+        "catmark_gregory_test2",
+        "catmark_val2_foldover",
+    ] {
+        compare_with(name, 3, |m| {
+            m.options.triangle_subdivision = TriangleSubdivision::Smooth
+        });
+    }
+    for name in [
+        "catmark_car",
+        "catmark_pawn",
+        "catmark_cube_creases1",
+        "catmark_torus_creases0",
+    ] {
+        compare_with(name, 3, |m| m.options.crease_method = CreaseMethod::Chaikin);
+    }
+    for name in [
+        "catmark_edgeonly",
+        "catmark_quadstrips",
+        "catmark_xord_boundary",
+        "catmark_car",
+        "catmark_tent_creases0",
+        "catmark_nonman_verts",
+    ] {
+        for mode in [
+            BoundaryInterpolation::None,
+            BoundaryInterpolation::EdgeOnly,
+            BoundaryInterpolation::EdgeAndCorner,
+        ] {
+            compare_with(name, 3, |m| m.options.boundary = mode);
         }
     }
 }

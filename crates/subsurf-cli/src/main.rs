@@ -1,7 +1,9 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_gpu_info;
 mod cmd_info;
+mod cmd_prep;
 mod cmd_refine;
 mod common;
 
@@ -23,6 +25,10 @@ enum Command {
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
+    /// Convert a closed quad mesh to a G1 p-rep surface (Myles, Yeo & Peters 2008).
+    Prep(cmd_prep::PrepArgs),
+    /// Describe the GPU adapter and its limits (SUBSURF_ADAPTER, WGPU_BACKEND respected).
+    GpuInfo(cmd_gpu_info::GpuInfoArgs),
 }
 
 fn main() {
@@ -31,6 +37,8 @@ fn main() {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
         Command::Bench(a) => cmd_bench::run(a),
+        Command::Prep(a) => cmd_prep::run(a),
+        Command::GpuInfo(a) => cmd_gpu_info::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

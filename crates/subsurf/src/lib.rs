@@ -18,6 +18,8 @@ pub mod error;
 pub mod io;
 pub mod mesh;
 pub mod options;
+pub mod patch;
+pub mod prep;
 pub mod refine;
 pub mod rules;
 pub mod shapes;

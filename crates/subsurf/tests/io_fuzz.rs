@@ -103,7 +103,11 @@ fn check_obj(data: &[u8]) {
             obj::write(&mesh, &mut out).expect("writing a mesh that was read");
             let again = obj::read(std::str::from_utf8(&out).unwrap()).expect("reading our output");
             assert_eq!(again, mesh, "read -> write -> read changed the mesh");
-            let _ = Topology::new(&mesh);
+            if let Ok(t) = Topology::new(&mesh) {
+                if let Err(e) = t.check_consistency() {
+                    panic!("inconsistent topology: {e}");
+                }
+            }
         }
         Err(Error::Parse { line, .. }) => {
             assert!(
@@ -118,7 +122,11 @@ fn check_obj(data: &[u8]) {
 fn check_ply(data: &[u8]) {
     match ply::read(data) {
         Ok(mesh) => {
-            let _ = Topology::new(&mesh);
+            if let Ok(t) = Topology::new(&mesh) {
+                if let Err(e) = t.check_consistency() {
+                    panic!("inconsistent topology: {e}");
+                }
+            }
         }
         Err(Error::Parse { .. }) => {}
         Err(e) => panic!("non-parse error from the PLY reader: {e}"),

@@ -284,5 +284,7 @@ impl Topology {
     }
 }
 
+mod consistency;
+
 #[cfg(test)]
 pub(crate) mod tests;

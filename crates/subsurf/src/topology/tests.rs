@@ -7,53 +7,8 @@ use crate::shapes;
 
 /// Structural invariants that hold for every topology.
 pub(crate) fn check_invariants(t: &Topology) {
-    let ne = t.num_edges();
-    // Each face edge joins its two corners.
-    for f in 0..t.num_faces() {
-        let fv = t.face_vertices(f);
-        for (k, &e) in t.face_edges(f).iter().enumerate() {
-            let ev = t.edge_verts[e as usize];
-            let (a, b) = (fv[k], fv[(k + 1) % fv.len()]);
-            assert!((ev == [a, b]) || (ev == [b, a]), "face {f} edge {k}");
-            assert!(t.edge_faces(e as usize).contains(&(f as u32)));
-        }
-    }
-    // Valence sum = 2E; boundary edges have one face.
-    let vsum: usize = (0..t.num_vertices()).map(|v| t.valence(v)).sum();
-    assert_eq!(vsum, 2 * ne);
-    for e in 0..ne {
-        let nf = t.edge_faces(e).len();
-        assert!(nf >= 1);
-        assert_eq!(t.is_boundary_edge(e), nf == 1, "edge {e}");
-        for (&f, &k) in t.edge_faces(e).iter().zip(t.edge_faces_local(e)) {
-            assert_eq!(t.face_edges(f as usize)[k as usize], e as u32);
-        }
-    }
-    // Ring order at manifold vertices.
-    for v in 0..t.num_vertices() {
-        let faces = t.vertex_faces(v);
-        let edges = t.vertex_edges(v);
-        for (&f, &k) in faces.iter().zip(t.vertex_faces_local(v)) {
-            assert_eq!(t.face_vertices(f as usize)[k as usize], v as u32);
-        }
-        if t.vert_tags[v] & tags::V_NON_MANIFOLD != 0 || faces.is_empty() {
-            continue;
-        }
-        let boundary = t.is_boundary_vertex(v);
-        assert_eq!(edges.len(), faces.len() + boundary as usize, "vertex {v}");
-        for (i, (&f, &k)) in faces.iter().zip(t.vertex_faces_local(v)).enumerate() {
-            let fe = t.face_edges(f as usize);
-            let n = fe.len();
-            assert_eq!(
-                fe[k as usize], edges[i],
-                "leading edge of face {i} at vertex {v}"
-            );
-            assert_eq!(
-                fe[(k as usize + n - 1) % n],
-                edges[(i + 1) % edges.len()],
-                "trailing edge at {v}"
-            );
-        }
+    if let Err(e) = t.check_consistency() {
+        panic!("{e}");
     }
 }
 

@@ -1,0 +1,90 @@
+//! `subsurf prep`: convert a closed quad mesh to its p-rep G1 surface (Myles, Yeo & Peters
+//! 2008), tessellate it to OBJ with normals and/or export the bi-5 Bézier control points.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::{PrepPatches, Real};
+use subsurf::Mesh;
+
+/// Arguments of `subsurf prep`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct PrepArgs {
+    /// Input mesh (.obj or .ply): a closed, oriented quad mesh.
+    pub input: PathBuf,
+    /// Samples per patch side of the tessellation (>= 2).
+    #[arg(long = "tess", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1025))]
+    pub tess: u32,
+    /// Write the watertight tessellated surface (with normals) to this file (.obj or .ply).
+    #[arg(short = 'o', long = "output")]
+    pub output: Option<PathBuf>,
+    /// Write the bi-5 Bézier control points as a (faces, 6, 6, 3) float64 .npy array.
+    #[arg(long = "bezier")]
+    pub bezier: Option<PathBuf>,
+    /// Split every face into quads first (face centroid + edge midpoints) if the input has
+    /// faces that are not quads.
+    #[arg(long = "quadrangulate")]
+    pub quadrangulate: bool,
+    /// Build and evaluate in double precision (the output files are written from it).
+    #[arg(long = "f64")]
+    pub f64: bool,
+}
+
+/// Runs `subsurf prep`.
+pub fn run(args: &PrepArgs) -> anyhow::Result<()> {
+    let mut mesh = subsurf::io::read_path(&args.input)
+        .with_context(|| format!("reading {}", args.input.display()))?;
+    if args.quadrangulate && mesh.face_counts.iter().any(|&c| c != 4) {
+        mesh = quadrangulate(&mesh)?;
+        eprintln!("quadrangulated: {} quads", mesh.num_faces());
+    }
+    if args.f64 {
+        convert::<f64>(args, &mesh)
+    } else {
+        convert::<f32>(args, &mesh)
+    }
+}
+
+fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
+    let p = PrepPatches::<T>::build(mesh).with_context(|| {
+        format!(
+            "building the p-rep of {} (use --quadrangulate for non-quad input)",
+            args.input.display()
+        )
+    })?;
+    let nf = p.num_faces();
+    let bquads = nf - p.topology.perturbed_faces.len();
+    eprintln!(
+        "p-rep ({}): {nf} patches, {bquads} B-quads ({:.1}%), max valence {}",
+        T::NAME,
+        100.0 * bquads as f64 / nf.max(1) as f64,
+        p.topology.max_valence
+    );
+    if let Some(out) = &args.output {
+        let t = p.tessellate(args.tess as usize);
+        let to32 = |v: &[[T; 3]]| -> Vec<[f32; 3]> {
+            v.iter().map(|x| x.map(|c| c.to_f64() as f32)).collect()
+        };
+        let tri = Mesh::from_faces(to32(&t.positions), &t.triangles);
+        let normals = to32(&t.normals);
+        subsurf::io::write_path(out, &tri, Some(&normals))
+            .with_context(|| format!("writing {}", out.display()))?;
+        eprintln!(
+            "wrote {}: {} vertices, {} triangles",
+            out.display(),
+            t.positions.len(),
+            t.triangles.len()
+        );
+    }
+    if let Some(out) = &args.bezier {
+        let file =
+            std::fs::File::create(out).with_context(|| format!("creating {}", out.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        p.write_bezier_npy(&mut w)
+            .and_then(|_| std::io::Write::flush(&mut w))
+            .with_context(|| format!("writing {}", out.display()))?;
+        eprintln!("wrote {}: ({nf}, 6, 6, 3) float64", out.display());
+    }
+    Ok(())
+}

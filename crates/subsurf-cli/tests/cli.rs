@@ -1,0 +1,124 @@
+//! The `subsurf` binary end to end: exit codes, messages and output files.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_subsurf"))
+}
+
+fn example(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name)
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("subsurf-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn info_json_reports_the_car() {
+    let out = bin()
+        .args(["info", "--json"])
+        .arg(example("car.obj"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["vertices"], 1642);
+    assert_eq!(v["faces"], 1575);
+    assert_eq!(v["semi_sharp_edges"], 314);
+    assert_eq!(v["face_sizes"]["4"], 1575);
+    assert_eq!(v["boundary_edges"], 60);
+    assert_eq!(v["manifold"], true);
+}
+
+#[test]
+fn refine_writes_obj_and_ply_with_the_expected_counts() {
+    for ext in ["obj", "ply"] {
+        let out_path = tmp(&format!("car2.{ext}"));
+        let out = bin()
+            .arg("refine")
+            .arg(example("car.obj"))
+            .args(["--level", "2", "-o"])
+            .arg(&out_path)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let mesh = subsurf::io::read_path(&out_path).unwrap();
+        // 1575 quads -> 16x at level 2; vertices V2 = V1 + F1 + E1.
+        assert_eq!(mesh.num_faces(), 1575 * 16);
+        assert_eq!(mesh.num_vertices(), 25357);
+    }
+}
+
+#[test]
+fn refine_limit_moves_points_onto_the_surface() {
+    let a = tmp("limit_a.obj");
+    let b = tmp("limit_b.obj");
+    assert!(bin()
+        .arg("refine")
+        .arg(example("pawn.obj"))
+        .args(["-l", "1", "-o"])
+        .arg(&a)
+        .status()
+        .unwrap()
+        .success());
+    assert!(bin()
+        .arg("refine")
+        .arg(example("pawn.obj"))
+        .args(["-l", "1", "--limit", "-o"])
+        .arg(&b)
+        .status()
+        .unwrap()
+        .success());
+    let (ma, mb) = (
+        subsurf::io::read_path(&a).unwrap(),
+        subsurf::io::read_path(&b).unwrap(),
+    );
+    assert_eq!(ma.face_indices, mb.face_indices);
+    assert!(ma.positions.iter().zip(&mb.positions).any(|(p, q)| p != q));
+}
+
+#[test]
+fn errors_name_the_problem_and_exit_non_zero() {
+    let out = bin()
+        .args(["info", "/nonexistent/mesh.obj"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("/nonexistent/mesh.obj") && err.contains("No such file"),
+        "{err}"
+    );
+
+    let bad = tmp("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n").unwrap();
+    let out = bin().arg("info").arg(&bad).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("line 4"), "{err}");
+
+    let out = bin()
+        .arg("refine")
+        .arg(example("car.obj"))
+        .args(["--level", "14", "-o"])
+        .arg(tmp("huge.obj"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("would need about"), "{err}");
+}

@@ -1,0 +1,183 @@
+//! Vertex data resident on the GPU, and upload / read-back helpers.
+
+use wgpu::util::DeviceExt;
+
+use crate::context::GpuContext;
+use crate::error::{GpuError, Result};
+
+/// Size of an f32 or u32 in bytes.
+const WORD: u64 = 4;
+
+/// Vertex data on the GPU: `vertex_count * stride` f32, usable as a kernel's source or
+/// destination. Reuse it frame after frame: [`VertexBuffer::write`] replaces the contents
+/// without reallocating.
+#[derive(Debug)]
+pub struct VertexBuffer {
+    buffer: wgpu::Buffer,
+    vertex_count: usize,
+    stride: usize,
+}
+
+impl VertexBuffer {
+    /// Uploads `data` (`stride` floats per vertex).
+    pub fn upload(ctx: &GpuContext, data: &[f32], stride: usize) -> Result<Self> {
+        let vertex_count = whole_vertices(data.len(), stride)?;
+        let buffer = storage_buffer_init(ctx, "subsurf vertices", bytemuck::cast_slice(data))?;
+        Ok(Self {
+            buffer,
+            vertex_count,
+            stride,
+        })
+    }
+
+    /// A zero-filled buffer of `vertex_count` vertices of `stride` floats.
+    pub fn zeroed(ctx: &GpuContext, vertex_count: usize, stride: usize) -> Result<Self> {
+        if stride == 0 {
+            return Err(GpuError::BufferMismatch("stride must be positive".into()));
+        }
+        let bytes = (vertex_count as u64)
+            .checked_mul(stride as u64 * WORD)
+            .ok_or_else(|| GpuError::BufferMismatch("vertex buffer size overflows".into()))?;
+        check_buffer_size(ctx, "vertex buffer", bytes)?;
+        let buffer = ctx.scoped(|| {
+            Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("subsurf vertices"),
+                size: bytes.max(WORD),
+                usage: STORAGE_USAGE,
+                mapped_at_creation: false,
+            }))
+        })?;
+        Ok(Self {
+            buffer,
+            vertex_count,
+            stride,
+        })
+    }
+
+    /// Replaces the contents with `data`, which must have the buffer's exact length.
+    pub fn write(&self, ctx: &GpuContext, data: &[f32]) -> Result<()> {
+        if data.len() != self.len_floats() {
+            return Err(GpuError::BufferMismatch(format!(
+                "writing {} floats into a buffer of {}",
+                data.len(),
+                self.len_floats()
+            )));
+        }
+        if !data.is_empty() {
+            ctx.queue
+                .write_buffer(&self.buffer, 0, bytemuck::cast_slice(data));
+        }
+        Ok(())
+    }
+
+    /// Reads the contents back (blocks until the GPU has finished the work submitted so far).
+    pub fn download(&self, ctx: &GpuContext) -> Result<Vec<f32>> {
+        read_back(ctx, &self.buffer, self.len_floats() as u64 * WORD)
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
+    /// Floats per vertex.
+    pub fn stride(&self) -> usize {
+        self.stride
+    }
+
+    /// Number of floats (`vertex_count * stride`).
+    pub fn len_floats(&self) -> usize {
+        self.vertex_count * self.stride
+    }
+
+    /// The underlying wgpu buffer (at least 4 bytes even when empty).
+    pub fn raw(&self) -> &wgpu::Buffer {
+        &self.buffer
+    }
+}
+
+/// Usages of every buffer a kernel binds as storage.
+pub(crate) const STORAGE_USAGE: wgpu::BufferUsages = wgpu::BufferUsages::STORAGE
+    .union(wgpu::BufferUsages::COPY_DST)
+    .union(wgpu::BufferUsages::COPY_SRC);
+
+fn whole_vertices(len: usize, stride: usize) -> Result<usize> {
+    if stride == 0 || !len.is_multiple_of(stride) {
+        return Err(GpuError::BufferMismatch(format!(
+            "{len} floats are not a whole number of vertices of stride {stride}"
+        )));
+    }
+    Ok(len / stride)
+}
+
+fn check_buffer_size(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<()> {
+    let limit = ctx.limits().max_buffer_size;
+    if bytes > limit {
+        return Err(GpuError::TooLarge {
+            what,
+            needed: bytes,
+            limit,
+        });
+    }
+    Ok(())
+}
+
+/// A storage buffer holding `bytes`; empty data gives a 4-byte zero buffer, since bindings
+/// of size 0 are invalid.
+pub(crate) fn storage_buffer_init(
+    ctx: &GpuContext,
+    label: &'static str,
+    bytes: &[u8],
+) -> Result<wgpu::Buffer> {
+    check_buffer_size(ctx, label, bytes.len() as u64)?;
+    let zero = [0u8; WORD as usize];
+    let contents = if bytes.is_empty() { &zero[..] } else { bytes };
+    ctx.scoped(|| {
+        Ok(ctx
+            .device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some(label),
+                contents,
+                usage: STORAGE_USAGE,
+            }))
+    })
+}
+
+/// Copies the first `bytes` bytes of `buffer` to a staging buffer and maps it.
+pub(crate) fn read_back(ctx: &GpuContext, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<f32>> {
+    if bytes == 0 {
+        return Ok(Vec::new());
+    }
+    let staging = ctx.scoped(|| {
+        let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("subsurf read-back"),
+            size: bytes,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("subsurf read-back"),
+            });
+        encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
+        ctx.queue.submit([encoder.finish()]);
+        Ok(staging)
+    })?;
+    let (tx, rx) = std::sync::mpsc::channel();
+    staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    ctx.wait_idle()?;
+    rx.recv()
+        .map_err(|e| GpuError::Map(e.to_string()))?
+        .map_err(|e| GpuError::Map(e.to_string()))?;
+    let data = {
+        let view = staging
+            .get_mapped_range(..)
+            .map_err(|e| GpuError::Map(e.to_string()))?;
+        bytemuck::pod_collect_to_vec::<u8, f32>(&view)
+    };
+    staging.unmap();
+    Ok(data)
+}

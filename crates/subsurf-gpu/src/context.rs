@@ -1,0 +1,222 @@
+//! Adapter and device selection.
+//!
+//! Backends come from `WGPU_BACKEND` (e.g. `vulkan`, `metal`, `dx12`, `gl`) when set. When
+//! it is not set the primary backends (Vulkan, Metal, DX12) are tried first and OpenGL only
+//! as a fallback, so that a headless machine does not probe EGL when Vulkan (for example
+//! Mesa's lavapipe) is present. `SUBSURF_ADAPTER` picks the first adapter whose name
+//! contains the given text (case-insensitive); otherwise wgpu's choice for
+//! `WGPU_POWER_PREF` (default: high performance) is used.
+
+use crate::error::{GpuError, Result};
+
+/// Environment variable: substring of the adapter name to use.
+pub const ADAPTER_ENV: &str = "SUBSURF_ADAPTER";
+
+/// An open device on one adapter, with the adapter's description and limits.
+#[derive(Debug)]
+pub struct GpuContext {
+    /// The wgpu instance the adapter came from.
+    pub instance: wgpu::Instance,
+    /// The chosen adapter.
+    pub adapter: wgpu::Adapter,
+    /// The device opened on it.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    info: wgpu::AdapterInfo,
+    limits: wgpu::Limits,
+    features: wgpu::Features,
+}
+
+impl GpuContext {
+    /// Opens a device on the adapter chosen as described in the module documentation,
+    /// requesting the adapter's best limits and `SHADER_F64` when the adapter has it.
+    pub fn new() -> Result<Self> {
+        pollster::block_on(Self::new_async())
+    }
+
+    async fn new_async() -> Result<Self> {
+        let from_env = wgpu::Backends::from_env();
+        let attempts: Vec<wgpu::Backends> = match from_env {
+            Some(b) => vec![b],
+            None => vec![wgpu::Backends::PRIMARY, wgpu::Backends::GL],
+        };
+        let filter = std::env::var(ADAPTER_ENV).ok().filter(|s| !s.is_empty());
+        let mut tried = Vec::new();
+        for backends in attempts {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+            desc.backends = backends;
+            let instance = wgpu::Instance::new(desc);
+            match pick_adapter(&instance, backends, filter.as_deref()).await {
+                Ok(adapter) => return Self::open(instance, adapter).await,
+                Err(seen) => tried.push(format!("backends {backends:?}: {seen}")),
+            }
+        }
+        let filter_note = filter
+            .map(|f| format!(" matching {ADAPTER_ENV}={f:?}"))
+            .unwrap_or_default();
+        Err(GpuError::NoAdapter {
+            detail: format!("{filter_note} (tried {})", tried.join("; ")),
+        })
+    }
+
+    async fn open(instance: wgpu::Instance, adapter: wgpu::Adapter) -> Result<Self> {
+        let info = adapter.get_info();
+        let required_features = adapter.features() & wgpu::Features::SHADER_F64;
+        let desc = wgpu::DeviceDescriptor {
+            label: Some("subsurf"),
+            required_features,
+            required_limits: adapter.limits(),
+            ..Default::default()
+        };
+        let (device, queue) =
+            adapter
+                .request_device(&desc)
+                .await
+                .map_err(|source| GpuError::RequestDevice {
+                    adapter: info.name.clone(),
+                    source,
+                })?;
+        let limits = device.limits();
+        let features = device.features();
+        Ok(Self {
+            instance,
+            adapter,
+            device,
+            queue,
+            info,
+            limits,
+            features,
+        })
+    }
+
+    /// The adapter's description (name, backend, driver).
+    pub fn adapter_info(&self) -> &wgpu::AdapterInfo {
+        &self.info
+    }
+
+    /// The limits of the opened device.
+    pub fn limits(&self) -> &wgpu::Limits {
+        &self.limits
+    }
+
+    /// Whether shaders may use `f64`.
+    pub fn has_f64(&self) -> bool {
+        self.features.contains(wgpu::Features::SHADER_F64)
+    }
+
+    /// A human-readable summary: adapter, backend, driver and the limits that bound the
+    /// kernels' chunking.
+    pub fn gpu_info(&self) -> String {
+        let i = &self.info;
+        let l = &self.limits;
+        let mib = |b: u64| b as f64 / (1024.0 * 1024.0);
+        format!(
+            "adapter: {}\n\
+             device type: {:?}\n\
+             backend: {}\n\
+             driver: {} ({})\n\
+             vendor/device id: {:#06x}/{:#06x}\n\
+             shader f64: {}\n\
+             max_storage_buffer_binding_size: {} ({:.0} MiB)\n\
+             max_buffer_size: {} ({:.0} MiB)\n\
+             max_storage_buffers_per_shader_stage: {}\n\
+             min_storage_buffer_offset_alignment: {}\n\
+             max_compute_workgroup_size_x: {}\n\
+             max_compute_invocations_per_workgroup: {}\n\
+             max_compute_workgroups_per_dimension: {}",
+            i.name,
+            i.device_type,
+            i.backend,
+            i.driver,
+            i.driver_info,
+            i.vendor,
+            i.device,
+            if self.has_f64() { "yes" } else { "no" },
+            l.max_storage_buffer_binding_size,
+            mib(l.max_storage_buffer_binding_size),
+            l.max_buffer_size,
+            mib(l.max_buffer_size),
+            l.max_storage_buffers_per_shader_stage,
+            l.min_storage_buffer_offset_alignment,
+            l.max_compute_workgroup_size_x,
+            l.max_compute_invocations_per_workgroup,
+            l.max_compute_workgroups_per_dimension,
+        )
+    }
+
+    /// Runs `f` inside a wgpu error scope and turns any validation, out-of-memory or
+    /// internal error it raised into [`GpuError::Wgpu`] instead of wgpu's default panic.
+    pub fn scoped<T>(&self, f: impl FnOnce() -> Result<T>) -> Result<T> {
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let out = f();
+        let errors = [
+            pollster::block_on(validation.pop()),
+            pollster::block_on(internal.pop()),
+            pollster::block_on(oom.pop()),
+        ];
+        if let Some(e) = errors.into_iter().flatten().next() {
+            return Err(GpuError::Wgpu(e.to_string()));
+        }
+        out
+    }
+
+    /// Blocks until the queue has finished all submitted work.
+    pub fn wait_idle(&self) -> Result<()> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| GpuError::Wgpu(e.to_string()))
+    }
+}
+
+/// Lists the adapters visible with the given backends, as `name (backend, type)` lines.
+pub fn list_adapters() -> Vec<String> {
+    let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
+    let mut desc = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
+    desc.backends = backends;
+    let instance = wgpu::Instance::new(desc);
+    pollster::block_on(instance.enumerate_adapters(backends))
+        .iter()
+        .map(|a| {
+            let i = a.get_info();
+            format!(
+                "{} ({}, {:?}, driver {})",
+                i.name, i.backend, i.device_type, i.driver
+            )
+        })
+        .collect()
+}
+
+/// Picks an adapter: the first whose name contains `filter`, else wgpu's default choice.
+/// On failure returns a description of what was seen.
+async fn pick_adapter(
+    instance: &wgpu::Instance,
+    backends: wgpu::Backends,
+    filter: Option<&str>,
+) -> std::result::Result<wgpu::Adapter, String> {
+    match filter {
+        Some(f) => {
+            let needle = f.to_lowercase();
+            let adapters = instance.enumerate_adapters(backends).await;
+            let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
+            adapters
+                .into_iter()
+                .find(|a| a.get_info().name.to_lowercase().contains(&needle))
+                .ok_or_else(|| format!("adapters seen: {names:?}"))
+        }
+        None => {
+            let options = wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::from_env()
+                    .unwrap_or(wgpu::PowerPreference::HighPerformance),
+                ..Default::default()
+            };
+            instance
+                .request_adapter(&options)
+                .await
+                .map_err(|e| e.to_string())
+        }
+    }
+}

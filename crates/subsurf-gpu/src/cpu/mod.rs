@@ -1,0 +1,5 @@
+//! CPU twins of the WGSL kernels: one file per kernel, same name, same binding order, same
+//! `WORKGROUP_SIZE`. Each twin is written as the body of one invocation plus a loop over the
+//! dispatch grid, so that it computes exactly what the shader computes, in the same order.
+
+pub mod stencil_apply;

@@ -1,0 +1,451 @@
+//! `stencil_apply` on the GPU: applies a [`StencilTable`] to a [`VertexBuffer`].
+//!
+//! The table is uploaded once and split into chunks of rows so that no binding exceeds
+//! `max_storage_buffer_binding_size` and no dispatch exceeds
+//! `max_compute_workgroups_per_dimension` (a 2D grid is used when one dimension is not
+//! enough). Each chunk holds its own `offsets` (rebased to start at 0), `indices` and
+//! `weights`; the destination is bound at the chunk's first row, which is a multiple of
+//! `min_storage_buffer_offset_alignment / 4` rows so the binding offset is aligned for any
+//! stride. The source is bound whole (stencils reference arbitrary source vertices).
+//!
+//! Per frame a caller re-uploads only the source ([`VertexBuffer::write`]) and calls
+//! [`StencilKernel::apply`]; the results stay on the GPU until downloaded.
+
+use crate::buffers::{storage_buffer_init, VertexBuffer};
+use crate::context::GpuContext;
+use crate::cpu::stencil_apply::WORKGROUP_SIZE;
+use crate::error::{GpuError, Result};
+use crate::kernels::grid_2d;
+use crate::shaders;
+use crate::shared::StencilConfig;
+use crate::table::StencilTable;
+
+const WORD: u64 = 4;
+
+/// Limits the table is chunked against. [`ChunkLimits::from_context`] gives the adapter's;
+/// lower values (never higher: they are clamped to the adapter's) force more chunks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ChunkLimits {
+    /// Largest storage binding, in bytes.
+    pub max_binding_bytes: u64,
+    /// Largest workgroup count along one dispatch dimension.
+    pub max_workgroups_per_dimension: u32,
+    /// Largest stride the destination binding of a chunk is sized for. Applying with a
+    /// larger stride still works when each chunk's destination fits the binding limit.
+    pub max_stride: usize,
+}
+
+impl ChunkLimits {
+    /// The adapter's limits, sized for strides up to 4 floats.
+    pub fn from_context(ctx: &GpuContext) -> Self {
+        let l = ctx.limits();
+        Self {
+            max_binding_bytes: l.max_storage_buffer_binding_size.min(l.max_buffer_size),
+            max_workgroups_per_dimension: l.max_compute_workgroups_per_dimension,
+            max_stride: 4,
+        }
+    }
+
+    fn clamped_to(self, adapter: ChunkLimits) -> Self {
+        Self {
+            max_binding_bytes: self.max_binding_bytes.min(adapter.max_binding_bytes),
+            max_workgroups_per_dimension: self
+                .max_workgroups_per_dimension
+                .min(adapter.max_workgroups_per_dimension)
+                .max(1),
+            max_stride: self.max_stride.max(1),
+        }
+    }
+}
+
+/// A contiguous range of table rows uploaded together.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ChunkRange {
+    /// First row.
+    pub row_start: usize,
+    /// One past the last row.
+    pub row_end: usize,
+}
+
+/// Splits `table` into chunks: greedy over groups of `row_align` rows, each chunk as large
+/// as the limits allow. Chunk starts are multiples of `row_align`.
+pub fn plan_chunks(
+    table: &StencilTable<'_>,
+    limits: &ChunkLimits,
+    row_align: usize,
+) -> Result<Vec<ChunkRange>> {
+    let offsets = table.offsets();
+    let rows = table.rows();
+    let row_align = row_align.max(1);
+    let max_words = (limits.max_binding_bytes / WORD) as usize;
+    let max_dispatch_rows =
+        u64::from(limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
+    let fits = |start: usize, end: usize| {
+        let n = end - start;
+        let entries = (offsets[end] - offsets[start]) as usize;
+        n < max_words
+            && n.saturating_mul(limits.max_stride) <= max_words
+            && entries <= max_words
+            && (n as u64) <= max_dispatch_rows
+            && n <= u32::MAX as usize
+    };
+    let mut chunks = Vec::new();
+    let mut start = 0;
+    while start < rows {
+        let mut end = start;
+        loop {
+            let next = (end + row_align).min(rows);
+            if next == end || !fits(start, next) {
+                break;
+            }
+            end = next;
+        }
+        if end == start {
+            let next = (start + row_align).min(rows);
+            return Err(GpuError::TooLarge {
+                what: "stencil rows of one aligned chunk",
+                needed: (offsets[next] - offsets[start]) as u64 * WORD,
+                limit: limits.max_binding_bytes,
+            });
+        }
+        chunks.push(ChunkRange {
+            row_start: start,
+            row_end: end,
+        });
+        start = end;
+    }
+    Ok(chunks)
+}
+
+#[derive(Debug)]
+struct Chunk {
+    range: ChunkRange,
+    offsets: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    config: wgpu::Buffer,
+}
+
+/// A stencil table uploaded to the GPU with the `stencil_apply` pipeline.
+#[derive(Debug)]
+pub struct StencilKernel {
+    rows: usize,
+    min_source_vertices: usize,
+    limits: ChunkLimits,
+    /// The adapter's binding limit, which bounds the (unchunked) source binding.
+    source_binding_limit: u64,
+    chunks: Vec<Chunk>,
+    layout: wgpu::BindGroupLayout,
+    pipeline: wgpu::ComputePipeline,
+}
+
+impl StencilKernel {
+    /// Validates and uploads the table (`offsets`: rows + 1, `indices` and `weights`: one
+    /// per entry), chunked against the adapter's limits.
+    pub fn new(
+        ctx: &GpuContext,
+        offsets: &[u32],
+        indices: &[u32],
+        weights: &[f32],
+    ) -> Result<Self> {
+        let table = StencilTable::new(offsets, indices, weights)?;
+        Self::with_limits(ctx, &table, ChunkLimits::from_context(ctx))
+    }
+
+    /// Uploads `table` chunked against `limits` (clamped to the adapter's limits).
+    pub fn with_limits(
+        ctx: &GpuContext,
+        table: &StencilTable<'_>,
+        limits: ChunkLimits,
+    ) -> Result<Self> {
+        let adapter_limits = ChunkLimits::from_context(ctx);
+        let limits = limits.clamped_to(adapter_limits);
+        let row_align =
+            (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
+        let ranges = plan_chunks(table, &limits, row_align)?;
+        let offsets = table.offsets();
+        let mut chunks = Vec::with_capacity(ranges.len());
+        for range in ranges {
+            let (e0, e1) = (
+                offsets[range.row_start] as usize,
+                offsets[range.row_end] as usize,
+            );
+            let local: Vec<u32> = offsets[range.row_start..=range.row_end]
+                .iter()
+                .map(|&o| o - offsets[range.row_start])
+                .collect();
+            chunks.push(Chunk {
+                range,
+                offsets: storage_buffer_init(ctx, "stencil offsets", bytemuck::cast_slice(&local))?,
+                indices: storage_buffer_init(
+                    ctx,
+                    "stencil indices",
+                    bytemuck::cast_slice(&table.indices()[e0..e1]),
+                )?,
+                weights: storage_buffer_init(
+                    ctx,
+                    "stencil weights",
+                    bytemuck::cast_slice(&table.weights()[e0..e1]),
+                )?,
+                config: ctx.scoped(|| {
+                    Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                        label: Some("stencil config"),
+                        size: std::mem::size_of::<StencilConfig>() as u64,
+                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                        mapped_at_creation: false,
+                    }))
+                })?,
+            });
+        }
+        let (layout, pipeline) = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
+        Ok(Self {
+            rows: table.rows(),
+            min_source_vertices: table.min_source_vertices(),
+            limits,
+            source_binding_limit: adapter_limits.max_binding_bytes,
+            chunks,
+            layout,
+            pipeline,
+        })
+    }
+
+    /// Number of rows (destination vertices).
+    pub fn rows(&self) -> usize {
+        self.rows
+    }
+
+    /// Number of chunks the table was split into.
+    pub fn num_chunks(&self) -> usize {
+        self.chunks.len()
+    }
+
+    /// The row ranges of the chunks.
+    pub fn chunk_ranges(&self) -> Vec<ChunkRange> {
+        self.chunks.iter().map(|c| c.range).collect()
+    }
+
+    /// Computes `dst = table · src` on the GPU and submits the work; `dst` stays on the GPU
+    /// (download it with [`VertexBuffer::download`], which waits for completion).
+    pub fn apply(
+        &self,
+        ctx: &GpuContext,
+        src: &VertexBuffer,
+        dst: &mut VertexBuffer,
+    ) -> Result<()> {
+        let stride = src.stride();
+        if dst.stride() != stride {
+            return Err(GpuError::BufferMismatch(format!(
+                "source stride {stride} but destination stride {}",
+                dst.stride()
+            )));
+        }
+        if dst.vertex_count() != self.rows {
+            return Err(GpuError::BufferMismatch(format!(
+                "destination holds {} vertices but the table has {} rows",
+                dst.vertex_count(),
+                self.rows
+            )));
+        }
+        if src.vertex_count() < self.min_source_vertices {
+            return Err(GpuError::BufferMismatch(format!(
+                "table references {} source vertices but the source holds {}",
+                self.min_source_vertices,
+                src.vertex_count()
+            )));
+        }
+        let src_bytes = src.len_floats() as u64 * WORD;
+        if src_bytes > self.source_binding_limit {
+            return Err(GpuError::TooLarge {
+                what: "stencil source binding",
+                needed: src_bytes,
+                limit: self.source_binding_limit,
+            });
+        }
+        let stride_u32 = u32::try_from(stride)
+            .map_err(|_| GpuError::BufferMismatch(format!("stride {stride} is too large")))?;
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("stencil_apply"),
+                });
+            let mut bind_groups = Vec::with_capacity(self.chunks.len());
+            for chunk in &self.chunks {
+                let rows = (chunk.range.row_end - chunk.range.row_start) as u32;
+                let dst_bytes = u64::from(rows) * u64::from(stride_u32) * WORD;
+                if dst_bytes > self.limits.max_binding_bytes {
+                    return Err(GpuError::TooLarge {
+                        what: "stencil destination chunk binding",
+                        needed: dst_bytes,
+                        limit: self.limits.max_binding_bytes,
+                    });
+                }
+                let (gx, gy) = grid_2d(
+                    rows,
+                    WORKGROUP_SIZE,
+                    self.limits.max_workgroups_per_dimension,
+                );
+                let config = StencilConfig {
+                    row_count: rows,
+                    stride: stride_u32,
+                    grid_width: gx * WORKGROUP_SIZE,
+                    _pad: 0,
+                };
+                ctx.queue
+                    .write_buffer(&chunk.config, 0, bytemuck::bytes_of(&config));
+                let dst_offset = chunk.range.row_start as u64 * u64::from(stride_u32) * WORD;
+                let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("stencil_apply"),
+                    layout: &self.layout,
+                    entries: &[
+                        whole(0, &chunk.config),
+                        whole(1, &chunk.offsets),
+                        whole(2, &chunk.indices),
+                        whole(3, &chunk.weights),
+                        whole(4, src.raw()),
+                        wgpu::BindGroupEntry {
+                            binding: 5,
+                            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                                buffer: dst.raw(),
+                                offset: dst_offset,
+                                size: wgpu::BufferSize::new(dst_bytes),
+                            }),
+                        },
+                    ],
+                });
+                bind_groups.push((bind_group, gx, gy));
+            }
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("stencil_apply"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                for (bind_group, gx, gy) in &bind_groups {
+                    pass.set_bind_group(0, bind_group, &[]);
+                    pass.dispatch_workgroups(*gx, *gy, 1);
+                }
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
+    }
+}
+
+fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
+fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// Bind group layout (bindings 0..=5 of `shaders/stencil_apply.wgsl`) and pipeline.
+fn create_pipeline(ctx: &GpuContext) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
+    let device = &ctx.device;
+    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("stencil_apply"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: wgpu::BufferSize::new(
+                        std::mem::size_of::<StencilConfig>() as u64
+                    ),
+                },
+                count: None,
+            },
+            storage_entry(1, true),
+            storage_entry(2, true),
+            storage_entry(3, true),
+            storage_entry(4, true),
+            storage_entry(5, false),
+        ],
+    });
+    let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some("stencil_apply"),
+        bind_group_layouts: &[Some(&layout)],
+        immediate_size: 0,
+    });
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("stencil_apply"),
+        source: wgpu::ShaderSource::Wgsl(shaders::STENCIL_APPLY.into()),
+    });
+    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some("stencil_apply"),
+        layout: Some(&pipeline_layout),
+        module: &module,
+        entry_point: Some("main"),
+        compilation_options: Default::default(),
+        cache: None,
+    });
+    (layout, pipeline)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn limits(bytes: u64, wg: u32) -> ChunkLimits {
+        ChunkLimits {
+            max_binding_bytes: bytes,
+            max_workgroups_per_dimension: wg,
+            max_stride: 3,
+        }
+    }
+
+    #[test]
+    fn chunks_partition_rows_and_respect_limits() {
+        // 1000 rows of 1..=7 entries.
+        let mut offsets = vec![0u32];
+        for r in 0..1000u32 {
+            offsets.push(offsets.last().unwrap() + 1 + r % 7);
+        }
+        let n = *offsets.last().unwrap() as usize;
+        let indices = vec![0u32; n];
+        let weights = vec![1.0f32; n];
+        let table = StencilTable::new(&offsets, &indices, &weights).unwrap();
+        let lim = limits(2048, 2);
+        let chunks = plan_chunks(&table, &lim, 16).unwrap();
+        assert!(chunks.len() > 1);
+        assert_eq!(chunks[0].row_start, 0);
+        assert_eq!(chunks.last().unwrap().row_end, 1000);
+        for w in chunks.windows(2) {
+            assert_eq!(w[0].row_end, w[1].row_start);
+        }
+        for c in &chunks {
+            assert_eq!(c.row_start % 16, 0);
+            let rows = (c.row_end - c.row_start) as u64;
+            let entries = u64::from(offsets[c.row_end] - offsets[c.row_start]);
+            assert!(entries * 4 <= 2048 && (rows + 1) * 4 <= 2048 && rows * 3 * 4 <= 2048);
+            assert!(rows <= 2 * 2 * u64::from(WORKGROUP_SIZE));
+        }
+    }
+
+    #[test]
+    fn oversized_rows_are_reported() {
+        let offsets = [0u32, 600];
+        let indices = vec![0u32; 600];
+        let weights = vec![1.0f32; 600];
+        let table = StencilTable::new(&offsets, &indices, &weights).unwrap();
+        assert!(matches!(
+            plan_chunks(&table, &limits(2048, 8), 1),
+            Err(GpuError::TooLarge { .. })
+        ));
+    }
+}

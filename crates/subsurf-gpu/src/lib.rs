@@ -1,0 +1,37 @@
+//! GPU compute kernels for subsurf, on wgpu.
+//!
+//! Every kernel exists twice (the layout of linebender/vello): a WGSL shader
+//! `shaders/<name>.wgsl`, validated with naga at build time, and a Rust CPU twin
+//! [`cpu`]`::<name>` with the same binding order and the same `WORKGROUP_SIZE`. The twin is
+//! the reference the GPU results are tested against.
+//!
+//! A backend never walks topology: it runs kernels over flat tables produced by the
+//! refinement module (the split of OpenSubdiv's `Far` tables and `Osd` evaluators).
+//!
+//! Entry points: [`GpuContext`] (adapter and device), [`VertexBuffer`] (vertex data resident
+//! on the GPU) and [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer).
+
+pub mod buffers;
+pub mod context;
+pub mod cpu;
+pub mod error;
+pub mod kernels;
+pub mod shared;
+pub mod table;
+
+pub use buffers::VertexBuffer;
+pub use context::GpuContext;
+pub use error::GpuError;
+pub use kernels::stencil::{ChunkLimits, StencilKernel};
+pub use table::StencilTable;
+
+/// Constants extracted from the WGSL sources by `build.rs` (`<KERNEL>_WORKGROUP_SIZE`).
+pub mod shader_consts {
+    include!(concat!(env!("OUT_DIR"), "/shader_consts.rs"));
+}
+
+/// WGSL sources exactly as validated by `build.rs` (`common.wgsl` prepended).
+pub mod shaders {
+    /// `shaders/stencil_apply.wgsl`.
+    pub const STENCIL_APPLY: &str = include_str!(concat!(env!("OUT_DIR"), "/stencil_apply.wgsl"));
+}

@@ -1,0 +1,141 @@
+//! One entry point for every patch kind: maps a base-face `(u, v)` into the patch with its
+//! [`PatchParam`], evaluates the right basis and scales the derivatives back to the face's
+//! parameterization (OpenSubdiv's `Far::internal::EvaluatePatchBasis`).
+
+use super::bspline::bspline_patch_weights;
+use super::gregory::{gregory_patch_weights, GregoryDerivatives};
+use super::param::PatchParam;
+use super::real::Real;
+use super::single_crease::single_crease_patch_weights;
+use super::weights::PatchWeights;
+use super::PatchEdge;
+
+/// The kind of a patch, i.e. which basis its control points use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PatchKind {
+    /// Regular bicubic B-spline, 16 points, boundary mask from the [`PatchParam`].
+    Regular,
+    /// Regular bicubic B-spline with one semi-sharp crease, 16 points; the crease edge is
+    /// the (single) bit set in the [`PatchParam`] boundary field, the sharpness is stored
+    /// separately ([`super::SharpnessTable`]).
+    SingleCrease,
+    /// 20-point Gregory basis end cap.
+    GregoryBasis(GregoryDerivatives),
+}
+
+impl PatchKind {
+    /// Number of control points of the kind.
+    pub fn num_points(self) -> usize {
+        match self {
+            PatchKind::Regular | PatchKind::SingleCrease => 16,
+            PatchKind::GregoryBasis(_) => 20,
+        }
+    }
+}
+
+/// Basis weights of a patch of any kind: the first [`PatchKind::num_points`] entries of
+/// each array are used, the rest are zero.
+pub type AnyPatchWeights<T> = PatchWeights<T, 20>;
+
+fn widen<T: Real>(w: PatchWeights<T, 16>) -> AnyPatchWeights<T> {
+    let mut r = AnyPatchWeights::<T>::default();
+    r.p[..16].copy_from_slice(&w.p);
+    r.du[..16].copy_from_slice(&w.du);
+    r.dv[..16].copy_from_slice(&w.dv);
+    r.duu[..16].copy_from_slice(&w.duu);
+    r.duv[..16].copy_from_slice(&w.duv);
+    r.dvv[..16].copy_from_slice(&w.dvv);
+    r
+}
+
+/// Weights at the patch's own `(s, t)` (no reparameterization, no derivative scaling).
+///
+/// For [`PatchKind::SingleCrease`] the crease edge is the lowest bit set in
+/// `param.boundary()`; with no bit set, or `sharpness` ≤ 0, the patch is the plain B-spline.
+pub fn patch_weights_normalized<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    s: T,
+    t: T,
+) -> AnyPatchWeights<T> {
+    match kind {
+        PatchKind::Regular => widen(bspline_patch_weights(s, t, param.boundary() & 0xf)),
+        PatchKind::SingleCrease => {
+            let bits = param.boundary() & 0xf;
+            match PatchEdge::from_index(bits.trailing_zeros()) {
+                Some(edge) => widen(single_crease_patch_weights(s, t, edge, sharpness)),
+                None => widen(bspline_patch_weights(s, t, 0)),
+            }
+        }
+        PatchKind::GregoryBasis(d) => gregory_patch_weights(s, t, d),
+    }
+}
+
+/// Weights at the base-face (ptex) parameters `(u, v)`: normalizes with `param`, evaluates,
+/// and scales derivatives by [`PatchParam::deriv_scale`] so they are derivatives with
+/// respect to the face's `(u, v)`.
+pub fn patch_weights<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    u: T,
+    v: T,
+) -> AnyPatchWeights<T> {
+    let (s, t) = param.normalize(u, v);
+    let mut w = patch_weights_normalized(kind, param, sharpness, s, t);
+    w.scale_derivatives(param.deriv_scale());
+    w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::param::PatchParamFields;
+    use super::*;
+
+    fn param(boundary: u8, depth: u8, u: u16, v: u16) -> PatchParam {
+        PatchParam::new(PatchParamFields {
+            face_id: 3,
+            u,
+            v,
+            depth,
+            boundary,
+            regular: true,
+            ..Default::default()
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn dispatch_matches_the_direct_bases() {
+        let p = param(0b0100, 2, 1, 3);
+        let (u, v) = (0.3f64, 0.8);
+        let (s, t) = p.normalize(u, v);
+        let w = patch_weights(PatchKind::Regular, &p, 0.0, u, v);
+        let mut direct = bspline_patch_weights(s, t, 0b0100);
+        direct.scale_derivatives(4.0);
+        assert_eq!(&w.p[..16], &direct.p[..]);
+        assert_eq!(&w.du[..16], &direct.du[..]);
+        assert_eq!(&w.dvv[..16], &direct.dvv[..]);
+        assert!(w.p[16..].iter().all(|&x| x == 0.0));
+
+        let w = patch_weights_normalized(PatchKind::SingleCrease, &p, 2.5, s, t);
+        let direct = single_crease_patch_weights(s, t, PatchEdge::V1, 2.5);
+        assert_eq!(&w.p[..16], &direct.p[..]);
+        assert_eq!(&w.duv[..16], &direct.duv[..]);
+
+        let g = GregoryDerivatives::Exact;
+        let w = patch_weights_normalized(PatchKind::GregoryBasis(g), &p, 0.0, s, t);
+        assert_eq!(w, gregory_patch_weights(s, t, g));
+        assert_eq!(PatchKind::GregoryBasis(g).num_points(), 20);
+        assert_eq!(PatchKind::SingleCrease.num_points(), 16);
+    }
+
+    #[test]
+    fn single_crease_without_edge_bit_is_regular() {
+        let p = param(0, 0, 0, 0);
+        let w = patch_weights(PatchKind::SingleCrease, &p, 3.0f64, 0.9, 0.2);
+        let r = patch_weights(PatchKind::Regular, &p, 0.0f64, 0.9, 0.2);
+        assert_eq!(w, r);
+    }
+}

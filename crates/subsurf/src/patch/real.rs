@@ -1,0 +1,106 @@
+//! The scalar type of patch evaluation: `f32` (what the GPU and the tables use) or `f64`
+//! (reference evaluation in tests and in double-precision callers).
+//!
+//! Every basis function in [`crate::patch`] is generic over [`Real`], so the `f32` path and
+//! its `f64` twin run exactly the same arithmetic and can be compared term by term.
+
+use std::fmt::Debug;
+use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A floating-point scalar: implemented for `f32` and `f64`.
+pub trait Real:
+    Copy
+    + Debug
+    + Default
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + Send
+    + Sync
+    + 'static
+{
+    /// Additive identity.
+    const ZERO: Self;
+    /// Multiplicative identity.
+    const ONE: Self;
+    /// Converts from `f64`, rounding to the nearest representable value.
+    fn from_f64(x: f64) -> Self;
+    /// Converts to `f64` (exact for both implementations).
+    fn to_f64(self) -> f64;
+    /// `2^k` for a small integer `k` (exact).
+    fn pow2(k: i32) -> Self;
+    /// Largest integer not greater than `self`.
+    fn floor(self) -> Self;
+    /// `true` unless NaN or infinite.
+    fn is_finite(self) -> bool;
+}
+
+impl Real for f32 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x as f32
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline]
+    fn pow2(k: i32) -> Self {
+        // Exact for -126 <= k <= 127, far more than the sharpness range needs.
+        f32::from_bits((((k + 127).clamp(0, 254)) as u32) << 23)
+    }
+    #[inline]
+    fn floor(self) -> Self {
+        f32::floor(self)
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        f32::is_finite(self)
+    }
+}
+
+impl Real for f64 {
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        x
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline]
+    fn pow2(k: i32) -> Self {
+        f64::from_bits((((k + 1023).clamp(0, 2046)) as u64) << 52)
+    }
+    #[inline]
+    fn floor(self) -> Self {
+        f64::floor(self)
+    }
+    #[inline]
+    fn is_finite(self) -> bool {
+        f64::is_finite(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pow2_is_exact() {
+        for k in -30..30 {
+            assert_eq!(<f32 as Real>::pow2(k), 2f32.powi(k));
+            assert_eq!(<f64 as Real>::pow2(k), 2f64.powi(k));
+        }
+    }
+}
