@@ -9,6 +9,10 @@
 //!
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
+//!
+//! Face-varying data (UVs) refines on the same levels with its own value topology and
+//! stencils, in any of OpenSubdiv's `FVarLinearInterpolation` modes:
+//! [`Refiner::refine_uvs`], or [`Refiner::fvar_refinement`] to keep the tables.
 
 mod fvar_propagate;
 mod fvar_stencils;
