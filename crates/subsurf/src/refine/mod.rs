@@ -19,6 +19,7 @@ mod fvar_stencils;
 mod fvar_topology;
 mod level;
 mod masks;
+pub(crate) mod par;
 mod stencil;
 mod uv;
 
