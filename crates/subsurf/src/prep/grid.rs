@@ -8,8 +8,7 @@
 //! otherwise:  x(u,v) = Σ_{i,j<6} b_ij B⁵_i(u) B⁵_j(v),   b = E g Eᵀ + h   (eq. (10), see bezier)
 //! ```
 //!
-//! On a grid `{u_i} × {v_j}` the sum factors (de Casteljau's tensor-product evaluation, in
-//! Bernstein form with tabulated bases):
+//! On a grid `{u_i} × {v_j}` the tensor-product sum factors (Bernstein form, tabulated bases):
 //!
 //! 1. per row `v_j` contract along `v`: `c_i = Σ_j b_ij B_j(v_j)` and `c'_i = Σ_j b_ij B'_j(v_j)`
 //!    (a curve in `u` and its cross derivative);
@@ -306,6 +305,41 @@ mod tests {
 
     /// The Pascal-triangle bases are the closed-form Bernstein polynomials, and the
     /// derivative rows are their exact derivatives (checked against central differences).
+    /// The grid kernel equals the pointwise evaluation of [`super::super::eval::eval_patch`]
+    /// on a non-square, non-uniform grid, for a B-quad (`h = None`), a perturbed patch, and
+    /// a perturbed patch with `h = 0` (the bi-5 path must then reproduce the bi-3 one).
+    #[test]
+    fn grid_matches_pointwise() {
+        use super::super::eval::{eval_patch, Basis};
+        let val = |x: usize| ((x as f64 * 12.9898).sin() * 43758.5453).fract();
+        let g: Vec<V3<f64>> = (0..16)
+            .map(|i| [val(3 * i), val(3 * i + 1), val(3 * i + 2)])
+            .collect();
+        let h: Vec<V3<f64>> = (0..16)
+            .map(|i| [val(90 + 3 * i), val(91 + 3 * i), val(92 + 3 * i)])
+            .collect();
+        let zero = vec![[0.0; 3]; 16];
+        let us = [0.0, 0.1, 0.35, 0.5, 0.9, 1.0, 0.77];
+        let vs = [1.0, 0.0, 0.25];
+        let basis = GridBasis::new(&us, &vs);
+        assert_eq!(basis.len(), 21);
+        let (mut p, mut n) = (vec![[0.0; 3]; 21], vec![[0.0; 3]; 21]);
+        for h in [None, Some(&h[..]), Some(&zero[..])] {
+            basis.eval_patch(&g, h, &mut p, &mut n);
+            for (j, &v) in vs.iter().enumerate() {
+                for (i, &u) in us.iter().enumerate() {
+                    let s = eval_patch(&g, h, &Basis::new(u), &Basis::new(v));
+                    let k = j * us.len() + i;
+                    let want = s.normal();
+                    for c in 0..3 {
+                        assert!((p[k][c] - s.position[c]).abs() < 1e-14, "({u},{v})");
+                        assert!((n[k][c] - want[c]).abs() < 1e-12, "({u},{v})");
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn bases_are_bernstein() {
         let binom = |d: u32, i: u32| (1..=i).fold(1.0, |a, k| a * (d - k + 1) as f64 / k as f64);
