@@ -12,9 +12,17 @@
 //!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
 //!
 //! subsurf runs single-threaded (a one-thread rayon pool) and on all cores. `--memory` runs one
-//! side only and prints the process's peak resident memory.
+//! side only and prints the process's peak resident memory. `--cpu` times the single-threaded
+//! runs (OpenSubdiv and subsurf 1T) in CPU time of the running thread, so that time spent
+//! waiting for a core on a loaded machine is left out; multi-threaded runs stay wall-clock.
 
 use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
+
+/// With `--features mimalloc`, subsurf's allocations (not OpenSubdiv's, which go through C++
+/// `new`) use mimalloc, which reuses freed pages instead of returning them to the kernel.
+#[cfg(feature = "mimalloc")]
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use std::time::Instant;
 use subsurf::{Refiner, Topology};
 
@@ -23,7 +31,34 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// Whether single-thread timings are CPU time of the running thread (`--cpu`) rather than
+/// wall-clock time: on a loaded machine, time spent waiting for a core is left out.
+static CPU_TIME: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
+/// CPU time of the calling thread in ms (`/proc/thread-self/schedstat`, nanoseconds on a core).
+/// The kernel updates that figure at scheduler ticks and switches; yielding first forces an
+/// update, so short runs are not rounded to a tick.
+fn thread_cpu_ms() -> f64 {
+    std::thread::yield_now();
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map(|ns| ns / 1e6)
+        .unwrap_or(f64::NAN)
+}
+
+/// Time of `f` in ms: thread CPU time with `--cpu`, else wall-clock.
 fn ms<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    if *CPU_TIME.get().unwrap_or(&false) {
+        let t = thread_cpu_ms();
+        let r = f();
+        return (thread_cpu_ms() - t, r);
+    }
+    wall(f)
+}
+
+/// Wall-clock time of `f` in ms (multi-threaded runs).
+fn wall<T>(f: impl FnOnce() -> T) -> (f64, T) {
     let t = Instant::now();
     let r = f();
     (t.elapsed().as_secs_f64() * 1e3, r)
@@ -47,10 +82,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )
     .to_string();
     let path = args.first().cloned().unwrap_or(default_mesh);
-    let levels: Vec<usize> = match args.get(1) {
+    let levels: Vec<usize> = match args.get(1).filter(|s| !s.is_empty()) {
         Some(s) => vec![s.parse()?],
         None => vec![3, 4, 5],
     };
+    CPU_TIME.get_or_init(|| args.iter().any(|a| a == "--cpu"));
     let runs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(7);
     let memory = args
         .iter()
@@ -111,7 +147,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 })
             });
             sa.push(t);
-            let (t, _) = ms(|| {
+            let (t, _) = wall(|| {
                 let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
                 r.refine_positions(&mesh.positions)
             });
@@ -127,7 +163,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for _ in 0..runs {
             ob.push(ms(|| osd.interpolate(&mesh.positions).unwrap()).0);
             sb.push(one.install(|| ms(|| ours.refine_positions(&mesh.positions)).0));
-            pb.push(ms(|| ours.refine_positions(&mesh.positions)).0);
+            pb.push(wall(|| ours.refine_positions(&mesh.positions)).0);
             os.push(ms(|| osd_st.update(&mesh.positions).unwrap()).0);
             ss.push(one.install(|| ms(|| table.apply_serial(&mesh.positions, &mut out)).0));
         }

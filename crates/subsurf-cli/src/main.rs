@@ -1,13 +1,20 @@
 //! The `subsurf` command-line tool.
 
 mod cmd_bench;
+mod cmd_eval;
 mod cmd_gpu_info;
 mod cmd_info;
+mod cmd_limit;
 mod cmd_prep;
 mod cmd_refine;
 mod common;
 
 use clap::{Parser, Subcommand};
+
+/// mimalloc keeps freed pages for reuse instead of handing them back to the kernel, which saves
+/// the page faults that otherwise dominate refinement of large meshes.
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 /// Subdivision surfaces: Catmull-Clark refinement, limit surfaces and p-rep conversion.
 #[derive(Debug, Parser)]
@@ -29,6 +36,10 @@ enum Command {
     Prep(cmd_prep::PrepArgs),
     /// Describe the GPU adapter and its limits (SUBSURF_ADAPTER, WGPU_BACKEND respected).
     GpuInfo(cmd_gpu_info::GpuInfoArgs),
+    /// Tessellate the limit surface (watertight, with normals).
+    Limit(cmd_limit::LimitArgs),
+    /// Sample limit positions and derivatives on every ptex face.
+    Eval(cmd_eval::EvalArgs),
 }
 
 fn main() {
@@ -39,6 +50,8 @@ fn main() {
         Command::Bench(a) => cmd_bench::run(a),
         Command::Prep(a) => cmd_prep::run(a),
         Command::GpuInfo(a) => cmd_gpu_info::run(a),
+        Command::Limit(a) => cmd_limit::run(a),
+        Command::Eval(a) => cmd_eval::run(a),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");

@@ -16,6 +16,7 @@
 
 pub mod error;
 pub mod io;
+pub mod limit;
 pub mod mesh;
 pub mod options;
 pub mod patch;

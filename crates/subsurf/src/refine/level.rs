@@ -18,9 +18,11 @@
 
 use super::super::topology::tags::{self, rule};
 use super::super::topology::Topology;
+use super::par;
 use crate::options::CreaseMethod;
 use crate::rules::crease;
 use crate::SHARPNESS_INFINITE;
+use rayon::prelude::*;
 
 /// Position in child face `j` of a parent face of size `n` of the given slot (0..4).
 #[inline]
@@ -46,6 +48,11 @@ fn child_end(ev: [u32; 2], v: u32, next: bool) -> u32 {
 }
 
 /// Refines `p` once; returns the child topology with its sharpness, tags and rules.
+///
+/// Every child table is filled in place: its row starts follow from the parent's offsets
+/// (a child of a vertex has the parent vertex's ring sizes, a face point as many faces and
+/// edges as its face has corners, an edge point `2k` faces and `2 + k` edges for `k` incident
+/// faces), so each table is allocated once at its exact size and filled in parallel chunks.
 pub fn refine_topology(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
         p.num_vertices(),
@@ -57,268 +64,313 @@ pub fn refine_topology(p: &Topology) -> Topology {
     let echild = |e: usize| (nv + nf + e) as u32;
     let cv = nv + nf + ne;
     let (cf, ce) = (nc, nc + 2 * ne);
+    let fo = |f: usize| p.face_offsets[f] as usize;
+    let efo = |e: usize| p.edge_face_offsets[e] as usize;
+    let (fb, eb, vb) = (par::bounds(nf), par::bounds(ne), par::bounds(nv));
+    let (fr, er, vr) = (par::ranges(&fb), par::ranges(&eb), par::ranges(&vb));
 
     // Faces: vertices and edges.
-    let face_offsets: Vec<u32> = (0..=cf as u32).map(|i| 4 * i).collect();
+    let face_offsets = iota(cf + 1, |i| 4 * i as u32);
     let mut face_verts = vec![0u32; 4 * cf];
     let mut face_edges = vec![0u32; 4 * cf];
-    for f in 0..nf {
-        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-        let fv = &p.face_verts[s..s + n];
-        let fe = &p.face_edges[s..s + n];
-        for j in 0..n {
-            let jp = if j == 0 { n - 1 } else { j - 1 };
-            let c = 4 * (s + j);
-            face_verts[c + pos(n, j, 0) as usize] = fv[j];
-            face_verts[c + pos(n, j, 1) as usize] = echild(fe[j] as usize);
-            face_verts[c + pos(n, j, 2) as usize] = fchild(f);
-            face_verts[c + pos(n, j, 3) as usize] = echild(fe[jp] as usize);
-            let en = fe[j] as usize;
-            let ep = fe[jp] as usize;
-            face_edges[c + pos(n, j, 0) as usize] =
-                (nc + 2 * en) as u32 + child_end(p.edge_verts[en], fv[j], true);
-            face_edges[c + pos(n, j, 1) as usize] = (s + j) as u32;
-            face_edges[c + pos(n, j, 2) as usize] = (s + jp) as u32;
-            face_edges[c + pos(n, j, 3) as usize] =
-                (nc + 2 * ep) as u32 + child_end(p.edge_verts[ep], fv[j], false);
-        }
-    }
-
-    // Edges: vertices, faces, sharpness, tags.
     let mut edge_verts = vec![[0u32; 2]; ce];
-    let mut edge_face_counts = vec![0u32; ce];
-    for f in 0..nf {
-        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-        for j in 0..n {
-            edge_verts[s + j] = [fchild(f), echild(p.face_edges[s + j] as usize)];
-            edge_face_counts[s + j] = 2;
-        }
-    }
-    for e in 0..ne {
-        let ev = p.edge_verts[e];
-        edge_verts[nc + 2 * e] = [echild(e), ev[0]];
-        edge_verts[nc + 2 * e + 1] = [echild(e), ev[1]];
-        let k = p.edge_faces(e).len() as u32;
-        edge_face_counts[nc + 2 * e] = k;
-        edge_face_counts[nc + 2 * e + 1] = k;
-    }
-    let edge_face_offsets = crate::topology::offsets_from_counts(&edge_face_counts);
-    let total_ef = edge_face_offsets[ce] as usize;
+    fr.clone()
+        .into_par_iter()
+        .zip(par::split(&mut face_verts, &fb, |f| 4 * fo(f)))
+        .zip(par::split(&mut face_edges, &fb, |f| 4 * fo(f)))
+        .zip(par::split(&mut edge_verts[..nc], &fb, fo))
+        .for_each(|(((r, cfv), cfe), cev)| {
+            let base = fo(r.start);
+            for f in r {
+                let (s, n) = (fo(f), fo(f + 1) - fo(f));
+                let fv = &p.face_verts[s..s + n];
+                let fe = &p.face_edges[s..s + n];
+                // Which child of face edge j touches corner j (the other touches corner j+1).
+                let end_at = |j: usize| child_end(p.edge_verts[fe[j] as usize], fv[j], true);
+                let last = end_at(n - 1);
+                let mut prev = last;
+                for j in 0..n {
+                    let jp = if j == 0 { n - 1 } else { j - 1 };
+                    let a = if j + 1 == n { last } else { end_at(j) };
+                    let c = 4 * (s + j - base);
+                    let q = |slot| c + pos(n, j, slot) as usize;
+                    cfv[q(0)] = fv[j];
+                    cfv[q(1)] = echild(fe[j] as usize);
+                    cfv[q(2)] = fchild(f);
+                    cfv[q(3)] = echild(fe[jp] as usize);
+                    cfe[q(0)] = (nc + 2 * fe[j] as usize) as u32 + a;
+                    cfe[q(1)] = (s + j) as u32;
+                    cfe[q(2)] = (s + jp) as u32;
+                    cfe[q(3)] = (nc + 2 * fe[jp] as usize) as u32 + (1 - prev);
+                    cev[s + j - base] = [fchild(f), echild(fe[j] as usize)];
+                    prev = a;
+                }
+            }
+        });
+
+    // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
+    // children of parent edge e have as many as e.
+    let mut edge_face_offsets = vec![0u32; ce + 1];
+    let total_ef = 2 * nc + 2 * efo(ne);
     let mut edge_faces = vec![0u32; total_ef];
     let mut edge_face_local = vec![0u16; total_ef];
-    for f in 0..nf {
-        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-        for j in 0..n {
-            let jn = if j + 1 == n { 0 } else { j + 1 };
-            let o = edge_face_offsets[s + j] as usize;
-            edge_faces[o] = (s + j) as u32;
-            edge_face_local[o] = pos(n, j, 1);
-            edge_faces[o + 1] = (s + jn) as u32;
-            edge_face_local[o + 1] = pos(n, jn, 2);
-        }
-    }
-    for e in 0..ne {
-        let ev = p.edge_verts[e];
-        let mut fill = [
-            edge_face_offsets[nc + 2 * e] as usize,
-            edge_face_offsets[nc + 2 * e + 1] as usize,
-        ];
-        for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
-            let (s, n) = (p.face_offsets[f as usize] as usize, p.face_size(f as usize));
-            let k = k as usize;
-            let kn = if k + 1 == n { 0 } else { k + 1 };
-            let end = child_end(ev, p.face_verts[s + k], true) as usize;
-            edge_faces[fill[end]] = (s + k) as u32;
-            edge_face_local[fill[end]] = pos(n, k, 0);
-            fill[end] += 1;
-            let end = child_end(ev, p.face_verts[s + kn], false) as usize;
-            edge_faces[fill[end]] = (s + kn) as u32;
-            edge_face_local[fill[end]] = pos(n, kn, 3);
-            fill[end] += 1;
-        }
-    }
-
-    // Vertices: faces and edges in ring order.
-    let mut vf_counts = vec![0u32; cv];
-    let mut ve_counts = vec![0u32; cv];
-    for v in 0..nv {
-        vf_counts[v] = p.vertex_faces(v).len() as u32;
-        ve_counts[v] = p.valence(v) as u32;
-    }
-    for f in 0..nf {
-        let n = p.face_size(f) as u32;
-        vf_counts[nv + f] = n;
-        ve_counts[nv + f] = n;
-    }
-    for e in 0..ne {
-        let k = p.edge_faces(e).len() as u32;
-        vf_counts[nv + nf + e] = 2 * k;
-        ve_counts[nv + nf + e] = 2 + k;
-    }
-    let vert_face_offsets = crate::topology::offsets_from_counts(&vf_counts);
-    let vert_edge_offsets = crate::topology::offsets_from_counts(&ve_counts);
-    let mut vert_faces = vec![0u32; vert_face_offsets[cv] as usize];
-    let mut vert_face_local = vec![0u16; vert_faces.len()];
-    let mut vert_edges = vec![0u32; vert_edge_offsets[cv] as usize];
-    let mut vert_tags = vec![0u16; cv];
-    for v in 0..nv {
-        let o = vert_face_offsets[v] as usize;
-        for (i, (&f, &k)) in p
-            .vertex_faces(v)
-            .iter()
-            .zip(p.vertex_faces_local(v))
+    {
+        let (efo_f, efo_e) = edge_face_offsets.split_at_mut(nc + 1);
+        efo_f
+            .par_chunks_mut(1 << 14)
             .enumerate()
-        {
-            let (s, n) = (p.face_offsets[f as usize] as usize, p.face_size(f as usize));
-            vert_faces[o + i] = (s + k as usize) as u32;
-            vert_face_local[o + i] = pos(n, k as usize, 0);
-        }
-        let o = vert_edge_offsets[v] as usize;
-        let pe = p.vertex_edges(v);
-        for (i, &e) in pe.iter().enumerate() {
-            let ev = p.edge_verts[e as usize];
-            let end = if ev[0] != ev[1] {
-                (ev[0] != v as u32) as u32
-            } else {
-                (i > 0 && pe[i - 1] == e) as u32
-            };
-            vert_edges[o + i] = (nc + 2 * e as usize) as u32 + end;
-        }
-        vert_tags[v] = p.vert_tags[v]
-            & !(tags::V_SEMI_SHARP
-                | tags::V_INF_SHARP
-                | tags::V_SEMI_SHARP_EDGES
-                | tags::V_INF_SHARP_EDGES);
-    }
-    for f in 0..nf {
-        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-        let (of, oe) = (
-            vert_face_offsets[nv + f] as usize,
-            vert_edge_offsets[nv + f] as usize,
-        );
-        for j in 0..n {
-            vert_faces[of + j] = (s + j) as u32;
-            vert_face_local[of + j] = pos(n, j, 2);
-            vert_edges[oe + j] = (s + if j == 0 { n - 1 } else { j - 1 }) as u32;
-        }
-        if n != 4 {
-            vert_tags[nv + f] |= tags::V_XORDINARY;
-        }
-    }
-    for e in 0..ne {
-        let ev = p.edge_verts[e];
-        let cvx = nv + nf + e;
-        let (of, oe) = (
-            vert_face_offsets[cvx] as usize,
-            vert_edge_offsets[cvx] as usize,
-        );
-        let (c0, c1) = ((nc + 2 * e) as u32, (nc + 2 * e + 1) as u32);
-        let faces = p.edge_faces(e);
-        let locals = p.edge_faces_local(e);
-        let et = p.edge_tags[e];
-        let mut vt = 0u16;
-        if et & tags::E_BOUNDARY != 0 {
-            vt |= tags::V_BOUNDARY;
-        }
-        let corner = |i: usize| -> (usize, usize, usize, usize) {
-            let f = faces[i] as usize;
-            let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
-            let k = locals[i] as usize;
-            (s, n, k, if k + 1 == n { 0 } else { k + 1 })
-        };
-        let forward = |i: usize| -> bool {
-            let (s, _, k, _) = corner(i);
-            p.face_verts[s + k] == ev[0]
-        };
-        let manifold = et & tags::E_NON_MANIFOLD == 0 && ev[0] != ev[1];
-        if manifold && faces.len() == 2 {
-            let (ia, ib) = if forward(0) { (0, 1) } else { (1, 0) };
-            let (sa, na, ka, kan) = corner(ia);
-            let (sb, nb, kb, kbn) = corner(ib);
-            vert_faces[of..of + 4].copy_from_slice(&[
-                (sa + kan) as u32,
-                (sa + ka) as u32,
-                (sb + kbn) as u32,
-                (sb + kb) as u32,
-            ]);
-            vert_face_local[of..of + 4].copy_from_slice(&[
-                pos(na, kan, 3),
-                pos(na, ka, 1),
-                pos(nb, kbn, 3),
-                pos(nb, kb, 1),
-            ]);
-            vert_edges[oe..oe + 4].copy_from_slice(&[c1, (sa + ka) as u32, c0, (sb + kb) as u32]);
-        } else if manifold && faces.len() == 1 {
-            let (s, n, k, kn) = corner(0);
-            vert_faces[of..of + 2].copy_from_slice(&[(s + kn) as u32, (s + k) as u32]);
-            vert_face_local[of..of + 2].copy_from_slice(&[pos(n, kn, 3), pos(n, k, 1)]);
-            let (first, last) = if forward(0) { (c1, c0) } else { (c0, c1) };
-            vert_edges[oe..oe + 3].copy_from_slice(&[first, (s + k) as u32, last]);
-        } else {
-            vt |= tags::V_NON_MANIFOLD;
-            vert_edges[oe] = c0;
-            vert_edges[oe + 1] = c1;
-            for i in 0..faces.len() {
-                let (s, n, k, kn) = corner(i);
-                vert_faces[of + 2 * i] = (s + k) as u32;
-                vert_face_local[of + 2 * i] = pos(n, k, 1);
-                vert_faces[of + 2 * i + 1] = (s + kn) as u32;
-                vert_face_local[of + 2 * i + 1] = pos(n, kn, 3);
-                vert_edges[oe + 2 + i] = (s + k) as u32;
-            }
-        }
-        if et & tags::E_NON_MANIFOLD != 0 {
-            vt |= tags::V_NON_MANIFOLD;
-        }
-        vert_tags[cvx] = vt;
+            .for_each(|(c, o)| {
+                for (i, x) in o.iter_mut().enumerate() {
+                    *x = 2 * ((c << 14) + i) as u32;
+                }
+            });
+        let (ef_f, ef_e) = edge_faces.split_at_mut(2 * nc);
+        let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
+        fr.clone()
+            .into_par_iter()
+            .zip(par::split(ef_f, &fb, |f| 2 * fo(f)))
+            .zip(par::split(el_f, &fb, |f| 2 * fo(f)))
+            .for_each(|((r, ef), el)| {
+                let base = 2 * fo(r.start);
+                for f in r {
+                    let (s, n) = (fo(f), fo(f + 1) - fo(f));
+                    for j in 0..n {
+                        let jn = if j + 1 == n { 0 } else { j + 1 };
+                        let o = 2 * (s + j) - base;
+                        ef[o] = (s + j) as u32;
+                        el[o] = pos(n, j, 1);
+                        ef[o + 1] = (s + jn) as u32;
+                        el[o + 1] = pos(n, jn, 2);
+                    }
+                }
+            });
+        let (_, ev_e) = edge_verts.split_at_mut(nc);
+        er.clone()
+            .into_par_iter()
+            .zip(par::split(ev_e, &eb, |e| 2 * e))
+            .zip(par::split(efo_e, &eb, |e| 2 * e))
+            .zip(par::split(ef_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split(el_e, &eb, |e| 2 * efo(e)))
+            .for_each(|((((r, cev), co), ef), el)| {
+                let (ebase, fbase) = (2 * r.start, 2 * efo(r.start));
+                for e in r {
+                    let ev = p.edge_verts[e];
+                    let i = 2 * e - ebase;
+                    cev[i] = [echild(e), ev[0]];
+                    cev[i + 1] = [echild(e), ev[1]];
+                    let k = efo(e + 1) - efo(e);
+                    co[i] = (2 * nc + 2 * efo(e) + k) as u32;
+                    co[i + 1] = (2 * nc + 2 * efo(e + 1)) as u32;
+                    let mut fill = [2 * efo(e) - fbase, 2 * efo(e) + k - fbase];
+                    for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
+                        let (s, n) = (fo(f as usize), p.face_size(f as usize));
+                        let k = k as usize;
+                        let kn = if k + 1 == n { 0 } else { k + 1 };
+                        let end = child_end(ev, p.face_verts[s + k], true) as usize;
+                        ef[fill[end]] = (s + k) as u32;
+                        el[fill[end]] = pos(n, k, 0);
+                        fill[end] += 1;
+                        let end = child_end(ev, p.face_verts[s + kn], false) as usize;
+                        ef[fill[end]] = (s + kn) as u32;
+                        el[fill[end]] = pos(n, kn, 3);
+                        fill[end] += 1;
+                    }
+                }
+            });
     }
 
-    // Sharpness.
+    // Edge sharpness and tags (children of faces are smooth).
     let method = p.options.crease_method;
     let mut edge_sharpness = vec![0.0f32; ce];
     let mut edge_tags = vec![0u8; ce];
-    let mut around: Vec<f32> = Vec::new();
-    for e in 0..ne {
-        let s = p.edge_sharpness[e];
-        let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
-        for end in 0..2 {
-            let c = nc + 2 * e + end;
-            let cs = if crease::is_infinite(s) {
-                SHARPNESS_INFINITE
-            } else if crease::is_semi_sharp(s) {
-                if method == CreaseMethod::Uniform {
-                    crease::decrement(s)
-                } else {
-                    let v = p.edge_verts[e][end] as usize;
-                    around.clear();
-                    around.extend(
-                        p.vertex_edges(v)
-                            .iter()
-                            .map(|&x| p.edge_sharpness[x as usize]),
-                    );
-                    crease::subdivide_edge_sharpness_at_vertex(method, s, &around)
+    er.clone()
+        .into_par_iter()
+        .zip(par::split(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
+        .zip(par::split(&mut edge_tags[nc..], &eb, |e| 2 * e))
+        .for_each(|((r, es), et_out)| {
+            let base = 2 * r.start;
+            let mut around: Vec<f32> = Vec::new();
+            for e in r {
+                let s = p.edge_sharpness[e];
+                let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+                for end in 0..2 {
+                    let cs = if crease::is_infinite(s) {
+                        SHARPNESS_INFINITE
+                    } else if crease::is_semi_sharp(s) {
+                        if method == CreaseMethod::Uniform {
+                            crease::decrement(s)
+                        } else {
+                            let v = p.edge_verts[e][end] as usize;
+                            around.clear();
+                            around.extend(
+                                p.vertex_edges(v)
+                                    .iter()
+                                    .map(|&x| p.edge_sharpness[x as usize]),
+                            );
+                            crease::subdivide_edge_sharpness_at_vertex(method, s, &around)
+                        }
+                    } else {
+                        0.0
+                    };
+                    es[2 * e - base + end] = cs;
+                    et_out[2 * e - base + end] = et | sharp_tag(cs);
                 }
-            } else {
-                0.0
-            };
-            edge_sharpness[c] = cs;
-            edge_tags[c] = et | sharp_tag(cs);
-        }
-    }
-    let mut vert_sharpness = vec![0.0f32; cv];
-    for v in 0..nv {
-        vert_sharpness[v] = crease::decrement(p.vert_sharpness[v]);
-    }
+            }
+        });
+
+    let vert_sharpness = {
+        let mut s = vec![0.0f32; cv];
+        s[..nv]
+            .par_iter_mut()
+            .zip(&p.vert_sharpness[..nv])
+            .with_min_len(4096)
+            .for_each(|(c, &x)| *c = crease::decrement(x));
+        s
+    };
+
+    // Vertices: offsets. Children of vertices keep the parent's ring sizes.
+    let (vf0, ve0) = (
+        p.vert_face_offsets[nv] as usize,
+        p.vert_edge_offsets[nv] as usize,
+    );
+    let vert_face_offsets =
+        child_vertex_offsets(p, &p.vert_face_offsets, vf0 + nc, |e| vf0 + nc + 2 * efo(e));
+    let vert_edge_offsets = child_vertex_offsets(p, &p.vert_edge_offsets, ve0 + nc, |e| {
+        ve0 + nc + 2 * e + efo(e)
+    });
+    let total_vf = vf0 + nc + 2 * efo(ne);
+    let total_ve = ve0 + nc + 2 * ne + efo(ne);
+    let mut vert_faces = vec![0u32; total_vf];
+    let mut vert_face_local = vec![0u16; total_vf];
+    let mut vert_edges = vec![0u32; total_ve];
+    let mut vert_tags = vec![0u16; cv];
+    let mut vert_rule = vec![rule::SMOOTH; cv];
+    let (vf_v, vf_rest) = vert_faces.split_at_mut(vf0);
+    let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
+    let (vl_v, vl_rest) = vert_face_local.split_at_mut(vf0);
+    let (vl_f, vl_e) = vl_rest.split_at_mut(nc);
+    let (ve_v, ve_rest) = vert_edges.split_at_mut(ve0);
+    let (ve_f, ve_e) = ve_rest.split_at_mut(nc);
+    let (vt_v, vt_rest) = vert_tags.split_at_mut(nv);
+    let (vt_f, vt_e) = vt_rest.split_at_mut(nf);
+    let (vr_v, vr_rest) = vert_rule.split_at_mut(nv + nf);
+
+    // Children of vertices: rings mapped to the children of the ring's faces and edges; tags
+    // and rules inherited, recounted where semi-sharp features decayed.
+    let pvfo = |v: usize| p.vert_face_offsets[v] as usize;
+    let pveo = |v: usize| p.vert_edge_offsets[v] as usize;
+    vr.clone()
+        .into_par_iter()
+        .zip(par::split(vf_v, &vb, pvfo))
+        .zip(par::split(vl_v, &vb, pvfo))
+        .zip(par::split(ve_v, &vb, pveo))
+        .zip(par::split(vt_v, &vb, |v| v))
+        .zip(par::split(&mut vr_v[..nv], &vb, |v| v))
+        .for_each(|(((((r, vf), vl), ve), vt), vru)| {
+            let (fbase, ebase, vbase) = (pvfo(r.start), pveo(r.start), r.start);
+            for v in r {
+                for i in pvfo(v)..pvfo(v + 1) {
+                    let f = p.vert_faces[i] as usize;
+                    let k = p.vert_face_local[i] as usize;
+                    let s = fo(f);
+                    vf[i - fbase] = (s + k) as u32;
+                    vl[i - fbase] = pos(fo(f + 1) - s, k, 0);
+                }
+                let pe = p.vertex_edges(v);
+                let (mut inf, mut semi) = (0usize, 0usize);
+                for (i, &e) in pe.iter().enumerate() {
+                    let ev = p.edge_verts[e as usize];
+                    let end = if ev[0] != ev[1] {
+                        (ev[0] != v as u32) as u32
+                    } else {
+                        (i > 0 && pe[i - 1] == e) as u32
+                    };
+                    let ce = (nc + 2 * e as usize) as u32 + end;
+                    ve[pveo(v) + i - ebase] = ce;
+                    let et = edge_tags[ce as usize];
+                    inf += (et & tags::E_INF_SHARP != 0) as usize;
+                    semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+                }
+                let s = vert_sharpness[v];
+                let pt = p.vert_tags[v];
+                vt[v - vbase] = (pt
+                    & !(tags::V_SEMI_SHARP
+                        | tags::V_INF_SHARP
+                        | tags::V_SEMI_SHARP_EDGES
+                        | tags::V_INF_SHARP_EDGES))
+                    | sharp_vertex_tags(s, inf, semi);
+                vru[v - vbase] =
+                    if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
+                        rule::determine(0.0, inf + semi)
+                    } else {
+                        p.vert_rule[v]
+                    };
+            }
+        });
+
+    // Face points: smooth, no sharp edges.
+    fr.clone()
+        .into_par_iter()
+        .zip(par::split(vf_f, &fb, fo))
+        .zip(par::split(vl_f, &fb, fo))
+        .zip(par::split(ve_f, &fb, fo))
+        .zip(par::split(vt_f, &fb, |f| f))
+        .for_each(|((((r, vf), vl), ve), vt)| {
+            let (base, fbase) = (fo(r.start), r.start);
+            for f in r {
+                let (s, n) = (fo(f), fo(f + 1) - fo(f));
+                for j in 0..n {
+                    vf[s + j - base] = (s + j) as u32;
+                    vl[s + j - base] = pos(n, j, 2);
+                    ve[s + j - base] = (s + if j == 0 { n - 1 } else { j - 1 }) as u32;
+                }
+                if n != 4 {
+                    vt[f - fbase] = tags::V_XORDINARY;
+                }
+            }
+        });
+
+    // Edge points: only their two child edges can be sharp.
+    er.clone()
+        .into_par_iter()
+        .zip(par::split(vf_e, &eb, |e| 2 * efo(e)))
+        .zip(par::split(vl_e, &eb, |e| 2 * efo(e)))
+        .zip(par::split(ve_e, &eb, |e| 2 * e + efo(e)))
+        .zip(par::split(vt_e, &eb, |e| e))
+        .zip(par::split(vr_rest, &eb, |e| e))
+        .for_each(|(((((r, vf), vl), ve), vt), vru)| {
+            let (fbase, ebase, base) = (2 * efo(r.start), 2 * r.start + efo(r.start), r.start);
+            for e in r {
+                let of = 2 * efo(e) - fbase;
+                let oe = 2 * e + efo(e) - ebase;
+                let (t, rl) = edge_point_ring(
+                    p,
+                    e,
+                    &mut vf[of..],
+                    &mut vl[of..],
+                    &mut ve[oe..],
+                    &edge_tags,
+                );
+                vt[e - base] = t;
+                vru[e - base] = rl;
+            }
+        });
 
     let mut face_is_hole = vec![false; nc];
-    for f in 0..nf {
-        if p.face_is_hole[f] {
-            let (s, e) = (p.face_offsets[f] as usize, p.face_offsets[f + 1] as usize);
-            face_is_hole[s..e].fill(true);
+    if p.face_is_hole.iter().any(|&h| h) {
+        for f in 0..nf {
+            if p.face_is_hole[f] {
+                face_is_hole[fo(f)..fo(f + 1)].fill(true);
+                for i in fo(f)..fo(f + 1) {
+                    for &v in &face_verts[4 * i..4 * i + 4] {
+                        vert_tags[v as usize] |= tags::V_INCIDENT_HOLE;
+                    }
+                }
+            }
         }
     }
 
-    let mut child = Topology {
+    Topology {
         options: p.options,
         num_vertices: cv,
         face_offsets,
@@ -338,10 +390,132 @@ pub fn refine_topology(p: &Topology) -> Topology {
         face_is_hole,
         edge_tags,
         vert_tags,
-        vert_rule: vec![rule::SMOOTH; cv],
+        vert_rule,
+    }
+}
+
+/// `(0..len).map(f)`, filled in parallel.
+fn iota(len: usize, f: impl Fn(usize) -> u32 + Sync) -> Vec<u32> {
+    let mut out = vec![0u32; len];
+    out.par_chunks_mut(1 << 14).enumerate().for_each(|(c, o)| {
+        for (i, x) in o.iter_mut().enumerate() {
+            *x = f((c << 14) + i);
+        }
+    });
+    out
+}
+
+/// Offsets of a child vertex table: the parent's for children of vertices, then `face_start +
+/// face_offsets[f]` for face points, then `edge_start(e)` for edge points (`e` in `0..=E`).
+fn child_vertex_offsets(
+    p: &Topology,
+    parent: &[u32],
+    face_start: usize,
+    edge_start: impl Fn(usize) -> usize + Sync,
+) -> Vec<u32> {
+    let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
+    let mut out = vec![0u32; nv + nf + ne + 1];
+    let (a, rest) = out.split_at_mut(nv);
+    let (b, c) = rest.split_at_mut(nf);
+    a.copy_from_slice(&parent[..nv]);
+    let f0 = face_start - p.num_corners();
+    b.par_iter_mut()
+        .zip(&p.face_offsets[..nf])
+        .with_min_len(4096)
+        .for_each(|(x, &o)| *x = (f0 + o as usize) as u32);
+    c.par_iter_mut()
+        .enumerate()
+        .with_min_len(4096)
+        .for_each(|(e, x)| *x = edge_start(e) as u32);
+    out
+}
+
+/// Writes the ring of the edge point of parent edge `e` (faces, their local corners, edges)
+/// and returns its tags and rule.
+fn edge_point_ring(
+    p: &Topology,
+    e: usize,
+    vf: &mut [u32],
+    vl: &mut [u16],
+    ve: &mut [u32],
+    child_edge_tags: &[u8],
+) -> (u16, u8) {
+    let nc = p.num_corners();
+    let ev = p.edge_verts[e];
+    let (c0, c1) = ((nc + 2 * e) as u32, (nc + 2 * e + 1) as u32);
+    let faces = p.edge_faces(e);
+    let locals = p.edge_faces_local(e);
+    let et = p.edge_tags[e];
+    let mut vt = 0u16;
+    if et & tags::E_BOUNDARY != 0 {
+        vt |= tags::V_BOUNDARY;
+    }
+    let corner = |i: usize| -> (usize, usize, usize, usize) {
+        let f = faces[i] as usize;
+        let (s, n) = (p.face_offsets[f] as usize, p.face_size(f));
+        let k = locals[i] as usize;
+        (s, n, k, if k + 1 == n { 0 } else { k + 1 })
     };
-    assign_child_rules(p, &mut child);
-    child
+    let forward = |i: usize| -> bool {
+        let (s, _, k, _) = corner(i);
+        p.face_verts[s + k] == ev[0]
+    };
+    let manifold = et & tags::E_NON_MANIFOLD == 0 && ev[0] != ev[1];
+    if manifold && faces.len() == 2 {
+        let (ia, ib) = if forward(0) { (0, 1) } else { (1, 0) };
+        let (sa, na, ka, kan) = corner(ia);
+        let (sb, nb, kb, kbn) = corner(ib);
+        vf[..4].copy_from_slice(&[
+            (sa + kan) as u32,
+            (sa + ka) as u32,
+            (sb + kbn) as u32,
+            (sb + kb) as u32,
+        ]);
+        vl[..4].copy_from_slice(&[
+            pos(na, kan, 3),
+            pos(na, ka, 1),
+            pos(nb, kbn, 3),
+            pos(nb, kb, 1),
+        ]);
+        ve[..4].copy_from_slice(&[c1, (sa + ka) as u32, c0, (sb + kb) as u32]);
+    } else if manifold && faces.len() == 1 {
+        let (s, n, k, kn) = corner(0);
+        vf[..2].copy_from_slice(&[(s + kn) as u32, (s + k) as u32]);
+        vl[..2].copy_from_slice(&[pos(n, kn, 3), pos(n, k, 1)]);
+        let (first, last) = if forward(0) { (c1, c0) } else { (c0, c1) };
+        ve[..3].copy_from_slice(&[first, (s + k) as u32, last]);
+    } else {
+        vt |= tags::V_NON_MANIFOLD;
+        ve[0] = c0;
+        ve[1] = c1;
+        for i in 0..faces.len() {
+            let (s, n, k, kn) = corner(i);
+            vf[2 * i] = (s + k) as u32;
+            vl[2 * i] = pos(n, k, 1);
+            vf[2 * i + 1] = (s + kn) as u32;
+            vl[2 * i + 1] = pos(n, kn, 3);
+            ve[2 + i] = (s + k) as u32;
+        }
+    }
+    if et & tags::E_NON_MANIFOLD != 0 {
+        vt |= tags::V_NON_MANIFOLD;
+    }
+    let (inf, semi) = [c0, c1].iter().fold((0, 0), |(i, s), &c| {
+        let t = child_edge_tags[c as usize];
+        (
+            i + (t & tags::E_INF_SHARP != 0) as usize,
+            s + (t & tags::E_SEMI_SHARP != 0) as usize,
+        )
+    });
+    vt |= sharp_vertex_tags(0.0, inf, semi);
+    let rl = if et & tags::E_SEMI_SHARP != 0 {
+        rule::determine(0.0, semi)
+    } else if et & tags::E_INF_SHARP != 0 {
+        rule::CREASE
+    } else {
+        rule::SMOOTH
+    };
+    (vt, rl)
 }
 
 fn sharp_vertex_tags(s: f32, inf: usize, semi: usize) -> u16 {
@@ -367,58 +541,5 @@ fn sharp_tag(s: f32) -> u8 {
         tags::E_SEMI_SHARP
     } else {
         0
-    }
-}
-
-/// Vertex sharpness tags and rules of the child level (OpenSubdiv `Refinement::
-/// reclassifySemisharpVertices` and the tag propagation before it).
-fn assign_child_rules(p: &Topology, c: &mut Topology) {
-    let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    let count_sharp = |c: &Topology, edges: &[u32]| -> (usize, usize) {
-        let (mut inf, mut semi) = (0usize, 0usize);
-        for &e in edges {
-            let et = c.edge_tags[e as usize];
-            inf += (et & tags::E_INF_SHARP != 0) as usize;
-            semi += (et & tags::E_SEMI_SHARP != 0) as usize;
-        }
-        (inf, semi)
-    };
-    // Children of vertices: inherit, and recount where semi-sharp features decayed.
-    for v in 0..nv {
-        let (inf, semi) = count_sharp(c, c.vertex_edges(v));
-        let s = c.vert_sharpness[v];
-        c.vert_tags[v] |= sharp_vertex_tags(s, inf, semi);
-        let pt = p.vert_tags[v];
-        c.vert_rule[v] = if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
-            rule::determine(0.0, inf + semi)
-        } else {
-            p.vert_rule[v]
-        };
-    }
-    // Face points are smooth and have no sharp edges (already so initialised).
-    // Edge points: only their two child edges can be sharp.
-    let nc = p.num_corners();
-    for e in 0..ne {
-        let v = nv + nf + e;
-        let (inf, semi) = count_sharp(c, &[(nc + 2 * e) as u32, (nc + 2 * e + 1) as u32]);
-        c.vert_tags[v] |= sharp_vertex_tags(0.0, inf, semi);
-        let et = p.edge_tags[e];
-        c.vert_rule[v] = if et & tags::E_SEMI_SHARP != 0 {
-            rule::determine(0.0, semi)
-        } else if et & tags::E_INF_SHARP != 0 {
-            rule::CREASE
-        } else {
-            rule::SMOOTH
-        };
-    }
-    debug_assert_eq!(c.num_vertices, nv + nf + ne);
-    for f in 0..c.num_faces() {
-        if c.face_is_hole[f] {
-            let (s, e) = (c.face_offsets[f] as usize, c.face_offsets[f + 1] as usize);
-            for i in s..e {
-                let v = c.face_verts[i] as usize;
-                c.vert_tags[v] |= tags::V_INCIDENT_HOLE;
-            }
-        }
     }
 }

@@ -4,6 +4,7 @@
 //! face's vertices), so each row refers to parent vertices only and one sparse table maps a
 //! level's vertex data to the next level's.
 
+use super::par;
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::Scheme;
 use crate::rules::catmark::{edge_mask, limit_mask, vertex_mask, VertexMask, VertexNeighbourhood};
@@ -65,50 +66,70 @@ pub(crate) struct Scratch {
 }
 
 /// Builds a table whose rows are written directly (no merging of repeated inputs).
-pub(crate) fn build_direct<F>(rows: usize, num_inputs: usize, row: F) -> StencilTable
+///
+/// Rows are sized first (`len(r)` where the size is known without building the row, else the
+/// row is built once to count it), then written in parallel into disjoint slices of tables
+/// allocated once at their exact size.
+pub(crate) fn build_direct<L, F>(rows: usize, num_inputs: usize, len: L, row: F) -> StencilTable
 where
+    L: Fn(usize) -> Option<usize> + Sync,
     F: Fn(usize, &mut Vec<u32>, &mut Vec<f32>, &mut Scratch) + Sync,
 {
-    let threads = rayon::current_num_threads().max(1);
-    let chunk = rows.div_ceil(threads * 4).max(4096);
-    let parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)> = (0..rows.div_ceil(chunk))
+    let b = par::bounds(rows);
+    let mut offsets = vec![0u32; rows + 1];
+    par::ranges(&b)
         .into_par_iter()
-        .map(|c| {
+        .zip(par::split(&mut offsets[1..], &b, |r| r))
+        .for_each(|(r, out)| {
             let mut scratch = Scratch::default();
-            let range = c * chunk..((c + 1) * chunk).min(rows);
-            let mut ends = Vec::with_capacity(range.len());
-            let mut idx = Vec::with_capacity(range.len() * 8);
-            let mut wts = Vec::with_capacity(range.len() * 8);
-            for r in range {
-                row(r, &mut idx, &mut wts, &mut scratch);
-                ends.push(idx.len() as u32);
+            let (mut idx, mut wts) = (Vec::new(), Vec::new());
+            let base = r.start;
+            for i in r {
+                out[i - base] = match len(i) {
+                    Some(n) => n as u32,
+                    None => {
+                        idx.clear();
+                        wts.clear();
+                        row(i, &mut idx, &mut wts, &mut scratch);
+                        idx.len() as u32
+                    }
+                };
             }
-            (ends, idx, wts)
-        })
-        .collect();
-    concat_parts(rows, num_inputs, parts)
-}
-
-fn concat_parts(
-    rows: usize,
-    num_inputs: usize,
-    parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)>,
-) -> StencilTable {
-    let total: usize = parts.iter().map(|p| p.1.len()).sum();
-    let mut t = StencilTable {
-        offsets: Vec::with_capacity(rows + 1),
-        indices: Vec::with_capacity(total),
-        weights: Vec::with_capacity(total),
-        num_inputs,
-    };
-    t.offsets.push(0);
-    for (ends, idx, wts) in parts {
-        let base = t.indices.len() as u32;
-        t.offsets.extend(ends.iter().map(|&e| base + e));
-        t.indices.extend_from_slice(&idx);
-        t.weights.extend_from_slice(&wts);
+        });
+    let mut acc = 0u32;
+    for o in &mut offsets[1..] {
+        acc += *o;
+        *o = acc;
     }
-    t
+    let total = acc as usize;
+    let mut indices = vec![0u32; total];
+    let mut weights = vec![0f32; total];
+    let start = |r: usize| offsets[r] as usize;
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut indices, &b, start))
+        .zip(par::split(&mut weights, &b, start))
+        .for_each(|((r, io), wo)| {
+            let mut scratch = Scratch::default();
+            let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
+            let base = start(r.start);
+            for i in r {
+                idx.clear();
+                wts.clear();
+                row(i, &mut idx, &mut wts, &mut scratch);
+                let s = start(i) - base;
+                for (k, (&x, &w)) in idx.iter().zip(&wts).enumerate() {
+                    io[s + k] = x;
+                    wo[s + k] = w;
+                }
+            }
+        });
+    StencilTable {
+        offsets,
+        indices,
+        weights,
+        num_inputs,
+    }
 }
 
 /// The stencils of one refinement step, in three tables evaluated in order:
@@ -234,15 +255,30 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
     let opts = p.options;
     let bilinear = opts.scheme == Scheme::Bilinear;
-    let face = build_direct(nf, nv, |f, idx, wts, _| {
-        let fv = p.face_vertices(f);
-        let w = 1.0 / fv.len() as f32;
-        idx.extend_from_slice(fv);
-        wts.extend(std::iter::repeat_n(w, fv.len()));
-    });
+    let face = build_direct(
+        nf,
+        nv,
+        |f| Some(p.face_size(f)),
+        |f, idx, wts, _| {
+            let fv = p.face_vertices(f);
+            let w = 1.0 / fv.len() as f32;
+            idx.extend_from_slice(fv);
+            wts.extend(std::iter::repeat_n(w, fv.len()));
+        },
+    );
     let inputs = nv + nf;
     let fp = |f: u32| nv as u32 + f;
-    let vertex = build_direct(nv, inputs, |v, idx, wts, s| {
+    let smooth_len = |v: usize| {
+        let (pr, nfc, nec) = (p.vert_rule[v], p.vertex_faces(v).len(), p.valence(v));
+        if bilinear {
+            Some(1)
+        } else if (pr == rule::SMOOTH || pr == rule::DART) && nfc == nec {
+            Some(2 * nfc + 1)
+        } else {
+            None
+        }
+    };
+    let vertex = build_direct(nv, inputs, smooth_len, |v, idx, wts, s| {
         if bilinear {
             idx.push(v as u32);
             wts.push(1.0);
@@ -295,7 +331,16 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
         idx.push(v as u32);
         wts.push(s.mask.vertex);
     });
-    let edge = build_direct(ne, inputs, |e, idx, wts, _| {
+    let edge_len = |e: usize| {
+        if bilinear {
+            Some(2)
+        } else if p.edge_sharpness[e] <= 0.0 {
+            Some(p.edge_faces(e).len() + 2)
+        } else {
+            None
+        }
+    };
+    let edge = build_direct(ne, inputs, edge_len, |e, idx, wts, _| {
         let ev = p.edge_verts[e];
         if bilinear {
             idx.extend_from_slice(&ev);

@@ -9,6 +9,9 @@
 //! - an edge used twice by one face gets a second, non-manifold instance;
 //! - an edge with more than two faces, or two faces wound the same way, is non-manifold.
 
+use crate::refine::par;
+use rayon::prelude::*;
+
 /// The relations derived from face-vertex lists (see [`super::Topology`] for each array).
 #[derive(Debug, Default, Clone)]
 pub(crate) struct Relations {
@@ -63,80 +66,117 @@ pub(crate) fn build_relations(
 ) -> Relations {
     let nc = face_verts.len();
     let nf = face_offsets.len() - 1;
-    // Next vertex of each corner, and the face and local index of each corner.
+    let fo = |f: usize| face_offsets[f] as usize;
+    // Next vertex of each corner, and the face of each corner.
+    let fb = par::bounds(nf);
     let mut next_vert = vec![0u32; nc];
     let mut corner_face = vec![0u32; nc];
-    for f in 0..nf {
-        let (s, e) = (face_offsets[f] as usize, face_offsets[f + 1] as usize);
-        for c in s..e {
-            next_vert[c] = face_verts[if c + 1 == e { s } else { c + 1 }];
-            corner_face[c] = f as u32;
-        }
-    }
-    let lo: Vec<u32> = (0..nc).map(|c| face_verts[c].min(next_vert[c])).collect();
-    let (lo_off, lo_items) = bucket_by(&lo, num_vertices);
-
-    // creator[c]: the corner that created the edge instance corner c lies on.
-    let mut creator = vec![u32::MAX; nc];
-    let mut non_manifold_creator = vec![false; nc];
-    let mut keys: Vec<u64> = Vec::new();
-    // Per-instance state: (creator corner, last face, face count, first vertex).
-    let mut instances: Vec<(u32, u32, u32, u32)> = Vec::new();
-    for v in 0..num_vertices {
-        let bucket = &lo_items[lo_off[v] as usize..lo_off[v + 1] as usize];
-        if bucket.is_empty() {
-            continue;
-        }
-        keys.clear();
-        keys.extend(bucket.iter().map(|&c| {
-            let hi = face_verts[c as usize].max(next_vert[c as usize]);
-            ((hi as u64) << 32) | c as u64
-        }));
-        keys.sort_unstable();
-        let mut i = 0;
-        while i < keys.len() {
-            let hi = (keys[i] >> 32) as u32;
-            let mut j = i;
-            while j < keys.len() && (keys[j] >> 32) as u32 == hi {
-                j += 1;
+    par::ranges(&fb)
+        .into_par_iter()
+        .zip(par::split(&mut next_vert, &fb, fo))
+        .zip(par::split(&mut corner_face, &fb, fo))
+        .for_each(|((r, nx), cf)| {
+            let base = fo(r.start);
+            for f in r {
+                let (s, e) = (fo(f), fo(f + 1));
+                for c in s..e {
+                    nx[c - base] = face_verts[if c + 1 == e { s } else { c + 1 }];
+                    cf[c - base] = f as u32;
+                }
             }
-            instances.clear();
-            for &k in &keys[i..j] {
-                let c = (k & 0xffff_ffff) as u32;
-                let (a, b, f) = (
-                    face_verts[c as usize],
-                    next_vert[c as usize],
-                    corner_face[c as usize],
-                );
-                let mut target = None;
-                if a != b {
-                    if let Some(e) = instances.first_mut() {
-                        if e.1 == f {
-                            non_manifold_creator[e.0 as usize] = true;
-                            non_manifold_creator[c as usize] = true;
-                        } else {
-                            if e.2 > 1 || a == e.3 {
-                                non_manifold_creator[e.0 as usize] = true;
+        });
+    let mut lo = vec![0u32; nc];
+    lo.par_iter_mut()
+        .zip(face_verts.par_iter().zip(&next_vert))
+        .with_min_len(4096)
+        .for_each(|(l, (&a, &b))| *l = a.min(b));
+    let (lo_off, lo_items) = bucket_by(&lo, num_vertices);
+    drop(lo);
+
+    // For each corner in bucket order (`lo_items`): the corner that created the edge instance
+    // it lies on, and whether that instance is non-manifold. Buckets are independent.
+    let vb = par::bounds(num_vertices);
+    let lstart = |v: usize| lo_off[v] as usize;
+    let mut creator_item = vec![u32::MAX; nc];
+    let mut nm_item = vec![false; nc];
+    par::ranges(&vb)
+        .into_par_iter()
+        .zip(par::split(&mut creator_item, &vb, lstart))
+        .zip(par::split(&mut nm_item, &vb, lstart))
+        .for_each(|((r, creator), nm)| {
+            let base = lstart(r.start);
+            let mut keys: Vec<u64> = Vec::new();
+            // Per-instance state: (creator item, creator corner, last face, face count, first
+            // vertex).
+            let mut instances: Vec<(u32, u32, u32, u32, u32)> = Vec::new();
+            for v in r {
+                let (bs, be) = (lstart(v), lstart(v + 1));
+                if bs == be {
+                    continue;
+                }
+                // Sort the bucket on the other end vertex, then on the corner; keys hold the
+                // item position (bucket order is corner order, so it sorts like the corner).
+                keys.clear();
+                keys.extend((bs..be).map(|q| {
+                    let c = lo_items[q] as usize;
+                    let hi = face_verts[c].max(next_vert[c]);
+                    ((hi as u64) << 32) | q as u64
+                }));
+                keys.sort_unstable();
+                let mut i = 0;
+                while i < keys.len() {
+                    let hi = (keys[i] >> 32) as u32;
+                    let mut j = i;
+                    while j < keys.len() && (keys[j] >> 32) as u32 == hi {
+                        j += 1;
+                    }
+                    instances.clear();
+                    for &k in &keys[i..j] {
+                        let q = (k & 0xffff_ffff) as usize;
+                        let c = lo_items[q];
+                        let (a, b, f) = (
+                            face_verts[c as usize],
+                            next_vert[c as usize],
+                            corner_face[c as usize],
+                        );
+                        let mut target = None;
+                        if a != b {
+                            if let Some(e) = instances.first_mut() {
+                                if e.2 == f {
+                                    nm[e.0 as usize - base] = true;
+                                    nm[q - base] = true;
+                                } else {
+                                    if e.3 > 1 || a == e.4 {
+                                        nm[e.0 as usize - base] = true;
+                                    }
+                                    e.2 = f;
+                                    e.3 += 1;
+                                    target = Some(e.1);
+                                }
                             }
-                            e.1 = f;
-                            e.2 += 1;
-                            target = Some(e.0);
+                        } else {
+                            nm[q - base] = true;
+                        }
+                        match target {
+                            Some(t) => creator[q - base] = t,
+                            None => {
+                                creator[q - base] = c;
+                                instances.push((q as u32, c, f, 1, a));
+                            }
                         }
                     }
-                } else {
-                    non_manifold_creator[c as usize] = true;
-                }
-                match target {
-                    Some(t) => creator[c as usize] = t,
-                    None => {
-                        creator[c as usize] = c;
-                        instances.push((c, f, 1, a));
-                    }
+                    i = j;
                 }
             }
-            i = j;
-        }
+        });
+    // Back to corner order.
+    let mut creator = vec![u32::MAX; nc];
+    let mut non_manifold_creator = vec![false; nc];
+    for (q, &c) in lo_items.iter().enumerate() {
+        creator[c as usize] = creator_item[q];
+        non_manifold_creator[c as usize] = nm_item[q];
     }
+    drop((creator_item, nm_item, lo_items, lo_off));
 
     // Number edges in the order of their creating corners.
     let mut face_edges = vec![0u32; nc];
@@ -156,17 +196,23 @@ pub(crate) fn build_relations(
 
     // Edge -> faces, in face order.
     let (edge_face_offsets, ef_items) = bucket_by(&face_edges, ne);
-    let edge_faces: Vec<u32> = ef_items.iter().map(|&c| corner_face[c as usize]).collect();
+    let edge_faces: Vec<u32> = ef_items
+        .par_iter()
+        .map(|&c| corner_face[c as usize])
+        .collect();
     let edge_face_local: Vec<u16> = ef_items
-        .iter()
+        .par_iter()
         .map(|&c| (c - face_offsets[corner_face[c as usize] as usize]) as u16)
         .collect();
 
     // Vertex -> faces, in face order.
     let (vert_face_offsets, vf_items) = bucket_by(face_verts, num_vertices);
-    let mut vert_faces: Vec<u32> = vf_items.iter().map(|&c| corner_face[c as usize]).collect();
+    let mut vert_faces: Vec<u32> = vf_items
+        .par_iter()
+        .map(|&c| corner_face[c as usize])
+        .collect();
     let mut vert_face_local: Vec<u16> = vf_items
-        .iter()
+        .par_iter()
         .map(|&c| (c - face_offsets[corner_face[c as usize] as usize]) as u16)
         .collect();
 
@@ -208,42 +254,49 @@ pub(crate) fn build_relations(
         vert_edges,
         vert_non_manifold,
     };
-    // Orient the fans of manifold vertices counter-clockwise.
-    let mut of = Vec::new();
-    let mut oe = Vec::new();
-    for v in 0..num_vertices {
-        if rel.vert_non_manifold[v] {
-            continue;
-        }
-        let (fs, fe) = (
-            rel.vert_face_offsets[v] as usize,
-            rel.vert_face_offsets[v + 1] as usize,
-        );
-        let (es, ee) = (
-            rel.vert_edge_offsets[v] as usize,
-            rel.vert_edge_offsets[v + 1] as usize,
-        );
-        if order_fan(
-            &rel,
-            face_offsets,
-            face_verts,
-            v as u32,
-            &vert_faces[fs..fe],
-            &mut of,
-            &mut oe,
-        ) {
-            for (i, &f) in of.iter().enumerate() {
-                vert_faces[fs + i] = f;
-                let fv = &face_verts
-                    [face_offsets[f as usize] as usize..face_offsets[f as usize + 1] as usize];
-                vert_face_local[fs + i] =
-                    fv.iter().position(|&x| x == v as u32).unwrap_or(0) as u16;
+    // Orient the fans of manifold vertices counter-clockwise; vertices are independent.
+    let mut vert_edges = std::mem::take(&mut rel.vert_edges);
+    let mut vert_nm = std::mem::take(&mut rel.vert_non_manifold);
+    let vfo = |v: usize| rel.vert_face_offsets[v] as usize;
+    let veo = |v: usize| rel.vert_edge_offsets[v] as usize;
+    par::ranges(&vb)
+        .into_par_iter()
+        .zip(par::split(&mut vert_faces, &vb, vfo))
+        .zip(par::split(&mut vert_face_local, &vb, vfo))
+        .zip(par::split(&mut vert_edges, &vb, veo))
+        .zip(par::split(&mut vert_nm, &vb, |v| v))
+        .for_each(|((((r, vf), vl), ve), nm)| {
+            let (fbase, ebase, vbase) = (vfo(r.start), veo(r.start), r.start);
+            let (mut of, mut oe) = (Vec::new(), Vec::new());
+            for v in r {
+                if nm[v - vbase] {
+                    continue;
+                }
+                let (fs, fe) = (vfo(v) - fbase, vfo(v + 1) - fbase);
+                let (es, ee) = (veo(v) - ebase, veo(v + 1) - ebase);
+                if order_fan(
+                    &rel,
+                    face_offsets,
+                    face_verts,
+                    v as u32,
+                    &vf[fs..fe],
+                    &ve[es..ee],
+                    &mut of,
+                    &mut oe,
+                ) {
+                    for (i, &f) in of.iter().enumerate() {
+                        vf[fs + i] = f;
+                        let fv = &face_verts[fo(f as usize)..fo(f as usize + 1)];
+                        vl[fs + i] = fv.iter().position(|&x| x == v as u32).unwrap_or(0) as u16;
+                    }
+                    ve[es..ee].copy_from_slice(&oe);
+                } else {
+                    nm[v - vbase] = true;
+                }
             }
-            rel.vert_edges[es..ee].copy_from_slice(&oe);
-        } else {
-            rel.vert_non_manifold[v] = true;
-        }
-    }
+        });
+    rel.vert_edges = vert_edges;
+    rel.vert_non_manifold = vert_nm;
     rel.vert_faces = vert_faces;
     rel.vert_face_local = vert_face_local;
     rel
@@ -258,11 +311,10 @@ fn order_fan(
     face_verts: &[u32],
     v: u32,
     v_faces: &[u32],
+    v_edges: &[u32],
     out_faces: &mut Vec<u32>,
     out_edges: &mut Vec<u32>,
 ) -> bool {
-    let v_edges = &rel.vert_edges[rel.vert_edge_offsets[v as usize] as usize
-        ..rel.vert_edge_offsets[v as usize + 1] as usize];
     let f_count = v_faces.len();
     let e_count = v_edges.len();
     out_faces.clear();

@@ -1,0 +1,456 @@
+//! The patch table: every non-hole ptex face of the base mesh tiled by bicubic B-spline,
+//! single-crease and Gregory end-cap patches, as flat arrays ready for upload.
+//!
+//! # Construction
+//!
+//! Feature-adaptive refinement (Nießner, Loop, Meyer & DeRose 2012) refines only faces with
+//! irregular features, level by level up to the isolation level `L`, and emits every other
+//! face as a patch at the coarsest level where it is no longer refined. This builder refines
+//! the base **uniformly** to level `L` with [`Refiner`] and then walks each base face's
+//! quadtree, descending only into faces that adaptive refinement would select
+//! ([`super::features::face_has_features`]). The patches, their levels and parameters are
+//! therefore those of OpenSubdiv's feature-adaptive `Far::PatchTable`; only the construction
+//! cost (time and memory) is that of uniform refinement: `~F · 4^L` faces.
+//!
+//! Leaf faces become:
+//! - a regular bicubic B-spline patch (16 points, boundary mask for boundary/corner patches)
+//!   when no corner is extraordinary or non-manifold ([`super::features::is_patch_regular`]);
+//! - a single-crease patch when, in addition, the face is interior and has one regular
+//!   semi-sharp (or infinitely sharp) crease edge (Nießner, Loop & Greiner 2012). The stored
+//!   sharpness is the level's own, evaluated exactly; with
+//!   [`PatchOptions::cap_crease_sharpness`] it is OpenSubdiv's `min(s, L − level)` and crease
+//!   faces at level `L` stay plain B-spline patches;
+//! - a Gregory-basis end cap otherwise ([`super::endcap`]), whose 20 points are extra *local
+//!   points* given as stencils over the refined vertices.
+//!
+//! # Differences from OpenSubdiv 3.5
+//!
+//! - Options: `useInfSharpPatch = false` (infinitely sharp interior features are isolated
+//!   and approximated as smooth in end caps), `generateLegacySharpCornerPatches = true`
+//!   (smooth one-face corners are sharp), Gregory-basis end caps only.
+//! - Construction refines uniformly (see above); the patches are the same.
+//! - Local points are not shared between adjacent end caps (OpenSubdiv shares their corner
+//!   and edge points), so there are 20 per end cap.
+//! - Transition masks (edges shared with a deeper patch) are left 0; evaluation does not
+//!   need them.
+//! - Single-crease sharpness is exact unless [`PatchOptions::cap_crease_sharpness`] is set.
+//!   OpenSubdiv's own CPU `PatchTable::EvaluateBasis` ignores that sharpness and evaluates
+//!   the crease edge as a boundary; [`super::eval`] evaluates the crease.
+//!
+//! # Layout
+//!
+//! Control point indices refer to one flat point array: the vertices of level 0, then level
+//! 1, … level `L` (`level_offsets`), then the local points (rows of `local_points`, whose
+//! inputs are the level vertices). Per patch: `kinds` ([`PatchType`] as `u8`), `cv_offsets`
+//! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
+//! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
+
+use super::endcap::gregory_points;
+use super::features::{
+    boundary_mask, face_has_features, is_patch_regular, level_tags, single_crease, FeatureMask,
+    VTag,
+};
+use super::gather::regular_points;
+use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
+use crate::error::{Error, Result};
+use crate::options::Scheme;
+use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
+use crate::refine::{LevelStencils, Refiner, StencilTable};
+use crate::topology::Topology;
+
+/// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv
+/// allows 10).
+pub const MAX_ISOLATION_LEVEL: u32 = 10;
+
+/// Options of [`PatchTable::build`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct PatchOptions {
+    /// Isolation level of irregular features, `0..=10` (default 4). Meshes with non-quad faces
+    /// use at least 1.
+    pub isolation_level: u32,
+    /// Evaluate regular faces with one semi-sharp crease directly (default `true`).
+    pub single_crease: bool,
+    /// Store `min(s, L − level)` as a single-crease patch's sharpness and make crease faces
+    /// at the isolation level plain B-spline patches, as OpenSubdiv 3.5 does (default
+    /// `false`: the level's own sharpness is stored, which [`crate::patch::single_crease`]
+    /// evaluates exactly for any value).
+    pub cap_crease_sharpness: bool,
+}
+
+impl Default for PatchOptions {
+    fn default() -> Self {
+        PatchOptions {
+            isolation_level: 4,
+            single_crease: true,
+            cap_crease_sharpness: false,
+        }
+    }
+}
+
+/// The basis of a patch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+#[repr(u8)]
+pub enum PatchType {
+    /// Bicubic B-spline, 16 points.
+    Regular = 0,
+    /// Bicubic B-spline with one semi-sharp crease, 16 points.
+    SingleCrease = 1,
+    /// Gregory-basis end cap, 20 points.
+    Gregory = 2,
+}
+
+impl PatchType {
+    /// The patch kind evaluated by [`crate::patch::patch_weights`]. Gregory derivatives are
+    /// OpenSubdiv's default approximation.
+    pub fn kind(self) -> PatchKind {
+        match self {
+            PatchType::Regular => PatchKind::Regular,
+            PatchType::SingleCrease => PatchKind::SingleCrease,
+            PatchType::Gregory => PatchKind::GregoryBasis(GregoryDerivatives::BezierApproximation),
+        }
+    }
+
+    fn from_u8(x: u8) -> PatchType {
+        match x {
+            0 => PatchType::Regular,
+            1 => PatchType::SingleCrease,
+            _ => PatchType::Gregory,
+        }
+    }
+}
+
+/// Patches of a mesh (see the module documentation for the layout).
+#[derive(Debug, Clone)]
+pub struct PatchTable {
+    /// The options used.
+    pub options: PatchOptions,
+    /// The base topology.
+    pub base: Topology,
+    /// Stencils from each level to the next (uniform refinement to the isolation level).
+    pub level_stencils: Vec<LevelStencils>,
+    /// `L + 2` offsets of each level's vertices in the flat point array.
+    pub level_offsets: Vec<u32>,
+    /// End-cap points as stencils over the level vertices (flat indices).
+    pub local_points: StencilTable,
+    /// [`PatchType`] per patch.
+    pub kinds: Vec<u8>,
+    /// `P + 1` offsets into `cvs`.
+    pub cv_offsets: Vec<u32>,
+    /// Control point indices into the flat point array.
+    pub cvs: Vec<u32>,
+    /// Packed parameter per patch.
+    pub params: Vec<PatchParam>,
+    /// Crease sharpness per patch (0 unless single-crease).
+    pub sharpness: Vec<f32>,
+    /// `F + 1` offsets: base face `f` has ptex faces `ptex_offsets[f]..ptex_offsets[f + 1]`.
+    pub ptex_offsets: Vec<u32>,
+    /// Patch lookup per ptex face.
+    pub patch_map: PatchMap,
+}
+
+/// Patch counts by type.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct PatchCounts {
+    /// Regular B-spline patches.
+    pub regular: usize,
+    /// Single-crease patches.
+    pub single_crease: usize,
+    /// Gregory end caps.
+    pub gregory: usize,
+}
+
+struct Builder<'a> {
+    refiner: &'a Refiner,
+    tags: Vec<Vec<VTag>>,
+    mask: FeatureMask,
+    max_level: usize,
+    single_crease: bool,
+    cap: bool,
+    level_offsets: Vec<u32>,
+    kinds: Vec<u8>,
+    cv_offsets: Vec<u32>,
+    cvs: Vec<u32>,
+    params: Vec<PatchParam>,
+    sharpness: Vec<f32>,
+    local_rows: Vec<Vec<(u32, f64)>>,
+    nodes: Vec<[u32; 4]>,
+}
+
+impl Builder<'_> {
+    fn visit(
+        &mut self,
+        d: usize,
+        f: usize,
+        ptex: u32,
+        u: u32,
+        v: u32,
+        nonquad: bool,
+    ) -> Result<u32> {
+        let t = &self.refiner.levels[d];
+        if t.face_is_hole[f] {
+            return Ok(EMPTY);
+        }
+        if d < self.max_level && face_has_features(t, &self.tags[d], f, d, &self.mask) {
+            let first = t.face_offsets[f] as usize;
+            let node = self.nodes.len();
+            self.nodes.push([EMPTY; 4]);
+            for (j, &(du, dv)) in QUADRANT.iter().enumerate() {
+                let h = self.visit(d + 1, first + j, ptex, 2 * u + du, 2 * v + dv, nonquad)?;
+                self.nodes[node][j] = h;
+            }
+            return Ok(node as u32);
+        }
+        self.emit(d, f, ptex, u, v, nonquad)
+    }
+
+    fn emit(
+        &mut self,
+        d: usize,
+        f: usize,
+        ptex: u32,
+        u: u32,
+        v: u32,
+        nonquad: bool,
+    ) -> Result<u32> {
+        let t = &self.refiner.levels[d];
+        let tags = &self.tags[d];
+        let off = self.level_offsets[d];
+        let patch = self.kinds.len() as u32;
+        let regular = is_patch_regular(t, tags, f);
+        let (kind, boundary, sharp) = if regular {
+            let bmask = boundary_mask(t, f);
+            let crease = if self.single_crease && bmask == 0 && (d < self.max_level || !self.cap) {
+                single_crease(t, tags, f)
+            } else {
+                None
+            };
+            for p in regular_points(t, f) {
+                self.cvs.push(off + p);
+            }
+            match crease {
+                Some((k, s)) => (
+                    PatchType::SingleCrease,
+                    1u8 << k,
+                    if self.cap {
+                        s.min((self.max_level - d) as f32)
+                    } else {
+                        s
+                    },
+                ),
+                None => (PatchType::Regular, bmask, 0.0),
+            }
+        } else {
+            if t.face_size(f) != 4 {
+                return Err(Error::Internal(format!(
+                    "irregular non-quad face {f} at level {d} cannot take an end cap"
+                )));
+            }
+            let first_local = self.local_rows.len() as u32;
+            for (i, row) in gregory_points(t, f).into_iter().enumerate() {
+                self.local_rows
+                    .push(row.into_iter().map(|(x, w)| (x + off, w)).collect());
+                // Local points are numbered after all level vertices; fixed up in `build`.
+                self.cvs.push(LEAF | (first_local + i as u32));
+            }
+            (PatchType::Gregory, 0, 0.0)
+        };
+        self.kinds.push(kind as u8);
+        self.cv_offsets.push(self.cvs.len() as u32);
+        self.sharpness.push(sharp);
+        self.params.push(PatchParam::new(PatchParamFields {
+            face_id: ptex,
+            u: u as u16,
+            v: v as u16,
+            depth: d as u8,
+            non_quad_root: nonquad,
+            boundary,
+            transition: 0,
+            regular,
+        })?);
+        Ok(LEAF | patch)
+    }
+}
+
+impl PatchTable {
+    /// Builds the patch table of `base` (Catmull-Clark only).
+    pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
+        if base.options.scheme != Scheme::Catmark {
+            return Err(Error::Unsupported(
+                "limit patches are implemented for the Catmull-Clark scheme only".into(),
+            ));
+        }
+        if options.isolation_level > MAX_ISOLATION_LEVEL {
+            return Err(Error::Unsupported(format!(
+                "isolation level {} exceeds the maximum {MAX_ISOLATION_LEVEL}",
+                options.isolation_level
+            )));
+        }
+        let mut level = options.isolation_level as usize;
+        if !base.is_all_quads() {
+            level = level.max(1);
+        }
+        let refiner = Refiner::new(base.clone(), level)?;
+        let mut level_offsets = vec![0u32];
+        for t in &refiner.levels {
+            let last = *level_offsets.last().unwrap_or(&0);
+            level_offsets.push(last + t.num_vertices() as u32);
+        }
+        let tags = refiner
+            .levels
+            .iter()
+            .enumerate()
+            .map(|(d, t)| level_tags(t, d == 0))
+            .collect();
+        let mut b = Builder {
+            refiner: &refiner,
+            tags,
+            mask: FeatureMask::new(options.single_crease),
+            max_level: level,
+            single_crease: options.single_crease,
+            cap: options.cap_crease_sharpness,
+            level_offsets: level_offsets.clone(),
+            kinds: Vec::new(),
+            cv_offsets: vec![0],
+            cvs: Vec::new(),
+            params: Vec::new(),
+            sharpness: Vec::new(),
+            local_rows: Vec::new(),
+            nodes: Vec::new(),
+        };
+        let mut ptex_offsets = vec![0u32];
+        let mut roots = Vec::new();
+        for f in 0..base.num_faces() {
+            let n = base.face_size(f);
+            let ptex = *ptex_offsets.last().unwrap_or(&0);
+            if n == 4 {
+                roots.push(b.visit(0, f, ptex, 0, 0, false)?);
+            } else if base.face_is_hole[f] {
+                roots.extend(std::iter::repeat_n(EMPTY, n));
+            } else {
+                let first = base.face_offsets[f] as usize;
+                for j in 0..n {
+                    roots.push(b.visit(1, first + j, ptex + j as u32, 0, 0, true)?);
+                }
+            }
+            ptex_offsets.push(ptex + if n == 4 { 1 } else { n as u32 });
+        }
+        let num_level_points = *level_offsets.last().unwrap_or(&0);
+        for c in &mut b.cvs {
+            if *c & LEAF != 0 {
+                *c = num_level_points + (*c & !LEAF);
+            }
+        }
+        let mut local_points = StencilTable {
+            offsets: vec![0],
+            indices: Vec::new(),
+            weights: Vec::new(),
+            num_inputs: num_level_points as usize,
+        };
+        for row in &b.local_rows {
+            for &(i, w) in row {
+                local_points.indices.push(i);
+                local_points.weights.push(w as f32);
+            }
+            local_points.offsets.push(local_points.indices.len() as u32);
+        }
+        Ok(PatchTable {
+            options: *options,
+            base: base.clone(),
+            level_stencils: refiner.stencils.clone(),
+            level_offsets,
+            local_points,
+            kinds: b.kinds,
+            cv_offsets: b.cv_offsets,
+            cvs: b.cvs,
+            params: b.params,
+            sharpness: b.sharpness,
+            ptex_offsets,
+            patch_map: PatchMap {
+                roots,
+                nodes: b.nodes,
+            },
+        })
+    }
+
+    /// Number of patches.
+    pub fn num_patches(&self) -> usize {
+        self.kinds.len()
+    }
+
+    /// Number of ptex faces.
+    pub fn num_ptex_faces(&self) -> usize {
+        self.patch_map.roots.len()
+    }
+
+    /// Type of patch `p`.
+    pub fn patch_type(&self, p: usize) -> PatchType {
+        PatchType::from_u8(self.kinds[p])
+    }
+
+    /// Control point indices of patch `p`.
+    pub fn patch_cvs(&self, p: usize) -> &[u32] {
+        &self.cvs[self.cv_offsets[p] as usize..self.cv_offsets[p + 1] as usize]
+    }
+
+    /// Patch counts by type.
+    pub fn counts(&self) -> PatchCounts {
+        let mut c = PatchCounts::default();
+        for &k in &self.kinds {
+            match PatchType::from_u8(k) {
+                PatchType::Regular => c.regular += 1,
+                PatchType::SingleCrease => c.single_crease += 1,
+                PatchType::Gregory => c.gregory += 1,
+            }
+        }
+        c
+    }
+
+    /// Bytes of the per-patch tables: control indices, parameters, types, offsets and
+    /// sharpness (the local-point stencils and level stencils are counted apart, in
+    /// [`PatchTable::stencil_bytes`]).
+    pub fn size_bytes(&self) -> usize {
+        4 * self.cvs.len()
+            + 8 * self.params.len()
+            + self.kinds.len()
+            + 4 * self.cv_offsets.len()
+            + 4 * self.sharpness.len()
+            + self.patch_map.size_bytes()
+    }
+
+    /// Bytes of the control indices and parameters only (OpenSubdiv's count).
+    pub fn index_and_param_bytes(&self) -> usize {
+        4 * self.cvs.len() + 8 * self.params.len()
+    }
+
+    /// Bytes of the refinement and local-point stencils.
+    pub fn stencil_bytes(&self) -> usize {
+        self.level_stencils
+            .iter()
+            .map(|s| s.size_bytes())
+            .sum::<usize>()
+            + self.local_points.size_bytes()
+    }
+
+    /// Number of points the control indices refer to: all level vertices then local points.
+    pub fn num_points(&self) -> usize {
+        *self.level_offsets.last().unwrap_or(&0) as usize + self.local_points.num_rows()
+    }
+
+    /// The flat point array for base vertex data `base` (`N` components): every level's
+    /// vertices, then the local points.
+    pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
+        let mut all = Vec::with_capacity(self.num_points());
+        all.extend_from_slice(base);
+        let mut start = 0usize;
+        for s in &self.level_stencils {
+            let mut dst = vec![[0.0; N]; s.num_rows()];
+            s.apply(&all[start..], &mut dst);
+            start = all.len();
+            all.extend_from_slice(&dst);
+        }
+        let mut local = vec![[0.0; N]; self.local_points.num_rows()];
+        self.local_points.apply(&all, &mut local);
+        all.extend_from_slice(&local);
+        all
+    }
+}

@@ -1,0 +1,63 @@
+//! Helpers shared by the limit-surface tests: shapes, the loud OpenSubdiv skip, measures.
+
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use subsurf::Mesh;
+
+/// Returns false (after a loud message) when OpenSubdiv is missing; panics under CI.
+pub fn osd_or_skip(test: &str) -> bool {
+    if osd_ref::available() {
+        return true;
+    }
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "0" && v != "false");
+    assert!(
+        !ci,
+        "OpenSubdiv not installed but CI is set: {test} must run"
+    );
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "!!!!! OpenSubdiv not installed: SKIPPED {test} (apt-get install libosd-dev) !!!!!"
+    );
+    false
+}
+
+/// `<repo>/testdata/shapes`.
+pub fn shapes_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes")
+}
+
+/// Reads a regression shape by name.
+pub fn load_shape(name: &str) -> Mesh {
+    let path = shapes_dir().join(format!("{name}.obj"));
+    subsurf::io::obj::read_file(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// Names of every `catmark_*` shape, sorted.
+pub fn shape_names() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(shapes_dir())
+        .unwrap()
+        .filter_map(|e| {
+            let n = e.ok()?.file_name().into_string().ok()?;
+            let stem = n.strip_suffix(".obj")?;
+            stem.starts_with("catmark_").then(|| stem.to_string())
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+/// Length of the bounding-box diagonal.
+pub fn bbox_diagonal(p: &[[f32; 3]]) -> f32 {
+    let mut lo = [f32::MAX; 3];
+    let mut hi = [f32::MIN; 3];
+    for q in p {
+        for c in 0..3 {
+            lo[c] = lo[c].min(q[c]);
+            hi[c] = hi[c].max(q[c]);
+        }
+    }
+    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f32>().sqrt()
+}
