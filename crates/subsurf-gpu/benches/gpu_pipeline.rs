@@ -4,9 +4,11 @@
 //!   262,144-quad torus at levels 1–2. CPU = `Refiner::refine_positions` (rayon, all cores);
 //!   GPU = `GpuRefiner::update` + wait (data stays on the GPU), and the same plus read-back;
 //! * p-rep frames per second (Myles, Yeo & Peters 2008, Table 1): construction (vertex + patch
-//!   pass) + N×N evaluation into a watertight mesh, N = 5, 9, 17, 33, on `catmark_lefthanded`
-//!   split once into quads (1,736 faces, valences 3–5, the mesh of subsurf's `prep` bench).
-//!   CPU = `PrepPatches::update` + `tessellate(N)`; GPU = `GpuPrep::update` + `eval_grid` + wait.
+//!   pass) + N×N evaluation, N = 5, 9, 17, 33, on three disjoint copies of
+//!   `catmark_lefthanded` (1,302 closed quads, valences 3–5, 47.9% B-quads: the mesh of
+//!   subsurf's `prep` bench). CPU = `PrepPatches::update` + `eval_grid_into` (unshared grid,
+//!   reused buffers) and `update` + `tessellate(N)` (watertight, the GPU's output); GPU =
+//!   `GpuPrep::update` + `eval_grid` (watertight) + wait.
 //!
 //! Every line names the adapter. Plain `main` (no criterion) so that the same file also
 //! builds as a standalone example binary to copy to a machine with a real GPU:
