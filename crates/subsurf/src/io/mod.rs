@@ -3,10 +3,12 @@
 //! - [`obj`]: Wavefront OBJ with OpenSubdiv's `t` tag lines (creases, corners, holes, options)
 //!   and face-varying UVs.
 //! - [`ply`]: Stanford PLY, ASCII and binary in, binary little-endian out.
+//! - [`gltf`]: binary glTF 2.0 (`.glb`), out only.
 //!
 //! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault; no
 //! input makes a reader panic.
 
+pub mod gltf;
 pub mod obj;
 mod obj_tags;
 pub mod ply;
@@ -22,6 +24,8 @@ pub enum Format {
     Obj,
     /// Stanford PLY (`.ply`).
     Ply,
+    /// Binary glTF 2.0 (`.glb`), written only.
+    Glb,
 }
 
 impl Format {
@@ -35,11 +39,12 @@ impl Format {
         match ext.as_deref() {
             Some("obj") => Ok(Format::Obj),
             Some("ply") => Ok(Format::Ply),
+            Some("glb") => Ok(Format::Glb),
             Some(other) => Err(Error::Unsupported(format!(
-                "mesh file extension '.{other}' (known: .obj, .ply)"
+                "mesh file extension '.{other}' (known: .obj, .ply, .glb)"
             ))),
             None => Err(Error::Unsupported(format!(
-                "mesh file '{}' has no extension (known: .obj, .ply)",
+                "mesh file '{}' has no extension (known: .obj, .ply, .glb)",
                 path.display()
             ))),
         }
@@ -53,11 +58,14 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
     match Format::from_path(path)? {
         Format::Obj => obj::read_file(path),
         Format::Ply => ply::read_file(path),
+        Format::Glb => Err(Error::Unsupported(
+            "reading glTF; subsurf writes .glb but reads .obj and .ply".into(),
+        )),
     }
 }
 
 /// Writes a mesh, choosing the format by extension. With `normals` (one per vertex) OBJ gets
-/// `vn` lines and PLY gets `nx ny nz` properties.
+/// `vn` lines, PLY gets `nx ny nz` properties and glTF a `NORMAL` attribute.
 pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<()> {
     let path = path.as_ref();
     let format = Format::from_path(path)?;
@@ -67,6 +75,7 @@ pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh, normals: Option<&[[f32; 3
         (Format::Obj, None) => obj::write(mesh, &mut w)?,
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, &mut w)?,
         (Format::Ply, n) => ply::write(mesh, n, &mut w)?,
+        (Format::Glb, n) => gltf::write(mesh, n, &mut w)?,
     }
     std::io::Write::flush(&mut w)?;
     Ok(())

@@ -1,0 +1,359 @@
+//! `subsurf render`: a PNG image of a subdivision surface, rendered headlessly with wgpu.
+//!
+//! Methods: `refine` (uniform refinement to `--level`, triangulated) and `prep` (the p-rep
+//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side). Colouring by `sharpness`
+//! marks the faces next to tagged creases of the base mesh (orange: semi-sharp, red:
+//! infinitely sharp); `patch-kind` on a p-rep marks B-quads (blue) and perturbed patches
+//! (orange), as in the paper's Figure 7. `limit` tessellates the limit surface's patches
+//! (`--tess` samples per ptex-face side); `patch-kind` colours regular patches of base faces
+//! (blue), regular patches at adaptive levels (green), single-crease patches (orange) and
+//! Gregory end caps (red); `level` colours by adaptive level (palette order: grey 0, orange
+//! 1, blue 2, green 3, red 4, ...).
+
+use crate::common::{read_mesh, SchemeArgs};
+use crate::progress::{note, quiet, Progress};
+use crate::render_limit::{self, LimitColors};
+use crate::render_mesh;
+use anyhow::{bail, Context};
+use std::path::{Path, PathBuf};
+use subsurf::Mesh;
+use subsurf_render::{Fit, Gpu, RenderMesh, RenderOptions, RgbaImage, UpAxis, View};
+
+/// How the surface is turned into triangles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    /// Uniform Catmull-Clark refinement to `--level`.
+    Refine,
+    /// Limit surface patches, tessellated `--tess` times per patch edge.
+    Limit,
+    /// P-rep C1 patches, tessellated `--tess` times per patch edge.
+    Prep,
+}
+
+/// What the face colours show.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ColorBy {
+    /// One colour.
+    None,
+    /// Patch kind. Limit: regular (blue), adaptive-level regular (green), single crease
+    /// (orange), end cap (red). P-rep: B-quad (blue) or perturbed (orange).
+    PatchKind,
+    /// Adaptive refinement level of the limit patch.
+    Level,
+    /// Faces next to semi-sharp (orange) and infinitely sharp (red) creases of the base mesh.
+    Sharpness,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ViewArg {
+    Front,
+    Back,
+    Left,
+    Right,
+    Top,
+    Iso,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum UpArg {
+    Y,
+    Z,
+}
+
+/// Image options shared by `render` and `compare`.
+#[derive(Debug, Clone, clap::Args)]
+pub struct LookArgs {
+    /// Draw the control cage (base mesh edges) over the surface.
+    #[arg(long)]
+    pub cage: bool,
+    /// Face colouring.
+    #[arg(long, value_enum, default_value_t = ColorBy::None)]
+    pub color_by: ColorBy,
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// View direction.
+    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
+    pub view: ViewArg,
+    /// Model axis pointing up.
+    #[arg(long, value_enum, default_value_t = UpArg::Y)]
+    pub up: UpArg,
+    /// Background: white, black, transparent or RRGGBB.
+    #[arg(long, default_value = "white", value_parser = parse_background)]
+    pub background: [u8; 4],
+    /// Cage line width in pixels.
+    #[arg(long, default_value_t = 1.5)]
+    pub line_width: f32,
+    /// Framing: `tight` fits the model's points, `sphere` its bounding sphere (the same
+    /// distance from every view).
+    #[arg(long, value_enum, default_value_t = FitArg::Tight)]
+    pub fit: FitArg,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FitArg {
+    Tight,
+    Sphere,
+}
+
+/// Render a subdivision surface to PNG.
+#[derive(Debug, clap::Args)]
+pub struct RenderArgs {
+    /// Input mesh (.obj with OpenSubdiv tags, or .ply).
+    pub input: PathBuf,
+    /// Output image (.png).
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Surface construction.
+    #[arg(long, value_enum, default_value_t = Method::Refine)]
+    pub method: Method,
+    /// Refinement level (method refine).
+    #[arg(short, long, conflicts_with = "tess")]
+    pub level: Option<usize>,
+    /// Samples per patch side (methods limit and prep).
+    #[arg(long)]
+    pub tess: Option<usize>,
+    /// Method prep: leave out the bi-5 perturbations (bicubic part only).
+    #[arg(long)]
+    pub no_perturbation: bool,
+    #[command(flatten)]
+    pub look: LookArgs,
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
+}
+
+/// `WxH` to `(W, H)`.
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("size '{s}' is not WIDTHxHEIGHT"))?;
+    let p = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&v| (1..=16384).contains(&v))
+            .ok_or_else(|| format!("size '{s}': '{t}' is not a number in 1..=16384"))
+    };
+    Ok((p(w)?, p(h)?))
+}
+
+/// A background name or `RRGGBB` to RGBA.
+pub fn parse_background(s: &str) -> Result<[u8; 4], String> {
+    match s.to_ascii_lowercase().as_str() {
+        "white" => return Ok([255, 255, 255, 255]),
+        "black" => return Ok([0, 0, 0, 255]),
+        "transparent" | "none" => return Ok([255, 255, 255, 0]),
+        _ => {}
+    }
+    let hex = s.trim_start_matches('#');
+    if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
+        return Err(format!(
+            "background '{s}': use white, black, transparent or RRGGBB"
+        ));
+    }
+    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|e| e.to_string());
+    Ok([byte(0)?, byte(2)?, byte(4)?, 255])
+}
+
+impl LookArgs {
+    /// Renderer options for these arguments.
+    pub fn options(&self) -> RenderOptions {
+        RenderOptions {
+            width: self.size.0,
+            height: self.size.1,
+            view: match self.view {
+                ViewArg::Front => View::Front,
+                ViewArg::Back => View::Back,
+                ViewArg::Left => View::Left,
+                ViewArg::Right => View::Right,
+                ViewArg::Top => View::Top,
+                ViewArg::Iso => View::Iso,
+            },
+            up: match self.up {
+                UpArg::Y => UpAxis::Y,
+                UpArg::Z => UpAxis::Z,
+            },
+            background: self.background,
+            line_width: self.line_width,
+            fit: match self.fit {
+                FitArg::Tight => Fit::Tight,
+                FitArg::Sphere => Fit::Sphere,
+            },
+            ..Default::default()
+        }
+    }
+}
+
+/// One surface to draw: mesh, method and level or tessellation rate.
+#[derive(Debug, Clone)]
+pub struct SurfaceSpec {
+    /// Mesh file.
+    pub path: PathBuf,
+    /// Construction.
+    pub method: Method,
+    /// Level (refine) or tessellation rate (limit, prep).
+    pub level: usize,
+    /// Method prep: with the bi-5 perturbations.
+    pub perturbed: bool,
+}
+
+/// Builds the triangles of `spec` for `mesh`.
+pub fn build(
+    mesh: &Mesh,
+    spec: &SurfaceSpec,
+    look: &LookArgs,
+    progress: &Progress,
+) -> anyhow::Result<RenderMesh> {
+    let color_by = match (spec.method, look.color_by) {
+        (Method::Refine, c @ (ColorBy::Level | ColorBy::PatchKind))
+        | (Method::Prep, c @ (ColorBy::Level | ColorBy::Sharpness))
+        | (Method::Limit, c @ ColorBy::Sharpness) => {
+            note(format!(
+                "--color-by {} is not available with --method {}; drawing without colours",
+                match c {
+                    ColorBy::Level => "level",
+                    ColorBy::PatchKind => "patch-kind",
+                    _ => "sharpness",
+                },
+                match spec.method {
+                    Method::Prep => "prep",
+                    Method::Limit => "limit",
+                    Method::Refine => "refine",
+                }
+            ));
+            ColorBy::None
+        }
+        (_, c) => c,
+    };
+    match spec.method {
+        Method::Refine => {
+            progress.stage(format!(
+                "refining {} to level {}",
+                spec.path.display(),
+                spec.level
+            ));
+            render_mesh::refined(mesh, spec.level, color_by == ColorBy::Sharpness, look.cage)
+        }
+        Method::Prep => {
+            progress.stage(format!(
+                "p-rep of {} at {} samples per side",
+                spec.path.display(),
+                spec.level
+            ));
+            if !mesh.creases.is_empty() || !mesh.corners.is_empty() {
+                note("the p-rep ignores crease and corner tags");
+            }
+            let (rm, nf, np) = render_mesh::prep(
+                mesh,
+                spec.level,
+                color_by == ColorBy::PatchKind,
+                spec.perturbed,
+                look.cage,
+            )?;
+            if !quiet() {
+                eprintln!(
+                    "p-rep: {nf} patches, {} B-quads, {np} perturbed{}",
+                    nf - np,
+                    if spec.perturbed {
+                        ""
+                    } else {
+                        " (perturbation left out)"
+                    }
+                );
+            }
+            Ok(rm)
+        }
+        Method::Limit => {
+            progress.stage(format!(
+                "limit surface of {} at {} samples per side",
+                spec.path.display(),
+                spec.level
+            ));
+            let colors = match color_by {
+                ColorBy::PatchKind => LimitColors::PatchKind,
+                ColorBy::Level => LimitColors::Level,
+                _ => LimitColors::None,
+            };
+            let (rm, summary) = render_limit::limit(mesh, spec.level, colors, look.cage)?;
+            if !quiet() {
+                eprintln!("{summary}");
+            }
+            Ok(rm)
+        }
+    }
+}
+
+/// Reads and builds the triangles of one surface.
+pub fn prepare_spec(
+    spec: &SurfaceSpec,
+    look: &LookArgs,
+    scheme: &SchemeArgs,
+    progress: &Progress,
+) -> anyhow::Result<RenderMesh> {
+    let mut mesh = read_mesh(&spec.path)?;
+    scheme.apply(&mut mesh);
+    build(&mesh, spec, look, progress)
+}
+
+/// Renders prepared triangles on `gpu`.
+pub fn render_prepared(
+    gpu: &Gpu,
+    rm: &RenderMesh,
+    look: &LookArgs,
+    progress: &Progress,
+) -> anyhow::Result<RgbaImage> {
+    progress.stage(format!("rendering {} triangles", rm.num_triangles()));
+    Ok(subsurf_render::render_with(gpu, rm, &look.options())?)
+}
+
+/// Opens the GPU with a hint on failure.
+pub fn open_gpu() -> anyhow::Result<Gpu> {
+    subsurf_render::open().context("opening a GPU adapter for rendering")
+}
+
+/// Writes a PNG, with the path in the error.
+pub fn save(image: &RgbaImage, path: &Path) -> anyhow::Result<()> {
+    image
+        .save_png(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
+    let level = match (a.method, a.level, a.tess) {
+        (Method::Refine, _, Some(_)) => bail!("--tess applies to --method limit|prep; use --level"),
+        (Method::Refine, l, None) => l.unwrap_or(3),
+        (_, Some(_), _) => bail!("--level applies to --method refine; use --tess"),
+        (_, None, t) => t.unwrap_or(8),
+    };
+    if a.no_perturbation && a.method != Method::Prep {
+        bail!("--no-perturbation applies to --method prep");
+    }
+    let spec = SurfaceSpec {
+        path: a.input.clone(),
+        method: a.method,
+        level,
+        perturbed: !a.no_perturbation,
+    };
+    let progress = Progress::start("reading");
+    let rm = prepare_spec(&spec, &a.look, &a.scheme, &progress)?;
+    progress.stage("opening the GPU");
+    let gpu = open_gpu()?;
+    let image = render_prepared(&gpu, &rm, &a.look, &progress)?;
+    let tris = rm.num_triangles();
+    progress.stage("writing PNG");
+    save(&image, &a.output)?;
+    drop(progress);
+    if !quiet() {
+        eprintln!(
+            "rendered {} triangles ({:?}, {}) at {}x{} on {} -> {}",
+            tris,
+            a.method,
+            level,
+            image.width,
+            image.height,
+            subsurf_render::describe(&gpu),
+            a.output.display()
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,122 @@
+//! `subsurf render` and `subsurf compare` end to end: PNG files of the asked size, quiet
+//! mode, argument errors. Without a GPU adapter the rendering tests fail with installation
+//! advice unless `SUBSURF_SKIP_GPU=1`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_subsurf"))
+}
+
+fn root(rel: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("subsurf-cli-render-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Runs the command; `None` (after a SKIPPED line) when there is no adapter and
+/// `SUBSURF_SKIP_GPU=1`.
+fn run_gpu(cmd: &mut Command) -> Option<Output> {
+    let out = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && err.contains("no GPU adapter") {
+        if std::env::var("SUBSURF_SKIP_GPU").as_deref() == Ok("1") {
+            eprintln!("\n*** SKIPPED GPU CLI test (SUBSURF_SKIP_GPU=1) ***\n");
+            return None;
+        }
+        panic!("{err}\n(set SUBSURF_SKIP_GPU=1 to skip GPU tests)");
+    }
+    assert!(out.status.success(), "{err}");
+    Some(out)
+}
+
+/// Width and height from a PNG's IHDR chunk.
+fn png_size(path: &Path) -> (u32, u32) {
+    let b = std::fs::read(path).unwrap();
+    assert_eq!(&b[..8], b"\x89PNG\r\n\x1a\n");
+    let be = |i: usize| u32::from_be_bytes(b[i..i + 4].try_into().unwrap());
+    (be(16), be(20))
+}
+
+#[test]
+fn render_refine_writes_a_png_of_the_asked_size() {
+    let out = tmp("pawn.png");
+    let Some(o) = run_gpu(
+        bin()
+            .arg("render")
+            .arg(root("examples/pawn.obj"))
+            .arg("-o")
+            .arg(&out)
+            .args(["--level", "1", "--cage", "--size", "123x77", "--up", "z"]),
+    ) else {
+        return;
+    };
+    assert_eq!(png_size(&out), (123, 77));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("rendered 4704 triangles"));
+}
+
+#[test]
+fn quiet_render_prints_nothing_and_notes_fallbacks_otherwise() {
+    let out = tmp("car.png");
+    let mut cmd = bin();
+    cmd.arg("render")
+        .arg(root("examples/car.obj"))
+        .arg("-o")
+        .arg(&out)
+        .args(["--level", "0", "--size", "64x48", "--color-by", "level"]);
+    let Some(o) = run_gpu(&mut cmd) else { return };
+    assert!(String::from_utf8_lossy(&o.stderr).contains("note: --color-by level"));
+    let Some(o) = run_gpu(cmd.arg("--quiet")) else {
+        return;
+    };
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("note:") && !err.contains("rendered"), "{err}");
+    assert_eq!(png_size(&out), (64, 48));
+}
+
+#[test]
+fn compare_puts_two_panels_side_by_side() {
+    let out = tmp("cmp.png");
+    let pawn = root("examples/pawn.obj");
+    let tet = root("testdata/shapes/catmark_toroidal_tet.obj");
+    let Some(_) = run_gpu(
+        bin()
+            .arg("compare")
+            .arg(format!("{}@refine:0", pawn.display()))
+            .arg(format!("{}@prep-bicubic:4", tet.display()))
+            .arg("-o")
+            .arg(&out)
+            .args(["--size", "50x40", "--gap", "6"]),
+    ) else {
+        return;
+    };
+    assert_eq!(png_size(&out), (106, 40));
+}
+
+#[test]
+fn argument_errors_need_no_gpu() {
+    let out = bin()
+        .arg("render")
+        .arg(root("examples/pawn.obj"))
+        .args(["-o", "x.png", "--size", "0x10"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("1..=16384"));
+    // The p-rep refuses meshes with boundaries (the pawn is open at the bottom).
+    let out = bin()
+        .arg("render")
+        .arg(root("examples/pawn.obj"))
+        .args(["-o", "x.png", "--method", "prep"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("closed"));
+}
