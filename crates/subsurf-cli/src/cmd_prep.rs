@@ -4,6 +4,8 @@
 use std::path::PathBuf;
 
 use anyhow::Context;
+
+use crate::common::{gpu_context, Backend};
 use subsurf::prep::quadrangulate::quadrangulate;
 use subsurf::prep::{PrepPatches, Real};
 use subsurf::Mesh;
@@ -29,6 +31,9 @@ pub struct PrepArgs {
     /// Build and evaluate in double precision (the output files are written from it).
     #[arg(long = "f64")]
     pub f64: bool,
+    /// Where the p-rep is built and tessellated (the GPU backend is f32 only).
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
 }
 
 /// Runs `subsurf prep`.
@@ -39,7 +44,10 @@ pub fn run(args: &PrepArgs) -> anyhow::Result<()> {
         mesh = quadrangulate(&mesh)?;
         eprintln!("quadrangulated: {} quads", mesh.num_faces());
     }
-    if args.f64 {
+    if args.backend == Backend::Gpu {
+        anyhow::ensure!(!args.f64, "--backend gpu computes in f32 only; drop --f64");
+        convert_gpu(args, &mesh)
+    } else if args.f64 {
         convert::<f64>(args, &mesh)
     } else {
         convert::<f32>(args, &mesh)
@@ -82,6 +90,70 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
             std::fs::File::create(out).with_context(|| format!("creating {}", out.display()))?;
         let mut w = std::io::BufWriter::new(file);
         p.write_bezier_npy(&mut w)
+            .and_then(|_| std::io::Write::flush(&mut w))
+            .with_context(|| format!("writing {}", out.display()))?;
+        eprintln!("wrote {}: ({nf}, 6, 6, 3) float64", out.display());
+    }
+    Ok(())
+}
+
+/// The GPU path: vertex and patch pass and the watertight tessellation as compute kernels.
+fn convert_gpu(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
+    use subsurf::prep::{bezier::face_bezier, npy, PrepTopology};
+    let topo = PrepTopology::new(&subsurf::Topology::new(mesh)?).with_context(|| {
+        format!(
+            "building the p-rep of {} (use --quadrangulate for non-quad input)",
+            args.input.display()
+        )
+    })?;
+    let ctx = gpu_context()?;
+    let gpu =
+        subsurf_gpu::GpuPrep::new(&ctx, &topo).context("--backend gpu: uploading the p-rep")?;
+    gpu.update(&ctx, &mesh.positions)
+        .context("--backend gpu: vertex and patch pass")?;
+    let nf = topo.num_faces();
+    eprintln!(
+        "p-rep (f32, GPU): {nf} patches, {} perturbed, max valence {}",
+        topo.perturbed_faces.len(),
+        topo.max_valence
+    );
+    if let Some(out) = &args.output {
+        let grid = gpu
+            .grid(&ctx, args.tess as usize)
+            .and_then(|g| gpu.eval_grid(&ctx, &g).and_then(|_| g.download(&ctx)))
+            .context("--backend gpu: tessellating")?;
+        let tri = Mesh::from_faces(grid.positions.clone(), &grid.triangles);
+        subsurf::io::write_path(out, &tri, Some(&grid.normals))
+            .with_context(|| format!("writing {}", out.display()))?;
+        eprintln!(
+            "wrote {}: {} vertices, {} triangles",
+            out.display(),
+            grid.positions.len(),
+            grid.triangles.len()
+        );
+    }
+    if let Some(out) = &args.bezier {
+        let (_, pd) = gpu
+            .download_coefficients(&ctx)
+            .context("--backend gpu: reading coefficients back")?;
+        let pt = |s: usize| [pd[3 * s], pd[3 * s + 1], pd[3 * s + 2]];
+        let mut data = Vec::with_capacity(36 * 3 * nf);
+        for f in 0..nf {
+            let g: Vec<[f32; 3]> = (16 * f..16 * f + 16).map(pt).collect();
+            let hi = topo.h_index[f];
+            let h: Option<Vec<[f32; 3]>> = (hi != u32::MAX).then(|| {
+                (16 * (nf + hi as usize)..16 * (nf + hi as usize) + 16)
+                    .map(pt)
+                    .collect()
+            });
+            for b in face_bezier(&g, h.as_deref()) {
+                data.extend(b.map(f64::from));
+            }
+        }
+        let file =
+            std::fs::File::create(out).with_context(|| format!("creating {}", out.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        npy::write_f64(&mut w, &data, &[nf, 6, 6, 3])
             .and_then(|_| std::io::Write::flush(&mut w))
             .with_context(|| format!("writing {}", out.display()))?;
         eprintln!("wrote {}: ({nf}, 6, 6, 3) float64", out.display());

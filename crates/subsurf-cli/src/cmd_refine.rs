@@ -1,8 +1,9 @@
 //! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
 
-use crate::common::{read_mesh, write_mesh, SchemeArgs};
+use crate::common::{gpu_context, read_mesh, write_mesh, Backend, SchemeArgs};
+use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::{refine::refine_uvs_linear, FaceVarying, Refiner, Topology};
+use subsurf::{FVarLinearInterpolation, FaceVarying, Refiner, Topology};
 
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
@@ -18,8 +19,44 @@ pub struct RefineArgs {
     /// Move the last level's vertices to their limit positions.
     #[arg(long)]
     pub limit: bool,
+    /// Face-varying (UV) interpolation; default: the mesh's own option (linear unless tagged).
+    #[arg(long, value_enum)]
+    pub uv_interp: Option<UvInterp>,
+    /// Where the refinement stencils are applied.
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
     #[command(flatten)]
     pub scheme: SchemeArgs,
+}
+
+/// OpenSubdiv's `FVarLinearInterpolation` modes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum UvInterp {
+    /// Smooth everywhere, UV boundaries included.
+    None,
+    /// Smooth, with sharp UV corners.
+    CornersOnly,
+    /// Smooth, with sharp UV corners and junctions (variant 1).
+    CornersPlus1,
+    /// Smooth, with sharp UV corners and junctions (variant 2).
+    CornersPlus2,
+    /// Smooth inside, linear along UV boundaries.
+    Boundaries,
+    /// Linear everywhere.
+    Linear,
+}
+
+impl From<UvInterp> for FVarLinearInterpolation {
+    fn from(u: UvInterp) -> Self {
+        match u {
+            UvInterp::None => FVarLinearInterpolation::None,
+            UvInterp::CornersOnly => FVarLinearInterpolation::CornersOnly,
+            UvInterp::CornersPlus1 => FVarLinearInterpolation::CornersPlus1,
+            UvInterp::CornersPlus2 => FVarLinearInterpolation::CornersPlus2,
+            UvInterp::Boundaries => FVarLinearInterpolation::Boundaries,
+            UvInterp::Linear => FVarLinearInterpolation::All,
+        }
+    }
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
@@ -27,17 +64,32 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     a.scheme.apply(&mut mesh);
     let topo = Topology::new(&mesh)?;
     let refiner = Refiner::new(topo, a.level)?;
-    let mut positions = refiner.refine_positions(&mesh.positions);
+    let mut positions = match a.backend {
+        Backend::Cpu => refiner.refine_positions(&mesh.positions),
+        Backend::Gpu => {
+            let ctx = gpu_context()?;
+            subsurf_gpu::GpuRefiner::new(&ctx, &refiner)
+                .and_then(|g| g.refine(&ctx, &mesh.positions))
+                .context("--backend gpu: refining on the GPU")?
+        }
+    };
     if a.limit {
         positions = refiner.limit(&positions);
     }
     let mut out = refiner.to_mesh(a.level, positions);
     if let Some(fv) = &mesh.uvs {
-        // Linear face-varying interpolation, one value per face corner.
-        let mut corner: Vec<[f32; 2]> = fv.indices.iter().map(|&i| fv.values[i as usize]).collect();
-        for k in 0..a.level {
-            corner = refine_uvs_linear(&refiner.levels[k], &corner);
-        }
+        let mode = a
+            .uv_interp
+            .map_or(mesh.options.fvar_interpolation, Into::into);
+        let last = refiner
+            .refine_uvs(fv, mode)?
+            .pop()
+            .expect("base level present");
+        let corner: Vec<[f32; 2]> = last
+            .indices
+            .iter()
+            .map(|&i| last.values[i as usize])
+            .collect();
         let t = refiner.last();
         let mut values = Vec::with_capacity(out.face_indices.len());
         for f in 0..t.num_faces() {

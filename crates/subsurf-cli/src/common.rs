@@ -87,3 +87,22 @@ pub fn write_mesh(path: &Path, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> any
     subsurf::io::write_path(path, mesh, normals)
         .with_context(|| format!("writing {}", path.display()))
 }
+
+/// Where the numeric work runs.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Backend {
+    /// Multithreaded CPU.
+    #[default]
+    Cpu,
+    /// wgpu compute kernels (Vulkan, Metal, DX12; `WGPU_BACKEND`, `SUBSURF_ADAPTER` respected).
+    Gpu,
+}
+
+/// Opens the GPU device, with a message that says what to do when there is none.
+pub fn gpu_context() -> anyhow::Result<subsurf_gpu::GpuContext> {
+    let ctx = subsurf_gpu::GpuContext::new().context(
+        "--backend gpu: no usable GPU device (run `subsurf gpu-info --all`, or use --backend cpu)",
+    )?;
+    eprintln!("GPU backend: {}", ctx.adapter_info().name);
+    Ok(ctx)
+}

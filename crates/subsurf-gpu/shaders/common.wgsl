@@ -14,3 +14,62 @@ struct StencilConfig {
     grid_width: u32,
     _pad: u32,
 }
+
+// Per-dispatch parameters of `refine_level` (one uniform per chunk of one table).
+struct RefineConfig {
+    // Rows (child vertices) in this chunk.
+    row_count: u32,
+    // Floats per vertex (1..=4).
+    stride: u32,
+    // Invocations along x of the dispatch grid.
+    grid_width: u32,
+    // Child vertex written by row 0 of the chunk.
+    first_row: u32,
+    // Number of parent vertices P: inputs k < P are parent vertices, others child vertices.
+    num_parent: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// Per-dispatch parameters of the p-rep kernels (prep_vertex_pass, prep_patch_pass,
+// prep_eval_grid). Flat buffers, 3 floats per point:
+//   vertex_data = [limit V | e1 V | e2 V | tangent S | interior S]
+//   patch_data  = [g 16 F | h 16 P]
+struct PrepConfig {
+    num_vertices: u32,
+    num_sectors: u32,
+    num_faces: u32,
+    num_edges: u32,
+    // Invocations of this dispatch, and invocations along x of its grid.
+    item_count: u32,
+    grid_width: u32,
+    // Samples per patch side of prep_eval_grid (>= 2).
+    samples: u32,
+    _pad: u32,
+}
+
+// Offset (in floats) of valence n's constants in `valence_consts`: valence m holds
+// 4 + 6 m floats, so valence n starts at sum_{m<n} (4 + 6m) = 4n + 3n(n-1).
+// Layout: [c_n, limit0, limit1, limit2, then per j < n: e1a, e1b, e2a, e2b, cos_j, sin_j].
+fn valence_base(n: u32) -> u32 {
+    return 4u * n + 3u * n * (n - 1u);
+}
+
+// Face-array index of local index (i, j) at corner c of a (d+1)x(d+1) array, as a flat
+// row-major index i * (d+1) + j.
+fn corner_index(c: u32, i: u32, j: u32, d: u32) -> u32 {
+    var a = i;
+    var b = j;
+    if c == 1u {
+        a = d - j;
+        b = i;
+    } else if c == 2u {
+        a = d - i;
+        b = d - j;
+    } else if c == 3u {
+        a = j;
+        b = d - i;
+    }
+    return a * (d + 1u) + b;
+}

@@ -9,13 +9,17 @@
 //! refinement module (the split of OpenSubdiv's `Far` tables and `Osd` evaluators).
 //!
 //! Entry points: [`GpuContext`] (adapter and device), [`VertexBuffer`] (vertex data resident
-//! on the GPU) and [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer).
+//! on the GPU), [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer),
+//! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
+//! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`).
 
 pub mod buffers;
 pub mod context;
 pub mod cpu;
 pub mod error;
 pub mod kernels;
+pub mod prep;
+pub mod refine;
 pub mod shared;
 pub mod table;
 
@@ -23,6 +27,8 @@ pub use buffers::VertexBuffer;
 pub use context::GpuContext;
 pub use error::GpuError;
 pub use kernels::stencil::{ChunkLimits, StencilKernel};
+pub use prep::{GpuGrid, GpuPrep, PrepTables};
+pub use refine::GpuRefiner;
 pub use table::StencilTable;
 
 /// Constants extracted from the WGSL sources by `build.rs` (`<KERNEL>_WORKGROUP_SIZE`).
@@ -34,4 +40,14 @@ pub mod shader_consts {
 pub mod shaders {
     /// `shaders/stencil_apply.wgsl`.
     pub const STENCIL_APPLY: &str = include_str!(concat!(env!("OUT_DIR"), "/stencil_apply.wgsl"));
+    /// `shaders/prep_vertex_pass.wgsl`.
+    pub const PREP_VERTEX_PASS: &str =
+        include_str!(concat!(env!("OUT_DIR"), "/prep_vertex_pass.wgsl"));
+    /// `shaders/prep_patch_pass.wgsl`.
+    pub const PREP_PATCH_PASS: &str =
+        include_str!(concat!(env!("OUT_DIR"), "/prep_patch_pass.wgsl"));
+    /// `shaders/prep_eval_grid.wgsl`.
+    pub const PREP_EVAL_GRID: &str = include_str!(concat!(env!("OUT_DIR"), "/prep_eval_grid.wgsl"));
+    /// `shaders/refine_level.wgsl`.
+    pub const REFINE_LEVEL: &str = include_str!(concat!(env!("OUT_DIR"), "/refine_level.wgsl"));
 }

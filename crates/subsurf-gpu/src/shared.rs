@@ -21,3 +21,50 @@ pub struct StencilConfig {
 }
 
 const _: () = assert!(std::mem::size_of::<StencilConfig>() == 16);
+
+/// Per-dispatch parameters of `refine_level` (keep in sync with shaders/common.wgsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct RefineConfig {
+    /// Rows (child vertices) in this chunk.
+    pub row_count: u32,
+    /// Floats per vertex (1..=4).
+    pub stride: u32,
+    /// Invocations along x of the dispatch grid.
+    pub grid_width: u32,
+    /// Child vertex written by row 0 of the chunk.
+    pub first_row: u32,
+    /// Number of parent vertices `P`: inputs `k < P` are parent vertices, others child vertices.
+    pub num_parent: u32,
+    /// Padding to 32 bytes.
+    pub _pad: [u32; 3],
+}
+
+const _: () = assert!(std::mem::size_of::<RefineConfig>() == 32);
+
+/// Per-dispatch parameters of the p-rep kernels (keep in sync with shaders/common.wgsl).
+///
+/// Flat buffers of the p-rep, 3 floats per point: `vertex_data = [limit V | e1 V | e2 V |
+/// tangent S | interior S]`, `patch_data = [g 16 F | h 16 P]`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct PrepConfig {
+    /// Vertices `V`.
+    pub num_vertices: u32,
+    /// Sectors `S` (face corners).
+    pub num_sectors: u32,
+    /// Faces `F`.
+    pub num_faces: u32,
+    /// Edges `E`.
+    pub num_edges: u32,
+    /// Invocations of the dispatch.
+    pub item_count: u32,
+    /// Invocations along x of the dispatch grid.
+    pub grid_width: u32,
+    /// Samples per patch side of `prep_eval_grid` (>= 2).
+    pub samples: u32,
+    /// Padding to 32 bytes.
+    pub _pad: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<PrepConfig>() == 32);

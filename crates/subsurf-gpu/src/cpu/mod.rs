@@ -2,4 +2,8 @@
 //! `WORKGROUP_SIZE`. Each twin is written as the body of one invocation plus a loop over the
 //! dispatch grid, so that it computes exactly what the shader computes, in the same order.
 
+pub mod prep_eval_grid;
+pub mod prep_patch_pass;
+pub mod prep_vertex_pass;
+pub mod refine_level;
 pub mod stencil_apply;

@@ -13,6 +13,7 @@
 
 use rayon::prelude::*;
 
+use super::grid::{uniform_params, GridBasis};
 use super::patch_pass::{corner_index, H_SLOTS};
 use super::scalar::{add, cross, normalize, scale, zero3, Real, V3};
 use super::PrepPatches;
@@ -258,21 +259,25 @@ impl<T: Real> PrepPatches<T> {
     /// [`Self::eval_grid`] into existing buffers (reused from frame to frame).
     pub fn eval_grid_into(&self, n: usize, grid: &mut Grid<T>) {
         let n = n.max(2);
-        let b = params::<T>(n);
-        let len = self.num_faces() * n * n;
+        self.eval_grid_with(&GridBasis::uniform(n), grid);
         grid.n = n;
+    }
+
+    /// Evaluates every face on the grid tabulated in `basis` (see [`GridBasis`]) into
+    /// `grid` (`grid.n` is left to the caller), in parallel over faces.
+    pub fn eval_grid_with(&self, basis: &GridBasis<T>, grid: &mut Grid<T>) {
+        let per = basis.len();
+        let len = self.num_faces() * per;
         grid.positions.resize(len, zero3());
         grid.normals.resize(len, zero3());
+        if per == 0 {
+            return;
+        }
         grid.positions
-            .par_chunks_mut(n * n)
-            .zip(grid.normals.par_chunks_mut(n * n))
+            .par_chunks_mut(per)
+            .zip(grid.normals.par_chunks_mut(per))
             .enumerate()
-            .for_each(|(f, (p, nr))| {
-                eval_patch_grid(self.face_g(f), self.face_h(f), &b, &b, |i, j, s| {
-                    p[j * n + i] = s.position;
-                    nr[j * n + i] = s.normal();
-                });
-            });
+            .for_each(|(f, (p, nr))| basis.eval_patch(self.face_g(f), self.face_h(f), p, nr));
     }
 
     /// Point of the edge curve leaving corner `c` of `face` at local parameter `t`: the
@@ -330,16 +335,12 @@ impl<T: Real> PrepPatches<T> {
                             eval_patch(self.face_g(f), self.face_h(f), &b[u], &b[v]).normal();
                     }
                 });
+            let inner = &uniform_params::<T>(n)[1..=m];
+            let basis = GridBasis::new(inner, inner);
             pf.par_chunks_mut(m * m)
                 .zip(nf_.par_chunks_mut(m * m))
                 .enumerate()
-                .for_each(|(f, (p, nr))| {
-                    let inner = &b[1..=m];
-                    eval_patch_grid(self.face_g(f), self.face_h(f), inner, inner, |i, j, s| {
-                        p[j * m + i] = s.position;
-                        nr[j * m + i] = s.normal();
-                    });
-                });
+                .for_each(|(f, (p, nr))| basis.eval_patch(self.face_g(f), self.face_h(f), p, nr));
         }
         let mut triangles = vec![[0u32; 3]; 2 * nf * (n - 1) * (n - 1)];
         triangles

@@ -20,6 +20,7 @@
 pub mod bezier;
 pub mod constants;
 pub mod eval;
+pub mod grid;
 pub mod npy;
 pub mod patch_pass;
 pub mod quadrangulate;

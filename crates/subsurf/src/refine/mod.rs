@@ -9,13 +9,22 @@
 //!
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
+//!
+//! Face-varying data (UVs) refines on the same levels with its own value topology and
+//! stencils, in any of OpenSubdiv's `FVarLinearInterpolation` modes:
+//! [`Refiner::refine_uvs`], or [`Refiner::fvar_refinement`] to keep the tables.
 
+mod fvar_propagate;
+mod fvar_stencils;
+mod fvar_topology;
 mod level;
 mod masks;
 pub(crate) mod par;
 mod stencil;
 mod uv;
 
+pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
+pub use fvar_topology::FVarTopology;
 pub use level::refine_topology;
 pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;

@@ -1,0 +1,263 @@
+//! Face-varying (UV) refinement against OpenSubdiv 3.5: every `catmark_*` and `bilinear_*`
+//! regression shape with UVs, levels 1–3 (4 for small shapes), every
+//! `FVarLinearInterpolation` mode, value for value at each face corner (within 1e-5 of the
+//! UV bounding box).
+
+#[macro_use]
+mod common;
+
+use std::borrow::Cow;
+
+use osd_ref::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
+use subsurf::{
+    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Mesh, Refiner, Scheme, Topology,
+    TriangleSubdivision,
+};
+
+const MODES: [(FVarLinearInterpolation, u8); 6] = [
+    (FVarLinearInterpolation::None, 0),
+    (FVarLinearInterpolation::CornersOnly, 1),
+    (FVarLinearInterpolation::CornersPlus1, 2),
+    (FVarLinearInterpolation::CornersPlus2, 3),
+    (FVarLinearInterpolation::Boundaries, 4),
+    (FVarLinearInterpolation::All, 5),
+];
+
+fn osd_options(m: &Mesh, fvar_interp: u8) -> OsdOptions {
+    OsdOptions {
+        scheme: match m.options.scheme {
+            Scheme::Catmark => OsdScheme::Catmark,
+            Scheme::Bilinear => OsdScheme::Bilinear,
+            Scheme::Loop => OsdScheme::Loop,
+        },
+        boundary: match m.options.boundary {
+            BoundaryInterpolation::None => OsdBoundary::None,
+            BoundaryInterpolation::EdgeOnly => OsdBoundary::EdgeOnly,
+            BoundaryInterpolation::EdgeAndCorner => OsdBoundary::EdgeAndCorner,
+        },
+        crease_method: match m.options.crease_method {
+            CreaseMethod::Uniform => OsdCreaseMethod::Uniform,
+            CreaseMethod::Chaikin => OsdCreaseMethod::Chaikin,
+        },
+        triangle_smooth: m.options.triangle_subdivision == TriangleSubdivision::Smooth,
+        fvar_interp,
+    }
+}
+
+fn osd_mesh(m: &Mesh, fvar_interp: u8) -> OsdMesh<'_> {
+    OsdMesh {
+        positions: &m.positions,
+        face_counts: &m.face_counts,
+        face_indices: &m.face_indices,
+        creases: Cow::Owned(
+            m.creases
+                .iter()
+                .map(|c| (c.v0, c.v1, c.sharpness))
+                .collect(),
+        ),
+        corners: Cow::Owned(m.corners.iter().map(|c| (c.vertex, c.sharpness)).collect()),
+        holes: &m.holes,
+        uvs: m.uvs.as_ref().map(|fv| (&fv.values[..], &fv.indices[..])),
+        options: osd_options(m, fvar_interp),
+    }
+}
+
+/// Largest side of the UVs' bounding box.
+fn uv_extent(values: &[[f32; 2]]) -> f32 {
+    let mut lo = [f32::MAX; 2];
+    let mut hi = [f32::MIN; 2];
+    for v in values {
+        for c in 0..2 {
+            lo[c] = lo[c].min(v[c]);
+            hi[c] = hi[c].max(v[c]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-30)
+}
+
+/// Compares one shape in one mode at levels 1..=`max_level`; returns the worst error
+/// relative to the UV extent, or a description of the first mismatch.
+fn compare(
+    name: &str,
+    mesh: &Mesh,
+    mode: FVarLinearInterpolation,
+    code: u8,
+    max_level: usize,
+) -> Result<f32, String> {
+    let fv = mesh.uvs.as_ref().expect("shape has UVs");
+    let extent = uv_extent(&fv.values);
+    let osd = osd_ref::refine_uniform(&osd_mesh(mesh, code), max_level)
+        .map_err(|e| format!("{name}: OpenSubdiv: {e}"))?;
+    let refiner = Refiner::new(Topology::new(mesh).unwrap(), max_level).unwrap();
+    let ours = refiner
+        .refine_uvs(fv, mode)
+        .map_err(|e| format!("{name}: {e}"))?;
+    let mut worst = 0.0f32;
+    for level in 1..=max_level {
+        let (values, indices) = osd[level].uvs.as_ref().expect("OpenSubdiv returned UVs");
+        let s = &ours[level];
+        if s.indices.len() != indices.len() {
+            return Err(format!(
+                "{name} {mode:?} level {level}: {} corners vs {}",
+                s.indices.len(),
+                indices.len()
+            ));
+        }
+        for (c, (&i, &j)) in s.indices.iter().zip(indices).enumerate() {
+            let (a, b) = (s.values[i as usize], values[j as usize]);
+            let d = (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) / extent;
+            if d > 1e-5 {
+                return Err(format!(
+                    "{name} {mode:?} level {level} corner {c} (face {}): subsurf {a:?} OpenSubdiv {b:?} (error {d:e})",
+                    c / 4
+                ));
+            }
+            worst = worst.max(d);
+        }
+    }
+    Ok(worst)
+}
+
+fn shapes_with_uvs() -> Vec<(String, Mesh)> {
+    let mut names: Vec<String> = std::fs::read_dir(common::shapes_dir())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| {
+            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
+        })
+        .map(|n| n.trim_end_matches(".obj").to_string())
+        .collect();
+    names.sort();
+    names
+        .into_iter()
+        .filter_map(|name| {
+            let mesh =
+                subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj")))
+                    .unwrap();
+            mesh.uvs.is_some().then_some((name, mesh))
+        })
+        .collect()
+}
+
+fn check_mode(mode: FVarLinearInterpolation) {
+    let code = MODES.iter().find(|m| m.0 == mode).unwrap().1;
+    let shapes = shapes_with_uvs();
+    assert!(
+        shapes.len() >= 40,
+        "expected the regression shapes with UVs, found {}",
+        shapes.len()
+    );
+    let mut failures = Vec::new();
+    let mut report = Vec::new();
+    for (name, mesh) in &shapes {
+        let level = if mesh.face_indices.len() * 64 <= 20_000 {
+            4
+        } else {
+            3
+        };
+        match compare(name, mesh, mode, code, level) {
+            Ok(w) => report.push(format!(
+                "{name:32} {mode:?} levels 1-{level}: max error {w:.2e} of the UV extent"
+            )),
+            Err(e) => failures.push(e),
+        }
+    }
+    eprintln!("{}", report.join("\n"));
+    assert!(
+        failures.is_empty(),
+        "{} of {} shapes differ:\n{}",
+        failures.len(),
+        shapes.len(),
+        failures.join("\n")
+    );
+}
+
+#[test]
+fn uvs_corners_only_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::CornersOnly);
+}
+
+#[test]
+fn uvs_none_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::None);
+}
+
+#[test]
+fn uvs_corners_plus1_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::CornersPlus1);
+}
+
+#[test]
+fn uvs_corners_plus2_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::CornersPlus2);
+}
+
+#[test]
+fn uvs_boundaries_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::Boundaries);
+}
+
+#[test]
+fn uvs_all_match_opensubdiv() {
+    require_osd!();
+    check_mode(FVarLinearInterpolation::All);
+}
+
+/// Random face-varying topologies (fixed seed): every corner draws its value index from a
+/// small pool, so seams, darts, disjoint ("bowtie") values and repeated values around a
+/// vertex are everywhere; semi-sharp creases and corners come from the shapes' tags.
+#[test]
+fn random_uv_topologies_match_opensubdiv() {
+    require_osd!();
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let mut failures = Vec::new();
+    for name in [
+        "catmark_cube_creases1",
+        "catmark_chaikin1",
+        "catmark_dart_edgecorner",
+        "catmark_edgecorner",
+        "catmark_nonman_verts",
+        "catmark_nonman_edge100",
+        "catmark_pyramid_creases0",
+        "catmark_smoothtris0",
+        "catmark_hole_test2",
+        "catmark_val2_nonman",
+    ] {
+        let mut mesh =
+            subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();
+        for pool in [2u64, 3, 5] {
+            let values: Vec<[f32; 2]> = (0..pool)
+                .map(|k| [(k as f32 * 0.37).fract(), (k as f32 * 0.61).fract()])
+                .collect();
+            let indices = mesh
+                .face_indices
+                .iter()
+                .map(|_| (next() % pool) as u32)
+                .collect();
+            mesh.uvs = Some(subsurf::FaceVarying { values, indices });
+            for (mode, code) in MODES {
+                if let Err(e) = compare(name, &mesh, mode, code, 3) {
+                    failures.push(format!("pool {pool}: {e}"));
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} cases differ:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}

@@ -1,0 +1,147 @@
+//! `--backend gpu` of `subsurf refine` and `subsurf prep` against `--backend cpu`.
+//!
+//! Without a GPU adapter these tests fail with the driver installation hint, unless
+//! `SUBSURF_SKIP_GPU=1`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_subsurf"))
+}
+
+fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../..")
+        .join(rel)
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("subsurf-cli-gpu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Runs `args` with `--backend gpu`; `None` (after a loud note) when there is no adapter and
+/// `SUBSURF_SKIP_GPU=1`.
+fn run_gpu(args: &[&std::ffi::OsStr]) -> Option<Output> {
+    let out = bin()
+        .args(args)
+        .args(["--backend", "gpu"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    if !out.status.success() && err.contains("no GPU adapter") {
+        if std::env::var("SUBSURF_SKIP_GPU").as_deref() == Ok("1") {
+            eprintln!("\n!!!!!!!! SKIPPED GPU CLI TEST (SUBSURF_SKIP_GPU=1): {err} !!!!!!!!\n");
+            return None;
+        }
+        panic!("{err}");
+    }
+    assert!(out.status.success(), "{err}");
+    Some(out)
+}
+
+fn run_cpu(args: &[&std::ffi::OsStr]) {
+    let out = bin().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn assert_same_mesh(gpu: &Path, cpu: &Path) {
+    let (g, c) = (
+        subsurf::io::read_path(gpu).unwrap(),
+        subsurf::io::read_path(cpu).unwrap(),
+    );
+    assert_eq!(g.face_indices, c.face_indices, "connectivity differs");
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in &c.positions {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let diag = (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f32>().sqrt();
+    for (i, (a, b)) in g.positions.iter().zip(&c.positions).enumerate() {
+        for k in 0..3 {
+            assert!(
+                (a[k] - b[k]).abs() <= 1e-5 * diag,
+                "vertex {i}: GPU {a:?} vs CPU {b:?}"
+            );
+        }
+    }
+}
+
+fn path_str(p: &Path) -> String {
+    p.to_str().expect("test paths are UTF-8").to_string()
+}
+
+/// `subsurf <cmd> <input> <extra…> -o <out>` with both backends; outputs compared.
+fn compare_backends(cmd: &str, input: &Path, extra: &[&str], stem: &str) {
+    let (g, c) = (
+        tmp(&format!("{stem}_gpu.obj")),
+        tmp(&format!("{stem}_cpu.obj")),
+    );
+    let args = |o: &Path| {
+        let mut v = vec![cmd.to_string(), path_str(input)];
+        v.extend(extra.iter().map(|s| s.to_string()));
+        v.extend(["-o".to_string(), path_str(o)]);
+        v
+    };
+    let ga = args(&g);
+    let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_ref()).collect();
+    if run_gpu(&ga).is_none() {
+        return;
+    }
+    let ca = args(&c);
+    let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_ref()).collect();
+    run_cpu(&ca);
+    assert_same_mesh(&g, &c);
+}
+
+#[test]
+fn refine_gpu_matches_cpu() {
+    compare_backends(
+        "refine",
+        &repo("examples/car.obj"),
+        &["--level", "2"],
+        "car",
+    );
+}
+
+#[test]
+fn prep_gpu_matches_cpu() {
+    let input = repo("crates/subsurf/tests/data/prep/catmark_torus.obj");
+    compare_backends("prep", &input, &["--tess", "5"], "torus");
+}
+
+#[test]
+fn gpu_errors_are_clear() {
+    // No adapter matches: the message says what failed and what to do.
+    let out = bin()
+        .args(["refine"])
+        .arg(repo("examples/car.obj"))
+        .args(["-o"])
+        .arg(tmp("never.obj"))
+        .args(["--backend", "gpu"])
+        .env("SUBSURF_ADAPTER", "no-such-adapter-0xdead")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--backend gpu"), "{err}");
+    assert!(err.contains("no-such-adapter-0xdead"), "{err}");
+    assert!(err.contains("--backend cpu"), "{err}");
+    // f64 is a CPU-only option.
+    let out = bin()
+        .args(["prep"])
+        .arg(repo("crates/subsurf/tests/data/prep/catmark_cube.obj"))
+        .args(["--f64", "--backend", "gpu"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("f32 only"));
+}

@@ -1,0 +1,166 @@
+// Body of the `gpu_pipeline` bench and example (documented in benches/gpu_pipeline.rs).
+use std::time::{Duration, Instant};
+
+use subsurf::prep::{Grid, PrepPatches, PrepTopology};
+use subsurf::{Mesh, Refiner, Scheme, Topology};
+use subsurf_gpu::{GpuContext, GpuPrep, GpuRefiner};
+
+const CAR: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes/catmark_car.obj"));
+const LEFTHANDED: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../subsurf/tests/data/prep/catmark_lefthanded.obj"));
+
+/// Median wall time of `f`, run at least 3 and at most 50 times or for about 2 seconds.
+fn median(mut f: impl FnMut()) -> Duration {
+    f(); // warm-up
+    let mut times = Vec::new();
+    let start = Instant::now();
+    while times.len() < 3 || (times.len() < 50 && start.elapsed() < Duration::from_secs(2)) {
+        let t = Instant::now();
+        f();
+        times.push(t.elapsed());
+    }
+    times.sort();
+    times[times.len() / 2]
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, level: usize) {
+    let refiner = match Refiner::new(Topology::new(mesh).expect("topology"), level) {
+        Ok(r) => r,
+        Err(e) => {
+            println!("refine {name} level {level}: skipped ({e})");
+            return;
+        }
+    };
+    let out = refiner.last().num_vertices() as f64;
+    let cpu = median(|| {
+        std::hint::black_box(refiner.refine_positions(&mesh.positions));
+    });
+    println!(
+        "refine {name} L{level} ({out:.0} vertices) | CPU ({} threads) | {:9.3} ms | {:8.1} Mvert/s",
+        rayon::current_num_threads(),
+        ms(cpu),
+        out / cpu.as_secs_f64() / 1e6
+    );
+    let Some(ctx) = ctx else { return };
+    let gpu = match GpuRefiner::new(ctx, &refiner) {
+        Ok(g) => g,
+        Err(e) => {
+            println!("refine {name} L{level} | GPU {adapter} | failed: {e}");
+            return;
+        }
+    };
+    let resident = median(|| {
+        gpu.update(ctx, &mesh.positions).expect("update");
+        ctx.wait_idle().expect("wait");
+    });
+    let readback = median(|| {
+        std::hint::black_box(gpu.refine(ctx, &mesh.positions).expect("refine"));
+    });
+    for (what, t) in [("resident", resident), ("+ read-back", readback)] {
+        println!(
+            "refine {name} L{level} ({out:.0} vertices) | GPU {adapter} {what} | {:9.3} ms | {:8.1} Mvert/s",
+            ms(t),
+            out / t.as_secs_f64() / 1e6
+        );
+    }
+}
+
+fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usize]) {
+    let topo = PrepTopology::new(&Topology::new(mesh).expect("topology")).expect("closed quads");
+    let mut cpu =
+        PrepPatches::<f32>::from_prep_topology(topo.clone(), &mesh.positions).expect("p-rep");
+    let nf = topo.num_faces();
+    let gpu = ctx.map(|c| GpuPrep::new(c, &topo).expect("GPU p-rep upload"));
+    for &n in sizes {
+        let mut grid = Grid::default();
+        let t_grid = median(|| {
+            cpu.update(&mesh.positions).expect("update");
+            cpu.eval_grid_into(n, &mut grid);
+        });
+        let t_tess = median(|| {
+            cpu.update(&mesh.positions).expect("update");
+            std::hint::black_box(cpu.tessellate(n));
+        });
+        for (what, t) in [("eval_grid, reused buffers", t_grid), ("watertight tessellate", t_tess)] {
+            println!(
+                "prep {nf} faces N={n:2} | CPU ({} threads) {what} | {:9.3} ms | {:8.1} fps",
+                rayon::current_num_threads(),
+                ms(t),
+                1.0 / t.as_secs_f64()
+            );
+        }
+        if let (Some(ctx), Some(gpu)) = (ctx, &gpu) {
+            let grid = gpu.grid(ctx, n).expect("grid buffers");
+            let t = median(|| {
+                gpu.update(ctx, &mesh.positions).expect("update");
+                gpu.eval_grid(ctx, &grid).expect("eval");
+                ctx.wait_idle().expect("wait");
+            });
+            println!(
+                "prep {nf} faces N={n:2} | GPU {adapter} | {:9.3} ms | {:8.1} fps ({} vertices)",
+                ms(t),
+                1.0 / t.as_secs_f64(),
+                grid.num_vertices
+            );
+        }
+    }
+}
+
+/// `n` disjoint copies of `base` side by side in x (the shape is 0.69 wide), as subsurf's
+/// `prep` bench builds its 1,302-face mesh.
+fn copies(base: &Mesh, n: usize) -> Mesh {
+    let nv = base.positions.len() as u32;
+    let mut positions = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for c in 0..n {
+        positions.extend(base.positions.iter().map(|p| [p[0] + c as f32, p[1], p[2]]));
+        let mut start = 0;
+        for &k in &base.face_counts {
+            let f = &base.face_indices[start..start + k as usize];
+            faces.push(f.iter().map(|&v| v + c as u32 * nv).collect());
+            start += k as usize;
+        }
+    }
+    Mesh::from_faces(positions, &faces)
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; nothing else is expected.
+    let quick = std::env::var("GPU_PIPELINE_QUICK").is_ok_and(|v| v == "1");
+    let ctx = match GpuContext::new() {
+        Ok(c) => Some(c),
+        Err(e) => {
+            println!("gpu_pipeline: no GPU ({e}); CPU figures only");
+            None
+        }
+    };
+    let adapter = ctx
+        .as_ref()
+        .map(|c| {
+            let i = c.adapter_info();
+            format!("[{} / {}]", i.name, i.backend)
+        })
+        .unwrap_or_else(|| "[none]".into());
+    println!(
+        "gpu_pipeline: adapter {adapter}, {} CPU threads",
+        rayon::current_num_threads()
+    );
+    let car = subsurf::io::obj::read_with_scheme(CAR, Scheme::Catmark).expect("catmark_car");
+    let torus = subsurf::shapes::torus(512, 512, 1.0, 0.3);
+    let mut cases: Vec<(&str, &Mesh, usize)> =
+        vec![("catmark_car", &car, 3), ("torus262k", &torus, 1)];
+    if !quick {
+        cases.push(("catmark_car", &car, 4));
+        cases.push(("torus262k", &torus, 2));
+    }
+    for (name, mesh, level) in cases {
+        refine_case(ctx.as_ref(), &adapter, name, mesh, level);
+    }
+    let lh = subsurf::io::obj::read_with_scheme(LEFTHANDED, Scheme::Catmark).expect("lefthanded");
+    let lh = copies(&lh, 3);
+    let sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
+    prep_case(ctx.as_ref(), &adapter, &lh, sizes);
+}

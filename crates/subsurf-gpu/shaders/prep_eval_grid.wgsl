@@ -1,0 +1,241 @@
+// Evaluation of the p-rep on an n x n grid per face into a WATERTIGHT mesh (Myles, Yeo &
+// Peters 2008, §4 "pass 2"):
+//
+//   x(u,v) = sum_{i,j<4} g_ij B3_i(u) B3_j(v) + sum_{16 slots} h_ij B5_i(u) B5_j(v)
+//
+// Vertex layout (as `PrepPatches::tessellate` of the subsurf crate): one vertex per mesh
+// vertex (its limit point g00, normal e1 x e2), then n-2 per edge, then (n-2)^2 per face.
+// A shared-edge sample is computed ONCE, by the invocation of its edge, from the edge curve
+// sum_i g_i0 B3_i(t) + h20 B5_2(t) + h30 B5_3(t) of the face owning the edge in its canonical
+// direction; both faces' triangles index it, so the two sides are identical bit for bit.
+//
+// Entry `main`: one invocation per output vertex, writes 6 floats (position, unit normal).
+// Entry `indices`: one invocation per grid cell, writes its two ccw triangles.
+// CPU twin: src/cpu/prep_eval_grid.rs.
+
+const WORKGROUP_SIZE: u32 = 64u;
+const NO_H: u32 = 0xffffffffu;
+
+@group(0) @binding(0) var<uniform> config: PrepConfig;
+@group(0) @binding(1) var<storage, read> params: array<f32>;
+@group(0) @binding(2) var<storage, read> edge_corner: array<u32>;
+@group(0) @binding(3) var<storage, read> h_index: array<u32>;
+@group(0) @binding(4) var<storage, read> vertex_data: array<f32>;
+@group(0) @binding(5) var<storage, read> patch_data: array<f32>;
+@group(0) @binding(6) var<storage, read_write> out_vertices: array<f32>;
+@group(0) @binding(7) var<storage, read> face_verts: array<u32>;
+@group(0) @binding(8) var<storage, read> face_edges: array<u32>;
+@group(0) @binding(9) var<storage, read_write> out_indices: array<u32>;
+
+struct Basis {
+    b3: array<f32, 4>,
+    d3: array<f32, 4>,
+    b5: array<f32, 6>,
+    d5: array<f32, 6>,
+}
+
+// Bernstein values and derivatives of degree 3 and 5 at t.
+fn basis(t: f32) -> Basis {
+    let s = 1.0 - t;
+    var b: Basis;
+    b.b3 = array<f32, 4>(s * s * s, 3.0 * s * s * t, 3.0 * s * t * t, t * t * t);
+    let q0 = s * s;
+    let q1 = 2.0 * s * t;
+    let q2 = t * t;
+    b.d3 = array<f32, 4>(-3.0 * q0, 3.0 * (q0 - q1), 3.0 * (q1 - q2), 3.0 * q2);
+    let s2 = s * s;
+    let t2 = t * t;
+    b.b5 = array<f32, 6>(s2 * s2 * s, 5.0 * s2 * s2 * t, 10.0 * s2 * s * t2,
+                         10.0 * s2 * t2 * t, 5.0 * s * t2 * t2, t2 * t2 * t);
+    let c0 = s2 * s2;
+    let c1 = 4.0 * s2 * s * t;
+    let c2 = 6.0 * s2 * t2;
+    let c3 = 4.0 * s * t2 * t;
+    let c4 = t2 * t2;
+    b.d5 = array<f32, 6>(-5.0 * c0, 5.0 * (c0 - c1), 5.0 * (c1 - c2), 5.0 * (c2 - c3),
+                         5.0 * (c3 - c4), 5.0 * c4);
+    return b;
+}
+
+fn vd(slot: u32) -> vec3<f32> {
+    return vec3<f32>(vertex_data[3u * slot], vertex_data[3u * slot + 1u], vertex_data[3u * slot + 2u]);
+}
+
+fn pd(slot: u32) -> vec3<f32> {
+    return vec3<f32>(patch_data[3u * slot], patch_data[3u * slot + 1u], patch_data[3u * slot + 2u]);
+}
+
+// Slot s of the compact h block: corner s / 4, local [h20, h30, h21, h31][s % 4], as the
+// (i, j) of the 6x6 array (flat i * 6 + j).
+fn h_slot(s: u32) -> u32 {
+    let m = s % 4u;
+    return corner_index(s / 4u, 2u + m % 2u, m / 2u, 5u);
+}
+
+fn normalized(a: vec3<f32>) -> vec3<f32> {
+    let l2 = a.x * a.x + a.y * a.y + a.z * a.z;
+    if l2 > 0.0 {
+        return (1.0 / sqrt(l2)) * a;
+    }
+    return a;
+}
+
+struct Sample {
+    p: vec3<f32>,
+    du: vec3<f32>,
+    dv: vec3<f32>,
+}
+
+fn eval_patch(f: u32, bu: Basis, bv: Basis) -> Sample {
+    var r: Sample;
+    r.p = vec3<f32>(0.0);
+    r.du = vec3<f32>(0.0);
+    r.dv = vec3<f32>(0.0);
+    for (var i = 0u; i < 4u; i++) {
+        for (var j = 0u; j < 4u; j++) {
+            let x = pd(16u * f + 4u * i + j);
+            r.p += (bu.b3[i] * bv.b3[j]) * x;
+            r.du += (bu.d3[i] * bv.b3[j]) * x;
+            r.dv += (bu.b3[i] * bv.d3[j]) * x;
+        }
+    }
+    let hi = h_index[f];
+    if hi != NO_H {
+        let hb = 16u * config.num_faces + 16u * hi;
+        for (var s = 0u; s < 16u; s++) {
+            let ij = h_slot(s);
+            let i = ij / 6u;
+            let j = ij % 6u;
+            let x = pd(hb + s);
+            r.p += (bu.b5[i] * bv.b5[j]) * x;
+            r.du += (bu.d5[i] * bv.b5[j]) * x;
+            r.dv += (bu.b5[i] * bv.d5[j]) * x;
+        }
+    }
+    return r;
+}
+
+fn emit(item: u32, p: vec3<f32>, nrm: vec3<f32>) {
+    let o = 6u * item;
+    out_vertices[o] = p.x;
+    out_vertices[o + 1u] = p.y;
+    out_vertices[o + 2u] = p.z;
+    out_vertices[o + 3u] = nrm.x;
+    out_vertices[o + 4u] = nrm.y;
+    out_vertices[o + 5u] = nrm.z;
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let item = gid.y * config.grid_width + gid.x;
+    if item >= config.item_count {
+        return;
+    }
+    let n = config.samples;
+    let m = n - 2u;
+    let nv = config.num_vertices;
+    let ne = config.num_edges;
+    if item < nv {
+        let e1 = vd(nv + item);
+        let e2 = vd(2u * nv + item);
+        emit(item, vd(item), normalized(cross(e1, e2)));
+        return;
+    }
+    if item < nv + ne * m {
+        let e = (item - nv) / m;
+        let s = (item - nv) % m + 1u;
+        let corner = edge_corner[e];
+        let f = corner / 4u;
+        let c = corner % 4u;
+        let b = basis(params[s]);
+        var p = vec3<f32>(0.0);
+        for (var i = 0u; i < 4u; i++) {
+            p = p + b.b3[i] * pd(16u * f + corner_index(c, i, 0u, 3u));
+        }
+        let hi = h_index[f];
+        if hi != NO_H {
+            let hb = 16u * config.num_faces + 16u * hi;
+            p = p + b.b5[2] * pd(hb + 4u * c);
+            p = p + b.b5[3] * pd(hb + 4u * c + 1u);
+        }
+        let uv = corner_index(c, s, 0u, n - 1u);
+        let smp = eval_patch(f, basis(params[uv / n]), basis(params[uv % n]));
+        emit(item, p, normalized(cross(smp.du, smp.dv)));
+        return;
+    }
+    let q = item - nv - ne * m;
+    let f = q / (m * m);
+    let r = q % (m * m);
+    let j = r / m + 1u;
+    let i = r % m + 1u;
+    let smp = eval_patch(f, basis(params[i]), basis(params[j]));
+    emit(item, smp.p, normalized(cross(smp.du, smp.dv)));
+}
+
+// Index in the vertex array of grid sample (i, j) of face f (see the layout above).
+fn grid_vertex(f: u32, i: u32, j: u32) -> u32 {
+    let n = config.samples;
+    let last = n - 1u;
+    let m = n - 2u;
+    if i == 0u && j == 0u {
+        return face_verts[4u * f];
+    }
+    if i == last && j == 0u {
+        return face_verts[4u * f + 1u];
+    }
+    if i == last && j == last {
+        return face_verts[4u * f + 2u];
+    }
+    if i == 0u && j == last {
+        return face_verts[4u * f + 3u];
+    }
+    var c = 4u;
+    var s = 0u;
+    if j == 0u {
+        c = 0u;
+        s = i;
+    } else if i == last {
+        c = 1u;
+        s = j;
+    } else if j == last {
+        c = 2u;
+        s = last - i;
+    } else if i == 0u {
+        c = 3u;
+        s = last - j;
+    }
+    if c < 4u {
+        let e = face_edges[4u * f + c];
+        let forward = face_verts[4u * f + c] < face_verts[4u * f + (c + 1u) % 4u];
+        var k = m - s;
+        if forward {
+            k = s - 1u;
+        }
+        return config.num_vertices + e * m + k;
+    }
+    return config.num_vertices + config.num_edges * m + f * m * m + (j - 1u) * m + (i - 1u);
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn indices(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let item = gid.y * config.grid_width + gid.x;
+    if item >= config.item_count {
+        return;
+    }
+    let cells = config.samples - 1u;
+    let f = item / (cells * cells);
+    let r = item % (cells * cells);
+    let j = r / cells;
+    let i = r % cells;
+    let a = grid_vertex(f, i, j);
+    let b = grid_vertex(f, i + 1u, j);
+    let c = grid_vertex(f, i + 1u, j + 1u);
+    let d = grid_vertex(f, i, j + 1u);
+    let o = 6u * item;
+    out_indices[o] = a;
+    out_indices[o + 1u] = b;
+    out_indices[o + 2u] = c;
+    out_indices[o + 3u] = a;
+    out_indices[o + 4u] = c;
+    out_indices[o + 5u] = d;
+}

@@ -1,0 +1,191 @@
+//! The p-rep kernels (vertex pass, patch pass, watertight grid evaluation) on the GPU against
+//! the CPU construction of `subsurf::prep` in f32, and their CPU twins against the library.
+
+mod common;
+
+use common::context_or_skip;
+use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::{PrepPatches, PrepTopology, Tessellation};
+use subsurf::{Mesh, Topology};
+use subsurf_gpu::{GpuPrep, PrepTables};
+
+/// Closed quad meshes: the p-rep test shapes (split into quads where needed) and a cube.
+fn meshes() -> Vec<(String, Mesh)> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../subsurf/tests/data/prep");
+    let mut out = vec![("cube".to_string(), subsurf::shapes::cube())];
+    for name in [
+        "catmark_lefthanded",
+        "catmark_toroidal_tet",
+        "catmark_torus",
+    ] {
+        let m = subsurf::io::read_path(dir.join(format!("{name}.obj"))).unwrap();
+        let m = if m.face_counts.iter().all(|&c| c == 4) {
+            m
+        } else {
+            quadrangulate(&m).unwrap()
+        };
+        out.push((name.to_string(), m));
+    }
+    out
+}
+
+fn bbox_diagonal(p: &[[f32; 3]]) -> f64 {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for q in p {
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k] as f64);
+            hi[k] = hi[k].max(q[k] as f64);
+        }
+    }
+    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The library's f32 construction as the kernels' flat layouts.
+fn cpu_flat(p: &PrepPatches<f32>) -> (Vec<f32>, Vec<f32>) {
+    let v = &p.vertex;
+    let vd = [&v.limit, &v.e1, &v.e2, &v.tangent, &v.interior]
+        .into_iter()
+        .flat_map(|a| a.iter().flatten().copied())
+        .collect();
+    let pd = p.g.iter().chain(&p.h).flatten().copied().collect();
+    (vd, pd)
+}
+
+fn assert_all_close(what: &str, got: &[f32], want: &[f32], tol: f64) {
+    assert_eq!(got.len(), want.len(), "{what}: length");
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        assert!(g.is_finite(), "{what}[{i}] is {g}");
+        let d = (*g as f64 - *w as f64).abs();
+        assert!(d <= tol, "{what}[{i}]: {g} vs {w} (|diff| {d:e} > {tol:e})");
+    }
+}
+
+/// A closed mesh: every triangle edge is used exactly twice, once in each direction.
+fn assert_watertight(what: &str, t: &Tessellation<f32>) {
+    let mut edges = std::collections::HashMap::new();
+    for tri in &t.triangles {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            assert!(
+                (a as usize) < t.positions.len(),
+                "{what}: index {a} out of range"
+            );
+            *edges.entry((a, b)).or_insert(0u32) += 1;
+        }
+    }
+    for (&(a, b), &c) in &edges {
+        assert_eq!(c, 1, "{what}: directed edge {a}->{b} used {c} times");
+        assert_eq!(
+            edges.get(&(b, a)),
+            Some(&1),
+            "{what}: edge {a}-{b} is a crack (no twin)"
+        );
+    }
+}
+
+fn compare_tessellation(what: &str, got: &Tessellation<f32>, want: &Tessellation<f32>, diag: f64) {
+    assert_eq!(
+        got.triangles, want.triangles,
+        "{what}: index buffers differ"
+    );
+    assert_all_close(
+        &format!("{what} positions"),
+        got.positions.as_flattened(),
+        want.positions.as_flattened(),
+        1e-5 * diag,
+    );
+    assert_all_close(
+        &format!("{what} normals"),
+        got.normals.as_flattened(),
+        want.normals.as_flattened(),
+        1e-3,
+    );
+    assert_watertight(what, got);
+}
+
+#[test]
+fn twins_reproduce_the_cpu_construction() {
+    for (name, mesh) in meshes() {
+        let p = PrepPatches::<f32>::build(&mesh).unwrap();
+        let tables = PrepTables::new(&p.topology).unwrap();
+        let (vd, pd) = tables.run_passes_cpu(&mesh.positions);
+        let (want_vd, want_pd) = cpu_flat(&p);
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&vd), bits(&want_vd), "{name}: vertex pass");
+        assert_eq!(bits(&pd), bits(&want_pd), "{name}: patch pass");
+        let diag = bbox_diagonal(&mesh.positions);
+        for n in [2, 3, 6] {
+            let t = tables.eval_grid_cpu(n, &vd, &pd);
+            compare_tessellation(&format!("{name} twin n={n}"), &t, &p.tessellate(n), diag);
+        }
+    }
+}
+
+#[test]
+fn gpu_coefficients_match_cpu() {
+    let Some(ctx) = context_or_skip("gpu_coefficients_match_cpu") else {
+        return;
+    };
+    for (name, mesh) in meshes() {
+        let p = PrepPatches::<f32>::build(&mesh).unwrap();
+        let gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
+        gpu.update(&ctx, &mesh.positions).unwrap();
+        let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
+        let (want_vd, want_pd) = cpu_flat(&p);
+        // f32 rounding (with or without fused multiply-add) of sums of a few dozen terms of
+        // the size of the mesh.
+        let tol = 1e-6 * bbox_diagonal(&mesh.positions);
+        assert_all_close(&format!("{name} vertex data"), &vd, &want_vd, tol);
+        assert_all_close(&format!("{name} patch data"), &pd, &want_pd, tol);
+    }
+}
+
+#[test]
+fn gpu_tessellation_is_watertight_and_matches_cpu() {
+    let Some(ctx) = context_or_skip("gpu_tessellation_is_watertight_and_matches_cpu") else {
+        return;
+    };
+    for (name, mesh) in meshes() {
+        let p = PrepPatches::<f32>::build(&mesh).unwrap();
+        let gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
+        gpu.update(&ctx, &mesh.positions).unwrap();
+        let diag = bbox_diagonal(&mesh.positions);
+        for n in [2, 3, 5, 9] {
+            let grid = gpu.grid(&ctx, n).unwrap();
+            gpu.eval_grid(&ctx, &grid).unwrap();
+            let t = grid.download(&ctx).unwrap();
+            compare_tessellation(&format!("{name} GPU n={n}"), &t, &p.tessellate(n), diag);
+        }
+    }
+}
+
+#[test]
+fn gpu_update_follows_a_deformation() {
+    let Some(ctx) = context_or_skip("gpu_update_follows_a_deformation") else {
+        return;
+    };
+    let (_, mesh) = meshes().swap_remove(1);
+    let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
+    let gpu = GpuPrep::new(&ctx, &topo).unwrap();
+    let grid = gpu.grid(&ctx, 4).unwrap();
+    for frame in 1..3 {
+        let t = frame as f32;
+        let moved: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|q| {
+                [
+                    q[0] * (1.0 + 0.2 * t),
+                    q[1] + 0.1 * (t * q[0]).sin(),
+                    q[2] - t,
+                ]
+            })
+            .collect();
+        gpu.update(&ctx, &moved).unwrap();
+        gpu.eval_grid(&ctx, &grid).unwrap();
+        let got = grid.download(&ctx).unwrap();
+        let p = PrepPatches::<f32>::from_prep_topology(topo.clone(), &moved).unwrap();
+        compare_tessellation("deformed", &got, &p.tessellate(4), bbox_diagonal(&moved));
+    }
+    assert!(gpu.update(&ctx, &mesh.positions[1..]).is_err());
+}

@@ -1,0 +1,158 @@
+//! `GpuRefiner` against the CPU `Refiner` on the OpenSubdiv regression shapes.
+
+mod common;
+
+use common::context_or_skip;
+use subsurf::{Refiner, Topology};
+use subsurf_gpu::{ChunkLimits, GpuContext, GpuRefiner};
+
+fn shapes_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes")
+}
+
+/// Catmark and bilinear shapes of the regression set, sorted by name.
+fn shape_paths() -> Vec<std::path::PathBuf> {
+    let mut v: Vec<_> = std::fs::read_dir(shapes_dir())
+        .expect("testdata/shapes is readable")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let n = p.file_name().unwrap().to_string_lossy();
+            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+fn bbox_diagonal(p: &[[f32; 3]]) -> f64 {
+    let mut lo = [f64::MAX; 3];
+    let mut hi = [f64::MIN; 3];
+    for q in p {
+        for k in 0..3 {
+            lo[k] = lo[k].min(q[k] as f64);
+            hi[k] = hi[k].max(q[k] as f64);
+        }
+    }
+    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Every GPU position is finite and within `1e-5` of the bbox diagonal of the CPU's.
+fn assert_close(name: &str, gpu: &[[f32; 3]], cpu: &[[f32; 3]]) {
+    assert_eq!(gpu.len(), cpu.len(), "{name}: vertex count");
+    let tol = 1e-5 * bbox_diagonal(cpu).max(f64::MIN_POSITIVE);
+    for (i, (g, c)) in gpu.iter().zip(cpu).enumerate() {
+        for k in 0..3 {
+            assert!(g[k].is_finite(), "{name}: GPU vertex {i} is {g:?}");
+            let d = (g[k] as f64 - c[k] as f64).abs();
+            assert!(
+                d <= tol,
+                "{name}: vertex {i} GPU {g:?} vs CPU {c:?} (|diff| {d:e} > {tol:e})"
+            );
+        }
+    }
+}
+
+fn check_shape(
+    ctx: &GpuContext,
+    path: &std::path::Path,
+    level: usize,
+    limits: Option<ChunkLimits>,
+) {
+    let name = format!(
+        "{} level {level}",
+        path.file_name().unwrap().to_string_lossy()
+    );
+    let mesh = subsurf::io::read_path(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+    let cpu = refiner.refine_positions(&mesh.positions);
+    let gpu = match limits {
+        Some(l) => GpuRefiner::with_limits(ctx, &refiner, l),
+        None => GpuRefiner::new(ctx, &refiner),
+    }
+    .unwrap();
+    assert_eq!(gpu.num_output_vertices(), cpu.len());
+    assert_close(&name, &gpu.refine(ctx, &mesh.positions).unwrap(), &cpu);
+}
+
+#[test]
+fn regression_shapes_match_cpu_refiner() {
+    let Some(ctx) = context_or_skip("regression_shapes_match_cpu_refiner") else {
+        return;
+    };
+    let paths = shape_paths();
+    assert!(paths.len() > 20, "regression shapes found: {}", paths.len());
+    for path in &paths {
+        check_shape(&ctx, path, 2, None);
+    }
+    for name in [
+        "catmark_car.obj",
+        "catmark_gregory_test6.obj",
+        "bilinear_cube.obj",
+    ] {
+        check_shape(&ctx, &shapes_dir().join(name), 3, None);
+    }
+}
+
+#[test]
+fn chunked_tables_give_the_same_result() {
+    let Some(ctx) = context_or_skip("chunked_tables_give_the_same_result") else {
+        return;
+    };
+    let limits = ChunkLimits {
+        max_binding_bytes: 4096,
+        max_workgroups_per_dimension: 2,
+        max_stride: 3,
+    };
+    let path = shapes_dir().join("catmark_car.obj");
+    let mesh = subsurf::io::read_path(&path).unwrap();
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    let gpu = GpuRefiner::with_limits(&ctx, &refiner, limits).unwrap();
+    // Far more dispatches than the 3 per level of an unchunked upload.
+    assert!(
+        gpu.num_dispatches() > 20,
+        "{} dispatches",
+        gpu.num_dispatches()
+    );
+    let cpu = refiner.refine_positions(&mesh.positions);
+    assert_close(
+        "catmark_car chunked",
+        &gpu.refine(&ctx, &mesh.positions).unwrap(),
+        &cpu,
+    );
+}
+
+#[test]
+fn update_follows_a_deformation() {
+    let Some(ctx) = context_or_skip("update_follows_a_deformation") else {
+        return;
+    };
+    let mesh = subsurf::io::read_path(shapes_dir().join("catmark_gregory_test1.obj")).unwrap();
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 3).unwrap();
+    let gpu = GpuRefiner::new(&ctx, &refiner).unwrap();
+    for frame in 0..3 {
+        let t = frame as f32 * 0.7;
+        let moved: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                [
+                    p[0] + 0.3 * (t + p[1]).sin(),
+                    p[1] * (1.0 + 0.1 * t),
+                    p[2] - t,
+                ]
+            })
+            .collect();
+        gpu.update(&ctx, &moved).unwrap();
+        let cpu = refiner.refine_positions(&moved);
+        assert_close("deformed", &gpu.download(&ctx).unwrap(), &cpu);
+        // Intermediate levels stay readable too.
+        let l1 = refiner.refine_all(&moved);
+        assert_close(
+            "deformed level 1",
+            &gpu.download_level(&ctx, 1).unwrap(),
+            &l1[1],
+        );
+    }
+    assert!(gpu.update(&ctx, &mesh.positions[1..]).is_err());
+    assert!(gpu.download_level(&ctx, 4).is_err());
+}
