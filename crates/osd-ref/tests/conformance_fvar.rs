@@ -6,13 +6,8 @@
 #[macro_use]
 mod common;
 
-use std::borrow::Cow;
-
-use osd_ref::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
-use subsurf::{
-    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Mesh, Refiner, Scheme, Topology,
-    TriangleSubdivision,
-};
+use osd_ref::OsdMesh;
+use subsurf::{FVarLinearInterpolation, Mesh, Refiner, Topology};
 
 const MODES: [(FVarLinearInterpolation, u8); 6] = [
     (FVarLinearInterpolation::None, 0),
@@ -23,43 +18,10 @@ const MODES: [(FVarLinearInterpolation, u8); 6] = [
     (FVarLinearInterpolation::All, 5),
 ];
 
-fn osd_options(m: &Mesh, fvar_interp: u8) -> OsdOptions {
-    OsdOptions {
-        scheme: match m.options.scheme {
-            Scheme::Catmark => OsdScheme::Catmark,
-            Scheme::Bilinear => OsdScheme::Bilinear,
-            Scheme::Loop => OsdScheme::Loop,
-        },
-        boundary: match m.options.boundary {
-            BoundaryInterpolation::None => OsdBoundary::None,
-            BoundaryInterpolation::EdgeOnly => OsdBoundary::EdgeOnly,
-            BoundaryInterpolation::EdgeAndCorner => OsdBoundary::EdgeAndCorner,
-        },
-        crease_method: match m.options.crease_method {
-            CreaseMethod::Uniform => OsdCreaseMethod::Uniform,
-            CreaseMethod::Chaikin => OsdCreaseMethod::Chaikin,
-        },
-        triangle_smooth: m.options.triangle_subdivision == TriangleSubdivision::Smooth,
-        fvar_interp,
-    }
-}
-
 fn osd_mesh(m: &Mesh, fvar_interp: u8) -> OsdMesh<'_> {
-    OsdMesh {
-        positions: &m.positions,
-        face_counts: &m.face_counts,
-        face_indices: &m.face_indices,
-        creases: Cow::Owned(
-            m.creases
-                .iter()
-                .map(|c| (c.v0, c.v1, c.sharpness))
-                .collect(),
-        ),
-        corners: Cow::Owned(m.corners.iter().map(|c| (c.vertex, c.sharpness)).collect()),
-        holes: &m.holes,
-        uvs: m.uvs.as_ref().map(|fv| (&fv.values[..], &fv.indices[..])),
-        options: osd_options(m, fvar_interp),
-    }
+    let mut o = OsdMesh::from(m);
+    o.options.fvar_interp = fvar_interp;
+    o
 }
 
 /// Largest side of the UVs' bounding box.
