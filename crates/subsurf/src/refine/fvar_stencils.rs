@@ -25,7 +25,7 @@ use super::Refiner;
 use crate::error::{MeshError, Result};
 use crate::mesh::FaceVarying;
 use crate::options::{FVarLinearInterpolation, Scheme};
-use crate::rules::catmark::{edge_mask, vertex_mask, VertexMask, VertexNeighbourhood};
+use crate::rules::catmark::edge_mask;
 use crate::rules::crease::fractional_weight_at_vertex;
 use crate::topology::Topology;
 use rayon::prelude::*;
@@ -113,8 +113,7 @@ impl Row {
 #[derive(Debug, Default)]
 struct Scratch {
     row: Row,
-    mask: VertexMask,
-    child_mask: VertexMask,
+    masks: super::masks::Scratch,
     pe: Vec<f32>,
     ce: Vec<f32>,
     edge_values: Vec<u32>,
@@ -154,39 +153,21 @@ fn vertex_rows(
             b.end_row(out);
         } else if matches {
             let faces = p.vertex_faces(v);
-            let edges = p.vertex_edges(v);
-            s.pe.clear();
-            s.pe.extend(edges.iter().map(|&e| p.edge_sharpness[e as usize]));
-            s.ce.clear();
-            s.ce.extend(
-                c.vertex_edges(v)
-                    .iter()
-                    .map(|&e| c.edge_sharpness[e as usize]),
-            );
-            let h = VertexNeighbourhood {
-                num_faces: faces.len(),
-                parent_sharpness: p.vert_sharpness[v],
-                child_sharpness: c.vert_sharpness[v],
-                parent_edges: &s.pe,
-                child_edges: &s.ce,
-                parent_rule: p.vert_rule[v],
-                child_rule: c.vert_rule[v],
-            };
-            vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
-            for (&f, &w) in faces.iter().zip(&s.mask.faces) {
+            let mask = s.masks.vertex_mask_at(p, c, v);
+            for (&f, &w) in faces.iter().zip(&mask.faces) {
                 if w != 0.0 {
                     add_face(b, f as usize, w as f64);
                 }
             }
-            if !s.mask.edges.is_empty() {
+            if !mask.edges.is_empty() {
                 pf.vertex_edge_values(p, v, &mut s.edge_values);
-                for (&x, &w) in s.edge_values.iter().zip(&s.mask.edges) {
+                for (&x, &w) in s.edge_values.iter().zip(&mask.edges) {
                     if w != 0.0 {
                         b.add(x, w);
                     }
                 }
             }
-            b.add(pvals[0], s.mask.vertex);
+            b.add(pvals[0], mask.vertex);
             b.end_row(out);
         } else {
             let ptags = pf.vertex_value_tags(v);

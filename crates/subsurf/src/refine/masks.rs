@@ -65,6 +65,41 @@ pub(crate) struct Scratch {
     ce: Vec<f32>,
 }
 
+impl Scratch {
+    /// The vertex-point mask of parent vertex `v` (edges in ring order), from the sharpness and
+    /// rules of the parent level `p` and the child level `c`.
+    pub(crate) fn vertex_mask_at(&mut self, p: &Topology, c: &Topology, v: usize) -> &VertexMask {
+        self.pe.clear();
+        self.pe.extend(
+            p.vertex_edges(v)
+                .iter()
+                .map(|&e| p.edge_sharpness[e as usize]),
+        );
+        self.ce.clear();
+        self.ce.extend(
+            c.vertex_edges(v)
+                .iter()
+                .map(|&e| c.edge_sharpness[e as usize]),
+        );
+        let h = VertexNeighbourhood {
+            num_faces: p.vertex_faces(v).len(),
+            parent_sharpness: p.vert_sharpness[v],
+            child_sharpness: c.vert_sharpness[v],
+            parent_edges: &self.pe,
+            child_edges: &self.ce,
+            parent_rule: p.vert_rule[v],
+            child_rule: c.vert_rule[v],
+        };
+        vertex_mask(
+            &h,
+            p.options.crease_method,
+            &mut self.mask,
+            &mut self.child_mask,
+        );
+        &self.mask
+    }
+}
+
 /// Builds a table whose rows are written directly (no merging of repeated inputs).
 ///
 /// Rows are sized first (`len(r)` where the size is known without building the row, else the
@@ -286,7 +321,7 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
         }
         let pe = p.vertex_edges(v);
         let faces = p.vertex_faces(v);
-        let (pr, cr) = (p.vert_rule[v], c.vert_rule[v]);
+        let pr = p.vert_rule[v];
         if (pr == rule::SMOOTH || pr == rule::DART) && faces.len() == pe.len() {
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
             let n = faces.len();
@@ -298,38 +333,21 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
             wts.push((n as f32 - 2.0) / n as f32);
             return;
         }
-        s.pe.clear();
-        s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
-        s.ce.clear();
-        s.ce.extend(
-            c.vertex_edges(v)
-                .iter()
-                .map(|&e| c.edge_sharpness[e as usize]),
-        );
-        let h = VertexNeighbourhood {
-            num_faces: faces.len(),
-            parent_sharpness: p.vert_sharpness[v],
-            child_sharpness: c.vert_sharpness[v],
-            parent_edges: &s.pe,
-            child_edges: &s.ce,
-            parent_rule: pr,
-            child_rule: cr,
-        };
-        vertex_mask(&h, opts.crease_method, &mut s.mask, &mut s.child_mask);
-        for (&f, &w) in faces.iter().zip(&s.mask.faces) {
+        let mask = s.vertex_mask_at(p, c, v);
+        for (&f, &w) in faces.iter().zip(&mask.faces) {
             if w != 0.0 {
                 idx.push(fp(f));
                 wts.push(w);
             }
         }
-        for (&e, &w) in pe.iter().zip(&s.mask.edges) {
+        for (&e, &w) in pe.iter().zip(&mask.edges) {
             if w != 0.0 {
                 idx.push(p.other_vertex(e as usize, v as u32));
                 wts.push(w);
             }
         }
         idx.push(v as u32);
-        wts.push(s.mask.vertex);
+        wts.push(mask.vertex);
     });
     let edge_len = |e: usize| {
         if bilinear {
