@@ -21,6 +21,7 @@ pub mod mesh;
 pub mod options;
 pub mod patch;
 pub mod prep;
+pub mod real;
 pub mod refine;
 pub mod rules;
 pub mod shapes;
@@ -32,6 +33,7 @@ pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
     TriangleSubdivision,
 };
+pub use real::Real;
 pub use refine::{Refiner, StencilTable};
 pub use topology::Topology;
 

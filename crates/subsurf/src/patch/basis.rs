@@ -5,10 +5,10 @@
 use super::bspline::bspline_patch_weights;
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
-use super::real::Real;
 use super::single_crease::single_crease_patch_weights;
 use super::weights::PatchWeights;
 use super::PatchEdge;
+use crate::real::Real;
 
 /// The kind of a patch, i.e. which basis its control points use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

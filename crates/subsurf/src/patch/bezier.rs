@@ -8,8 +8,8 @@
 //! ([`BSPLINE_TO_BEZIER`]): the inner points sit at the thirds of the middle leg, the end
 //! points at the curve's knots.
 
-use super::real::Real;
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
+use crate::real::Real;
 
 /// Change of basis from a uniform cubic B-spline segment to its Bézier points:
 /// `bezier[k] = Σ_j BSPLINE_TO_BEZIER[k][j] · bspline[j]`.

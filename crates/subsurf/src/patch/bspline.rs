@@ -44,8 +44,8 @@
 //! parametric direction at a time, so it is applied to the two curve weight vectors before
 //! the tensor product; the result equals OpenSubdiv's adjustment of the 16 tensor weights.
 
-use super::real::Real;
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
+use crate::real::Real;
 
 /// Boundary mask bit of edge 0 (`v = 0`): row 0 is a phantom row.
 pub const BOUNDARY_V0: u8 = 1;

@@ -45,8 +45,8 @@
 //! only evaluates.
 
 use super::bezier::bezier_curve;
-use super::real::Real;
 use super::weights::{PatchEval, PatchWeights};
+use crate::real::Real;
 
 /// How derivatives of the rational interior weights are taken (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]

@@ -54,10 +54,10 @@ pub mod bezier;
 pub mod bspline;
 pub mod gregory;
 pub mod param;
-pub mod real;
 pub mod single_crease;
 pub mod weights;
 
+pub use crate::real::Real;
 pub use basis::{patch_weights, patch_weights_normalized, AnyPatchWeights, PatchKind};
 pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch};
 pub use bspline::{
@@ -66,7 +66,6 @@ pub use bspline::{
 };
 pub use gregory::{eval_gregory_patch, gregory_patch_weights, GregoryDerivatives};
 pub use param::{PatchParam, PatchParamError, PatchParamFields, SharpnessTable, NO_SHARPNESS};
-pub use real::Real;
 pub use single_crease::{crease_curve, eval_single_crease_patch, single_crease_patch_weights};
 pub use weights::{CurveWeights, PatchEval, PatchWeights};
 

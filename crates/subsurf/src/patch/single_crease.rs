@@ -78,9 +78,9 @@
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
 use super::bspline::{bspline_curve, bspline_curve_bounded, bspline_patch_weights};
-use super::real::Real;
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
+use crate::real::Real;
 use crate::SHARPNESS_INFINITE;
 
 /// Row vectors `x · L` for the three weight vectors of `n`, where `L` is given by a closure

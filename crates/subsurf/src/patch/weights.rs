@@ -1,6 +1,6 @@
 //! Weight vectors of curve segments and patches, and their application to control points.
 
-use super::real::Real;
+use crate::real::Real;
 
 /// Weights of the four control points of a cubic curve segment at one parameter `t`, with
 /// their first and second derivatives with respect to `t`.

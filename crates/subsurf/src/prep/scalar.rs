@@ -1,81 +1,8 @@
-//! The scalar type of a p-rep construction: `f32` (as on the GPU) or `f64` (for checks).
-//!
-//! Every kernel of [`crate::prep`] is generic over [`Real`], so the same code path produces
-//! the single-precision surface that is rendered and the double-precision surface that is
-//! compared with the reference checker. Points are plain `[T; 3]` arrays; the few vector
-//! helpers below keep the kernels readable without pulling in a linear-algebra crate.
+//! Points of a p-rep construction over the crate's scalar [`Real`] (`f32` as on the GPU, `f64`
+//! for checks): plain `[T; 3]` arrays, and the few vector helpers that keep the kernels
+//! readable without pulling in a linear-algebra crate.
 
-use std::fmt::Debug;
-use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
-
-/// A floating-point scalar: implemented for `f32` and `f64`.
-pub trait Real:
-    Copy
-    + Send
-    + Sync
-    + Debug
-    + Default
-    + PartialEq
-    + PartialOrd
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-    + AddAssign
-    + 'static
-{
-    /// Rounds an `f64` to this type.
-    fn from_f64(x: f64) -> Self;
-    /// Widens to `f64` (exact).
-    fn to_f64(self) -> f64;
-    /// Widens an `f32` (exact).
-    fn from_f32(x: f32) -> Self;
-    /// Square root.
-    fn sqrt(self) -> Self;
-    /// `0`.
-    fn zero() -> Self {
-        Self::from_f64(0.0)
-    }
-    /// `1`.
-    fn one() -> Self {
-        Self::from_f64(1.0)
-    }
-    /// Name used in messages and bench labels.
-    const NAME: &'static str;
-}
-
-impl Real for f32 {
-    fn from_f64(x: f64) -> Self {
-        x as f32
-    }
-    fn to_f64(self) -> f64 {
-        self as f64
-    }
-    fn from_f32(x: f32) -> Self {
-        x
-    }
-    fn sqrt(self) -> Self {
-        f32::sqrt(self)
-    }
-    const NAME: &'static str = "f32";
-}
-
-impl Real for f64 {
-    fn from_f64(x: f64) -> Self {
-        x
-    }
-    fn to_f64(self) -> f64 {
-        self
-    }
-    fn from_f32(x: f32) -> Self {
-        x as f64
-    }
-    fn sqrt(self) -> Self {
-        f64::sqrt(self)
-    }
-    const NAME: &'static str = "f64";
-}
+pub use crate::real::Real;
 
 /// A point or vector.
 pub type V3<T> = [T; 3];

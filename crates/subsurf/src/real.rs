@@ -1,8 +1,9 @@
-//! The scalar type of patch evaluation: `f32` (what the GPU and the tables use) or `f64`
-//! (reference evaluation in tests and in double-precision callers).
+//! The scalar type of the constructions: `f32` (what the GPU and the tables use) or `f64`
+//! (reference evaluation in tests and double-precision export).
 //!
-//! Every basis function in [`crate::patch`] is generic over [`Real`], so the `f32` path and
-//! its `f64` twin run exactly the same arithmetic and can be compared term by term.
+//! Every basis function in [`crate::patch`] and every kernel in [`crate::prep`] is generic
+//! over [`Real`], so the `f32` path and its `f64` twin run exactly the same arithmetic and
+//! can be compared term by term.
 
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
@@ -12,6 +13,7 @@ pub trait Real:
     Copy
     + Debug
     + Default
+    + PartialEq
     + PartialOrd
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -39,6 +41,22 @@ pub trait Real:
     fn floor(self) -> Self;
     /// `true` unless NaN or infinite.
     fn is_finite(self) -> bool;
+    /// Widens an `f32` (exact).
+    fn from_f32(x: f32) -> Self;
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Name used in messages and bench labels.
+    const NAME: &'static str;
+    /// `0` (same as [`Real::ZERO`]).
+    #[inline(always)]
+    fn zero() -> Self {
+        Self::ZERO
+    }
+    /// `1` (same as [`Real::ONE`]).
+    #[inline(always)]
+    fn one() -> Self {
+        Self::ONE
+    }
 }
 
 impl Real for f32 {
@@ -65,6 +83,15 @@ impl Real for f32 {
     fn is_finite(self) -> bool {
         f32::is_finite(self)
     }
+    #[inline]
+    fn from_f32(x: f32) -> Self {
+        x
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    const NAME: &'static str = "f32";
 }
 
 impl Real for f64 {
@@ -90,6 +117,15 @@ impl Real for f64 {
     fn is_finite(self) -> bool {
         f64::is_finite(self)
     }
+    #[inline]
+    fn from_f32(x: f32) -> Self {
+        x as f64
+    }
+    #[inline]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    const NAME: &'static str = "f64";
 }
 
 #[cfg(test)]
