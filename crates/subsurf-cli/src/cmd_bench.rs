@@ -1,6 +1,6 @@
 //! `subsurf bench`: time the refinement stages on a mesh (medians of repeated runs).
 
-use crate::common::{read_mesh, SchemeArgs};
+use crate::common::SchemeArgs;
 use std::path::PathBuf;
 use std::time::Instant;
 use subsurf::{Refiner, Topology};
@@ -26,8 +26,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 pub fn run(a: &BenchArgs) -> anyhow::Result<()> {
-    let mut mesh = read_mesh(&a.input)?;
-    a.scheme.apply(&mut mesh);
+    let mesh = a.scheme.read(&a.input)?;
     let base = Topology::new(&mesh)?;
     let runs = a.runs.max(1);
     let mut topo = Vec::new();

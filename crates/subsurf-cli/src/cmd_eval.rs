@@ -2,8 +2,7 @@
 //! face, one line per sample: `face u v px py pz dux duy duz dvx dvy dvz` (`face` the ptex
 //! index, `u, v = i/(N−1)`, `v` the outer loop; holes write nothing).
 
-use crate::cmd_limit::load_surface;
-use crate::common::SchemeArgs;
+use crate::cmd_limit::SurfaceArgs;
 use anyhow::Context;
 use std::io::Write;
 use std::path::PathBuf;
@@ -11,22 +10,14 @@ use std::path::PathBuf;
 /// Sample the limit surface and its derivatives.
 #[derive(Debug, clap::Args)]
 pub struct EvalArgs {
-    /// Input mesh (.obj with OpenSubdiv tags, or .ply).
-    pub input: PathBuf,
+    #[command(flatten)]
+    pub surface: SurfaceArgs,
     /// Samples per side of each ptex face (at least 2).
     #[arg(long, default_value_t = 5)]
     pub samples: usize,
     /// Output text file.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Isolation level of extraordinary and irregular features (0..=10).
-    #[arg(long, default_value_t = 4)]
-    pub isolation: u32,
-    /// Isolate semi-sharp creases by refinement instead of single-crease patches.
-    #[arg(long)]
-    pub no_single_crease: bool,
-    #[command(flatten)]
-    pub scheme: SchemeArgs,
 }
 
 pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
@@ -35,7 +26,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         "--samples {} not in 2..=4096",
         a.samples
     );
-    let s = load_surface(&a.input, &a.scheme, a.isolation, !a.no_single_crease)?;
+    let s = a.surface.load()?;
     let n = a.samples;
     let d = (n - 1) as f32;
     let mut queries = Vec::with_capacity(s.table.num_ptex_faces() * n * n);

@@ -1,6 +1,6 @@
 //! `subsurf info`: what a mesh file contains.
 
-use crate::common::{read_mesh, SchemeArgs};
+use crate::common::SchemeArgs;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use subsurf::topology::tags;
@@ -48,8 +48,7 @@ struct Info {
 }
 
 pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
-    let mut mesh = read_mesh(&a.input)?;
-    a.scheme.apply(&mut mesh);
+    let mesh = a.scheme.read(&a.input)?;
     let t = Topology::new(&mesh)?;
     let mut face_sizes = BTreeMap::new();
     for f in 0..t.num_faces() {

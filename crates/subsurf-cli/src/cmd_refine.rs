@@ -1,6 +1,6 @@
 //! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
 
-use crate::common::{gpu_context, read_mesh, write_mesh, Backend, SchemeArgs};
+use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
 use subsurf::{FVarLinearInterpolation, FaceVarying, Refiner, Topology};
@@ -60,8 +60,7 @@ impl From<UvInterp> for FVarLinearInterpolation {
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
-    let mut mesh = read_mesh(&a.input)?;
-    a.scheme.apply(&mut mesh);
+    let mesh = a.scheme.read(&a.input)?;
     let topo = Topology::new(&mesh)?;
     let refiner = Refiner::new(topo, a.level)?;
     let mut positions = match a.backend {

@@ -47,6 +47,13 @@ pub enum TriArg {
 }
 
 impl SchemeArgs {
+    /// Reads a mesh file and applies the overrides.
+    pub fn read(&self, path: &Path) -> anyhow::Result<Mesh> {
+        let mut mesh = read_mesh(path)?;
+        self.apply(&mut mesh);
+        Ok(mesh)
+    }
+
     /// Applies the overrides to `mesh`.
     pub fn apply(&self, mesh: &mut Mesh) {
         if let Some(b) = self.boundary {
