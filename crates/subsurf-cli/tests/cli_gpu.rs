@@ -3,43 +3,16 @@
 //! Without a GPU adapter these tests fail with the driver installation hint, unless
 //! `SUBSURF_SKIP_GPU=1`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_subsurf"))
-}
-
-fn repo(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(rel)
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("subsurf-cli-gpu-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
+use common::{bin, repo, tmp};
+use std::path::Path;
+use std::process::Output;
 
 /// Runs `args` with `--backend gpu`; `None` (after a loud note) when there is no adapter and
 /// `SUBSURF_SKIP_GPU=1`.
 fn run_gpu(args: &[&std::ffi::OsStr]) -> Option<Output> {
-    let out = bin()
-        .args(args)
-        .args(["--backend", "gpu"])
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    if !out.status.success() && err.contains("no GPU adapter") {
-        if std::env::var("SUBSURF_SKIP_GPU").as_deref() == Ok("1") {
-            eprintln!("\n!!!!!!!! SKIPPED GPU CLI TEST (SUBSURF_SKIP_GPU=1): {err} !!!!!!!!\n");
-            return None;
-        }
-        panic!("{err}");
-    }
-    assert!(out.status.success(), "{err}");
-    Some(out)
+    common::run_gpu(bin().args(args).args(["--backend", "gpu"]))
 }
 
 fn run_cpu(args: &[&std::ffi::OsStr]) {

@@ -2,40 +2,13 @@
 //! mode, argument errors. Without a GPU adapter the rendering tests fail with installation
 //! advice unless `SUBSURF_SKIP_GPU=1`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_subsurf"))
-}
-
-fn root(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../..")
-        .join(rel)
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("subsurf-cli-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
+use common::{bin, repo, run_gpu, tmp};
+use std::path::Path;
 
 /// Runs the command; `None` (after a SKIPPED line) when there is no adapter and
 /// `SUBSURF_SKIP_GPU=1`.
-fn run_gpu(cmd: &mut Command) -> Option<Output> {
-    let out = cmd.output().unwrap();
-    let err = String::from_utf8_lossy(&out.stderr);
-    if !out.status.success() && err.contains("no GPU adapter") {
-        if std::env::var("SUBSURF_SKIP_GPU").as_deref() == Ok("1") {
-            eprintln!("\n*** SKIPPED GPU CLI test (SUBSURF_SKIP_GPU=1) ***\n");
-            return None;
-        }
-        panic!("{err}\n(set SUBSURF_SKIP_GPU=1 to skip GPU tests)");
-    }
-    assert!(out.status.success(), "{err}");
-    Some(out)
-}
 
 /// Width and height from a PNG's IHDR chunk.
 fn png_size(path: &Path) -> (u32, u32) {
@@ -51,7 +24,7 @@ fn render_refine_writes_a_png_of_the_asked_size() {
     let Some(o) = run_gpu(
         bin()
             .arg("render")
-            .arg(root("examples/pawn.obj"))
+            .arg(repo("examples/pawn.obj"))
             .arg("-o")
             .arg(&out)
             .args(["--level", "1", "--cage", "--size", "123x77", "--up", "z"]),
@@ -67,7 +40,7 @@ fn quiet_render_prints_nothing_and_notes_fallbacks_otherwise() {
     let out = tmp("car.png");
     let mut cmd = bin();
     cmd.arg("render")
-        .arg(root("examples/car.obj"))
+        .arg(repo("examples/car.obj"))
         .arg("-o")
         .arg(&out)
         .args(["--level", "0", "--size", "64x48", "--color-by", "level"]);
@@ -84,8 +57,8 @@ fn quiet_render_prints_nothing_and_notes_fallbacks_otherwise() {
 #[test]
 fn compare_puts_two_panels_side_by_side() {
     let out = tmp("cmp.png");
-    let pawn = root("examples/pawn.obj");
-    let tet = root("testdata/shapes/catmark_toroidal_tet.obj");
+    let pawn = repo("examples/pawn.obj");
+    let tet = repo("testdata/shapes/catmark_toroidal_tet.obj");
     let Some(_) = run_gpu(
         bin()
             .arg("compare")
@@ -104,7 +77,7 @@ fn compare_puts_two_panels_side_by_side() {
 fn argument_errors_need_no_gpu() {
     let out = bin()
         .arg("render")
-        .arg(root("examples/pawn.obj"))
+        .arg(repo("examples/pawn.obj"))
         .args(["-o", "x.png", "--size", "0x10"])
         .output()
         .unwrap();
@@ -113,7 +86,7 @@ fn argument_errors_need_no_gpu() {
     // The p-rep refuses meshes with boundaries (the pawn is open at the bottom).
     let out = bin()
         .arg("render")
-        .arg(root("examples/pawn.obj"))
+        .arg(repo("examples/pawn.obj"))
         .args(["-o", "x.png", "--method", "prep"])
         .output()
         .unwrap();

@@ -1,25 +1,15 @@
 //! `subsurf limit` and `subsurf eval` end to end.
 
+mod common;
+
+use common::{bin, repo, tmp};
 use std::path::PathBuf;
-use std::process::Command;
 
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
 use subsurf::Topology;
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_subsurf"))
-}
-
 fn shape(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../testdata/shapes")
-        .join(format!("{name}.obj"))
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("subsurf-limit-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    repo(&format!("testdata/shapes/{name}.obj"))
 }
 
 /// `eval` writes one line per sample of every non-hole ptex face, `v` the outer loop, with
