@@ -7,9 +7,6 @@ mod common;
 use common::{bin, repo, run_gpu, tmp};
 use std::path::Path;
 
-/// Runs the command; `None` (after a SKIPPED line) when there is no adapter and
-/// `SUBSURF_SKIP_GPU=1`.
-
 /// Width and height from a PNG's IHDR chunk.
 fn png_size(path: &Path) -> (u32, u32) {
     let b = std::fs::read(path).unwrap();
