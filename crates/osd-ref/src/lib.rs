@@ -53,6 +53,26 @@ pub fn available() -> bool {
     !cfg!(osd_missing)
 }
 
+/// For tests that compare with OpenSubdiv: true when it is available; otherwise prints a loud
+/// SKIPPED line naming `test` (straight to stderr, past the harness's capture) and returns
+/// false — or panics when the `CI` environment variable is set, since CI must run them.
+pub fn available_or_skip(test: &str) -> bool {
+    if available() {
+        return true;
+    }
+    let ci = std::env::var("CI").is_ok_and(|v| !v.is_empty() && v != "0" && v != "false");
+    assert!(
+        !ci,
+        "OpenSubdiv not installed but CI is set: {test} must run"
+    );
+    use std::io::Write;
+    let _ = writeln!(
+        std::io::stderr(),
+        "!!!!! OpenSubdiv not installed: SKIPPED {test} (apt-get install libosd-dev) !!!!!"
+    );
+    false
+}
+
 /// The error for a failed shim call: [`Error::Unavailable`] or the shim's message.
 fn unavailable_or_osd() -> Error {
     if available() {
