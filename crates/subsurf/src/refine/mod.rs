@@ -42,6 +42,8 @@ pub struct Refiner {
     pub levels: Vec<Topology>,
     /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
     pub stencils: Vec<LevelStencils>,
+    /// Limit stencils of the last level, built on first use of [`Refiner::limit`].
+    limit_table: std::sync::OnceLock<StencilTable>,
 }
 
 /// Rough number of bytes the refiner needs for `level` steps of `base` (topology of all levels,
@@ -112,7 +114,11 @@ impl Refiner {
             stencils.push(level_stencils(parent, &child));
             levels.push(child);
         }
-        Ok(Refiner { levels, stencils })
+        Ok(Refiner {
+            levels,
+            stencils,
+            limit_table: std::sync::OnceLock::new(),
+        })
     }
 
     /// Number of refinement steps.
@@ -165,7 +171,8 @@ impl Refiner {
 
     /// Moves last-level vertex data to the limit surface.
     pub fn limit<const N: usize>(&self, last: &[[f32; N]]) -> Vec<[f32; N]> {
-        let t = limit_stencils(self.last());
+        // Built once: an animated mesh calls this every frame.
+        let t = self.limit_table.get_or_init(|| limit_stencils(self.last()));
         let mut out = vec![[0.0; N]; t.num_rows()];
         t.apply(last, &mut out);
         out
