@@ -73,3 +73,14 @@ fn corner_index(c: u32, i: u32, j: u32, d: u32) -> u32 {
     }
     return a * (d + 1u) + b;
 }
+
+// Per-dispatch parameters of limit_eval (one uniform per chunk of samples).
+struct LimitConfig {
+    // Samples in this chunk, and invocations along x of its grid.
+    item_count: u32,
+    grid_width: u32,
+    // Floats written per sample: 6 (p, n) or 12 (p, n, du, dv).
+    out_stride: u32,
+    // Ptex faces: patch_map[0..num_roots] are the roots, inner nodes follow (4 words each).
+    num_roots: u32,
+}

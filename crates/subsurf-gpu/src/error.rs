@@ -41,6 +41,9 @@ pub enum GpuError {
     /// wgpu reported a validation, out-of-memory or internal error.
     #[error("wgpu error: {0}")]
     Wgpu(String),
+    /// The library refused the request (for example a tessellation density out of range).
+    #[error(transparent)]
+    Library(#[from] subsurf::Error),
     /// Reading a buffer back failed.
     #[error("buffer read-back failed: {0}")]
     Map(String),

@@ -11,13 +11,16 @@
 //! Entry points: [`GpuContext`] (adapter and device), [`VertexBuffer`] (vertex data resident
 //! on the GPU), [`StencilKernel`] (applies a [`StencilTable`] to a vertex buffer),
 //! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
-//! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`).
+//! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`) and
+//! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
+//! patches, `limit_eval`).
 
 pub mod buffers;
 pub mod context;
 pub mod cpu;
 pub mod error;
 pub mod kernels;
+pub mod limit;
 pub mod prep;
 pub mod refine;
 pub mod shared;
@@ -27,6 +30,7 @@ pub use buffers::VertexBuffer;
 pub use context::GpuContext;
 pub use error::GpuError;
 pub use kernels::stencil::{ChunkLimits, StencilKernel};
+pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use refine::GpuRefiner;
 pub use table::StencilTable;
@@ -48,6 +52,8 @@ pub mod shaders {
         include_str!(concat!(env!("OUT_DIR"), "/prep_patch_pass.wgsl"));
     /// `shaders/prep_eval_grid.wgsl`.
     pub const PREP_EVAL_GRID: &str = include_str!(concat!(env!("OUT_DIR"), "/prep_eval_grid.wgsl"));
+    /// `shaders/limit_eval.wgsl`.
+    pub const LIMIT_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/limit_eval.wgsl"));
     /// `shaders/refine_level.wgsl`.
     pub const REFINE_LEVEL: &str = include_str!(concat!(env!("OUT_DIR"), "/refine_level.wgsl"));
 }

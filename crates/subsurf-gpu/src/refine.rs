@@ -20,6 +20,7 @@ use crate::kernels::stencil::{plan_chunks, ChunkLimits};
 use crate::shaders;
 use crate::shared::RefineConfig;
 use crate::table::StencilTable;
+use subsurf::refine::LevelStencils;
 use subsurf::Refiner;
 
 const WORD: u64 = 4;
@@ -53,6 +54,26 @@ impl GpuRefiner {
     /// Uploads with the given chunk limits (clamped to the adapter's; lower values force more
     /// chunks, which tests use to exercise chunking).
     pub fn with_limits(ctx: &GpuContext, refiner: &Refiner, limits: ChunkLimits) -> Result<Self> {
+        let counts: Vec<usize> = refiner.levels.iter().map(|t| t.num_vertices()).collect();
+        Self::from_stencils(ctx, &counts, &refiner.stencils, limits)
+    }
+
+    /// Uploads `stencils[k]` (level `k` to `k + 1`) for levels of `vertex_counts[k]` vertices
+    /// (`stencils.len() + 1` counts), chunked against `limits` (clamped to the adapter's):
+    /// the tables of a [`Refiner`] or of a patch table's `level_stencils`.
+    pub fn from_stencils(
+        ctx: &GpuContext,
+        vertex_counts: &[usize],
+        stencils: &[LevelStencils],
+        limits: ChunkLimits,
+    ) -> Result<Self> {
+        if vertex_counts.len() != stencils.len() + 1 {
+            return Err(GpuError::InvalidStencil(format!(
+                "{} level vertex counts for {} stencil levels",
+                vertex_counts.len(),
+                stencils.len()
+            )));
+        }
         let adapter = ChunkLimits::from_context(ctx);
         let limits = ChunkLimits {
             max_binding_bytes: limits.max_binding_bytes.min(adapter.max_binding_bytes),
@@ -63,9 +84,9 @@ impl GpuRefiner {
         };
         let pipeline = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
         let layout = pipeline.get_bind_group_layout(0);
-        let mut levels = Vec::with_capacity(refiner.levels.len());
-        for t in &refiner.levels {
-            let bytes = (t.num_vertices() * STRIDE) as u64 * WORD;
+        let mut levels = Vec::with_capacity(vertex_counts.len());
+        for &count in vertex_counts {
+            let bytes = (count * STRIDE) as u64 * WORD;
             if bytes > adapter.max_binding_bytes {
                 return Err(GpuError::TooLarge {
                     what: "refined level vertex buffer (bound whole)",
@@ -73,11 +94,11 @@ impl GpuRefiner {
                     limit: adapter.max_binding_bytes,
                 });
             }
-            levels.push(VertexBuffer::zeroed(ctx, t.num_vertices(), STRIDE)?);
+            levels.push(VertexBuffer::zeroed(ctx, count, STRIDE)?);
         }
         let mut dispatches = Vec::new();
         let mut bytes = 0u64;
-        for (level, s) in refiner.stencils.iter().enumerate() {
+        for (level, s) in stencils.iter().enumerate() {
             if levels[level + 1].vertex_count() != s.num_rows() {
                 return Err(GpuError::InvalidStencil(format!(
                     "level {} has {} vertices but its stencils {} rows",
@@ -225,6 +246,11 @@ impl GpuRefiner {
     /// Reads the last level back (waits for the submitted work).
     pub fn download(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
         self.download_level(ctx, self.max_level())
+    }
+
+    /// Level `level`'s vertex buffer (0 = base), on the GPU.
+    pub fn level(&self, level: usize) -> Option<&VertexBuffer> {
+        self.levels.get(level)
     }
 
     /// Reads level `level` back (0 = base).

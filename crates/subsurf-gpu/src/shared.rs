@@ -68,3 +68,20 @@ pub struct PrepConfig {
 }
 
 const _: () = assert!(std::mem::size_of::<PrepConfig>() == 32);
+
+/// Per-dispatch parameters of `limit_eval` (keep in sync with shaders/common.wgsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct LimitConfig {
+    /// Samples (queries) in this chunk.
+    pub item_count: u32,
+    /// Invocations along x of the dispatch grid.
+    pub grid_width: u32,
+    /// Floats written per sample: 6 (position, normal) or 12 (position, normal, `∂/∂u`,
+    /// `∂/∂v`).
+    pub out_stride: u32,
+    /// Ptex faces: entries `0..num_roots` of the patch map are the roots.
+    pub num_roots: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<LimitConfig>() == 16);

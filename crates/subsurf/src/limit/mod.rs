@@ -35,4 +35,4 @@ pub mod tessellate;
 pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
-pub use tessellate::Tessellation;
+pub use tessellate::{Tessellation, TessellationPlan};

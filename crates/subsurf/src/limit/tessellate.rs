@@ -16,6 +16,7 @@ use rayon::prelude::*;
 
 use super::eval::LimitSurface;
 use super::patch_map::EMPTY;
+use super::table::PatchTable;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 
@@ -36,15 +37,7 @@ impl Tessellation {
     /// The triangles: each quad split along its `(i,j)–(i+1,j+1)` diagonal; triangles with a
     /// repeated vertex (degenerate cells) are dropped.
     pub fn triangles(&self) -> Vec<[u32; 3]> {
-        let mut out = Vec::with_capacity(2 * self.quads.len());
-        for q in &self.quads {
-            for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
-                if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
-                    out.push(t);
-                }
-            }
-        }
-        out
+        quad_triangles(&self.quads)
     }
 
     /// A mesh of the triangles (`quads = false`) or of the grid quads.
@@ -83,16 +76,49 @@ struct Keys {
     total: usize,
 }
 
-impl LimitSurface {
-    /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the
-    /// grids into one watertight mesh (see the module documentation).
-    pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
+/// The sample list of a watertight tessellation: what [`LimitSurface::tessellate`] evaluates
+/// and how it joins the samples, independent of the point positions (a function of the patch
+/// table alone, so a GPU backend can upload it once and evaluate it every frame).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TessellationPlan {
+    /// Samples per side of a quad ptex face actually used.
+    pub samples_per_side: usize,
+    /// One `(ptex face, u, v)` per output vertex, in vertex order.
+    pub queries: Vec<(u32, f32, f32)>,
+    /// Grid cells as quads of vertex indices (as [`Tessellation::quads`]).
+    pub quads: Vec<[u32; 4]>,
+}
+
+impl TessellationPlan {
+    /// The triangles of the quads (as [`Tessellation::triangles`]).
+    pub fn triangles(&self) -> Vec<[u32; 3]> {
+        quad_triangles(&self.quads)
+    }
+}
+
+fn quad_triangles(quads: &[[u32; 4]]) -> Vec<[u32; 3]> {
+    let mut out = Vec::with_capacity(2 * quads.len());
+    for q in quads {
+        for t in [[q[0], q[1], q[2]], [q[0], q[2], q[3]]] {
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                out.push(t);
+            }
+        }
+    }
+    out
+}
+
+impl PatchTable {
+    /// The samples and quads of the `N × N` watertight tessellation (see the module
+    /// documentation); `N` outside `2..=4096` is refused, an even `N` is raised by one on
+    /// meshes with non-quad faces.
+    pub fn tessellation_plan(&self, samples_per_side: usize) -> Result<TessellationPlan> {
         if !(2..=4096).contains(&samples_per_side) {
             return Err(Error::Unsupported(format!(
                 "samples per side {samples_per_side} not in 2..=4096"
             )));
         }
-        let t = &self.table.base;
+        let t = &self.base;
         let mut n = samples_per_side;
         if !t.is_all_quads() && n % 2 == 0 {
             n += 1;
@@ -103,10 +129,10 @@ impl LimitSurface {
         let mut grids: Vec<(usize, usize, Vec<usize>)> = Vec::new(); // (ptex, side, keys)
         for f in 0..nf {
             let size = t.face_size(f);
-            let first_ptex = self.table.ptex_offsets[f] as usize;
+            let first_ptex = self.ptex_offsets[f] as usize;
             for k in 0..(if size == 4 { 1 } else { size }) {
                 let ptex = first_ptex + k;
-                if self.table.patch_map.roots[ptex] == EMPTY {
+                if self.patch_map.roots[ptex] == EMPTY {
                     continue;
                 }
                 let g = if size == 4 { keys.n } else { keys.m };
@@ -143,32 +169,46 @@ impl LimitSurface {
                 queries.push((*ptex as u32, i as f32 / d, j as f32 / d));
             }
         }
-        let evaluated: Vec<_> = queries
-            .par_iter()
-            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
-            .collect();
-        let mut out = Tessellation {
-            samples_per_side: n,
-            positions: evaluated.iter().map(|e| e.p).collect(),
-            normals: evaluated.iter().map(|e| e.n).collect(),
-            quads: Vec::new(),
-        };
+        let mut quads = Vec::new();
         for (_, g, grid) in &grids {
             let at = |i: usize, j: usize| remap[grid[j * g + i]];
             for j in 0..g - 1 {
                 for i in 0..g - 1 {
-                    out.quads
-                        .push([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+                    quads.push([at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
                 }
             }
         }
-        Ok(out)
+        Ok(TessellationPlan {
+            samples_per_side: n,
+            queries,
+            quads,
+        })
+    }
+}
+
+impl LimitSurface {
+    /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the
+    /// grids into one watertight mesh (see the module documentation and
+    /// [`PatchTable::tessellation_plan`]).
+    pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
+        let plan = self.table.tessellation_plan(samples_per_side)?;
+        let evaluated: Vec<_> = plan
+            .queries
+            .par_iter()
+            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
+            .collect();
+        Ok(Tessellation {
+            samples_per_side: plan.samples_per_side,
+            positions: evaluated.iter().map(|e| e.p).collect(),
+            normals: evaluated.iter().map(|e| e.n).collect(),
+            quads: plan.quads,
+        })
     }
 }
 
 impl Keys {
-    fn new(s: &LimitSurface, n: usize) -> Keys {
-        let t = &s.table.base;
+    fn new(s: &PatchTable, n: usize) -> Keys {
+        let t = &s.base;
         let m = n.div_ceil(2);
         let nv = t.num_vertices();
         let edge0 = nv;
@@ -208,8 +248,8 @@ impl Keys {
     }
 
     /// Sample `p` (from the edge's first vertex) of base edge `e`.
-    fn edge(&self, s: &LimitSurface, e: usize, p: usize) -> usize {
-        let ev = s.table.base.edge_verts[e];
+    fn edge(&self, s: &PatchTable, e: usize, p: usize) -> usize {
+        let ev = s.base.edge_verts[e];
         if p == 0 {
             ev[0] as usize
         } else if p == self.n - 1 {
@@ -221,14 +261,14 @@ impl Keys {
     }
 
     /// Sample `p` counted from corner `from` of face `f`'s edge `k`.
-    fn face_edge(&self, s: &LimitSurface, f: usize, k: usize, from: usize, p: usize) -> usize {
-        let t = &s.table.base;
+    fn face_edge(&self, s: &PatchTable, f: usize, k: usize, from: usize, p: usize) -> usize {
+        let t = &s.base;
         let e = t.face_edges(f)[k] as usize;
         let forward = t.edge_verts[e][0] == t.face_vertices(f)[from];
         self.edge(s, e, if forward { p } else { self.n - 1 - p })
     }
 
-    fn quad(&self, s: &LimitSurface, f: usize, i: usize, j: usize) -> usize {
+    fn quad(&self, s: &PatchTable, f: usize, i: usize, j: usize) -> usize {
         let n = self.n;
         if j == 0 {
             self.face_edge(s, f, 0, 0, i)
@@ -244,9 +284,9 @@ impl Keys {
     }
 
     /// Sample `q` of spoke `k` of n-gon `f` (0: midpoint of edge `k`, `M − 1`: centre).
-    fn spoke(&self, s: &LimitSurface, f: usize, k: usize, q: usize) -> usize {
+    fn spoke(&self, s: &PatchTable, f: usize, k: usize, q: usize) -> usize {
         if q == 0 {
-            let e = s.table.base.face_edges(f)[k] as usize;
+            let e = s.base.face_edges(f)[k] as usize;
             self.edge(s, e, (self.n - 1) / 2)
         } else if q == self.m - 1 {
             self.centre0 + self.centre_index[f]
@@ -255,8 +295,8 @@ impl Keys {
         }
     }
 
-    fn sub(&self, s: &LimitSurface, f: usize, k: usize, i: usize, j: usize) -> usize {
-        let (m, n) = (self.m, s.table.base.face_size(f));
+    fn sub(&self, s: &PatchTable, f: usize, k: usize, i: usize, j: usize) -> usize {
+        let (m, n) = (self.m, s.base.face_size(f));
         let prev = (k + n - 1) % n;
         if j == 0 {
             self.face_edge(s, f, k, k, i)

@@ -1,0 +1,532 @@
+//! The limit surface of a [`PatchTable`] on the GPU: refinement, end-cap points and patch
+//! evaluation with the data resident between passes (OpenSubdiv's `Osd` evaluators over a
+//! `Far::PatchTable`).
+//!
+//! [`GpuLimit::new`] uploads the table once: the level stencils (run by [`GpuRefiner`]),
+//! the end-cap local-point stencils (run by [`StencilKernel`]), and the patch map, per-patch
+//! data and control indices read by `limit_eval` ([`crate::cpu::limit_eval`]). Per frame,
+//! [`GpuLimit::update`] writes the base positions and rebuilds the flat point array
+//! `[level 0 | level 1 | … | level L | local points]` on the GPU: levels are refined, copied
+//! into place, and the local points computed from them. [`GpuLimit::eval`] then evaluates a
+//! sample set allocated once:
+//!
+//! - [`GpuLimit::tessellation`]: the samples of [`PatchTable::tessellation_plan`], with an
+//!   index buffer of the plan's triangles; every seam sample is one vertex shared by index,
+//!   so the mesh is watertight and its indices are those of
+//!   [`subsurf::limit::LimitSurface::tessellate`];
+//! - [`GpuLimit::samples`]: any `(ptex face, u, v)` list, with or without derivatives.
+//!
+//! Samples are dispatched in chunks whose query and output bindings start at aligned offsets,
+//! so no binding exceeds `max_storage_buffer_binding_size` and no dispatch exceeds
+//! `max_compute_workgroups_per_dimension`. The point array and the patch tables are bound
+//! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
+
+use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
+use crate::context::GpuContext;
+use crate::cpu::limit_eval::{
+    limit_eval, pack_queries, LimitInputs, LimitTables, QUERY_WORDS, WORKGROUP_SIZE,
+};
+use crate::error::{GpuError, Result};
+use crate::kernels::grid_2d;
+use crate::kernels::stencil::{ChunkLimits, StencilKernel};
+use crate::refine::{auto_pipeline, uniform_init, GpuRefiner};
+use crate::shaders;
+use crate::shared::LimitConfig;
+use crate::table::StencilTable;
+use subsurf::limit::{LimitPoint, PatchTable, Tessellation};
+
+const WORD: u64 = 4;
+
+/// A patch table resident on the GPU with its point array.
+#[derive(Debug)]
+pub struct GpuLimit {
+    refiner: GpuRefiner,
+    level_offsets: Vec<u32>,
+    points: VertexBuffer,
+    local: Option<(StencilKernel, VertexBuffer)>,
+    patch_map: wgpu::Buffer,
+    patch_info: wgpu::Buffer,
+    cvs: wgpu::Buffer,
+    num_roots: u32,
+    limits: ChunkLimits,
+    row_align: usize,
+    pipeline: wgpu::ComputePipeline,
+}
+
+/// A set of samples on the GPU: queries uploaded once, an output buffer of `stride` floats
+/// per sample (position, unit normal, then `∂P/∂u`, `∂P/∂v` when `stride` is 12), and the
+/// dispatches that fill it ([`GpuLimit::eval`]).
+#[derive(Debug)]
+pub struct GpuSamples {
+    /// Number of samples.
+    pub count: usize,
+    /// Floats per sample (6 or 12).
+    pub stride: usize,
+    /// The output buffer (also usable as a vertex buffer).
+    pub output: wgpu::Buffer,
+    chunks: Vec<(wgpu::BindGroup, (u32, u32))>,
+    _queries: wgpu::Buffer,
+    _configs: Vec<wgpu::Buffer>,
+}
+
+/// A watertight tessellation on the GPU: the samples of a [`TessellationPlan`] (6 floats per
+/// vertex: position, unit normal) and an index buffer of its triangles.
+///
+/// [`TessellationPlan`]: subsurf::limit::TessellationPlan
+#[derive(Debug)]
+pub struct GpuTessellation {
+    /// Samples per side actually used.
+    pub samples_per_side: usize,
+    /// The vertices.
+    pub samples: GpuSamples,
+    /// Index buffer, 3 `u32` per ccw triangle.
+    pub indices: wgpu::Buffer,
+    /// Number of indices.
+    pub num_indices: usize,
+    quads: Vec<[u32; 4]>,
+}
+
+impl GpuSamples {
+    /// Number of dispatches evaluating the set (more than one when chunked).
+    pub fn num_dispatches(&self) -> usize {
+        self.chunks.len()
+    }
+
+    /// Reads the output back (`stride` floats per sample; waits for the submitted work).
+    pub fn download(&self, ctx: &GpuContext) -> Result<Vec<f32>> {
+        read_back(ctx, &self.output, (self.count * self.stride) as u64 * WORD)
+    }
+
+    /// Reads the output back as limit points (derivatives zero when `stride` is 6).
+    pub fn download_points(&self, ctx: &GpuContext) -> Result<Vec<LimitPoint>> {
+        Ok(unpack_points(&self.download(ctx)?, self.stride))
+    }
+}
+
+/// Limit points from a kernel output of `stride` floats per sample.
+pub fn unpack_points(out: &[f32], stride: usize) -> Vec<LimitPoint> {
+    out.chunks_exact(stride)
+        .map(|o| {
+            let v = |k: usize| [o[k], o[k + 1], o[k + 2]];
+            LimitPoint {
+                p: v(0),
+                n: v(3),
+                du: if stride >= 12 { v(6) } else { [0.0; 3] },
+                dv: if stride >= 12 { v(9) } else { [0.0; 3] },
+            }
+        })
+        .collect()
+}
+
+impl GpuTessellation {
+    /// Reads the tessellation back: positions, normals and the plan's quads.
+    pub fn download(&self, ctx: &GpuContext) -> Result<Tessellation> {
+        let out = self.samples.download(ctx)?;
+        Ok(Tessellation {
+            samples_per_side: self.samples_per_side,
+            positions: out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect(),
+            normals: out.chunks_exact(6).map(|v| [v[3], v[4], v[5]]).collect(),
+            quads: self.quads.clone(),
+        })
+    }
+}
+
+fn bound_whole(
+    ctx: &GpuContext,
+    limits: &ChunkLimits,
+    what: &'static str,
+    words: &[u32],
+) -> Result<wgpu::Buffer> {
+    let bytes = words.len() as u64 * WORD;
+    if bytes > limits.max_binding_bytes {
+        return Err(GpuError::TooLarge {
+            what,
+            needed: bytes,
+            limit: limits.max_binding_bytes,
+        });
+    }
+    storage_buffer_init(ctx, what, bytemuck::cast_slice(words))
+}
+
+/// The CPU twin of [`GpuLimit::update`] followed by [`GpuLimit::eval`]: `stride` floats per
+/// query from the flat point array `points` ([`PatchTable::points`]).
+pub fn eval_cpu(
+    table: &PatchTable,
+    points: &[[f32; 3]],
+    queries: &[(u32, f32, f32)],
+    stride: usize,
+) -> Vec<f32> {
+    let t = LimitTables::new(table);
+    let q = pack_queries(queries);
+    let cfg = LimitConfig {
+        item_count: queries.len() as u32,
+        grid_width: queries.len() as u32,
+        out_stride: stride as u32,
+        num_roots: t.num_roots,
+    };
+    let inp = LimitInputs {
+        queries: &q,
+        patch_map: &t.patch_map,
+        patch_info: &t.patch_info,
+        cvs: &t.cvs,
+        points: points.as_flattened(),
+    };
+    let mut out = vec![0.0; queries.len() * stride];
+    limit_eval(&cfg, &inp, &mut out);
+    out
+}
+
+/// The CPU twin of a [`GpuTessellation`]: the plan's samples evaluated by the twin.
+pub fn tessellate_cpu(
+    table: &PatchTable,
+    points: &[[f32; 3]],
+    samples_per_side: usize,
+) -> subsurf::Result<Tessellation> {
+    let plan = table.tessellation_plan(samples_per_side)?;
+    let out = eval_cpu(table, points, &plan.queries, 6);
+    Ok(Tessellation {
+        samples_per_side: plan.samples_per_side,
+        positions: out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect(),
+        normals: out.chunks_exact(6).map(|v| [v[3], v[4], v[5]]).collect(),
+        quads: plan.quads,
+    })
+}
+
+impl GpuLimit {
+    /// Uploads `table`, chunked against the adapter's limits. Positions are zero until
+    /// [`Self::update`].
+    pub fn new(ctx: &GpuContext, table: &PatchTable) -> Result<Self> {
+        Self::with_limits(ctx, table, ChunkLimits::from_context(ctx))
+    }
+
+    /// Uploads `table` chunked against `limits` (clamped to the adapter's; lower values force
+    /// more chunks, which tests use to exercise chunking).
+    pub fn with_limits(ctx: &GpuContext, table: &PatchTable, limits: ChunkLimits) -> Result<Self> {
+        let adapter = ChunkLimits::from_context(ctx);
+        let limits = ChunkLimits {
+            max_binding_bytes: limits.max_binding_bytes.min(adapter.max_binding_bytes),
+            max_workgroups_per_dimension: limits
+                .max_workgroups_per_dimension
+                .clamp(1, adapter.max_workgroups_per_dimension),
+            max_stride: 12,
+        };
+        let counts: Vec<usize> = table
+            .level_offsets
+            .windows(2)
+            .map(|w| (w[1] - w[0]) as usize)
+            .collect();
+        let refiner = GpuRefiner::from_stencils(ctx, &counts, &table.level_stencils, limits)?;
+        let num_points = table.num_points();
+        let point_bytes = (3 * num_points) as u64 * WORD;
+        if point_bytes > adapter.max_binding_bytes {
+            return Err(GpuError::TooLarge {
+                what: "limit point array (bound whole)",
+                needed: point_bytes,
+                limit: adapter.max_binding_bytes,
+            });
+        }
+        let points = VertexBuffer::zeroed(ctx, num_points, 3)?;
+        let lp = &table.local_points;
+        let local = if lp.num_rows() > 0 {
+            let t = StencilTable::new(&lp.offsets, &lp.indices, &lp.weights)?;
+            let kernel = StencilKernel::with_limits(
+                ctx,
+                &t,
+                ChunkLimits {
+                    max_stride: 3,
+                    ..limits
+                },
+            )?;
+            Some((kernel, VertexBuffer::zeroed(ctx, lp.num_rows(), 3)?))
+        } else {
+            None
+        };
+        let t = LimitTables::new(table);
+        let patch_map = bound_whole(ctx, &limits, "limit patch map", &t.patch_map)?;
+        let patch_info = bound_whole(ctx, &limits, "limit patch data", &t.patch_info)?;
+        let cvs = bound_whole(ctx, &limits, "limit control indices", &t.cvs)?;
+        let pipeline = ctx.scoped(|| {
+            Ok(auto_pipeline(
+                ctx,
+                "limit_eval",
+                shaders::LIMIT_EVAL,
+                "main",
+            ))
+        })?;
+        let row_align =
+            (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
+        Ok(Self {
+            refiner,
+            level_offsets: table.level_offsets.clone(),
+            points,
+            local,
+            patch_map,
+            patch_info,
+            cvs,
+            num_roots: t.num_roots,
+            limits,
+            row_align,
+            pipeline,
+        })
+    }
+
+    /// Number of points (level vertices and local points) refreshed by [`Self::update`].
+    pub fn num_points(&self) -> usize {
+        self.points.vertex_count()
+    }
+
+    /// The flat point array on the GPU (3 floats per point).
+    pub fn points(&self) -> &VertexBuffer {
+        &self.points
+    }
+
+    /// Reads the point array back (waits for the submitted work).
+    pub fn download_points(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
+        let flat = self.points.download(ctx)?;
+        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+    }
+
+    /// Writes new base positions and rebuilds the point array on the GPU: refinement, copies
+    /// of each level into place, end-cap local points. Sample sets keep their bindings; call
+    /// [`Self::eval`] to re-evaluate them.
+    pub fn update(&mut self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
+        self.refiner.update(ctx, positions)?;
+        let copy_levels = |encoder: &mut wgpu::CommandEncoder| -> Result<()> {
+            for (k, &off) in self.level_offsets[..self.level_offsets.len() - 1]
+                .iter()
+                .enumerate()
+            {
+                let level = self
+                    .refiner
+                    .level(k)
+                    .ok_or_else(|| GpuError::BufferMismatch(format!("refiner has no level {k}")))?;
+                let bytes = level.len_floats() as u64 * WORD;
+                if bytes > 0 {
+                    encoder.copy_buffer_to_buffer(
+                        level.raw(),
+                        0,
+                        self.points.raw(),
+                        u64::from(off) * 3 * WORD,
+                        bytes,
+                    );
+                }
+            }
+            Ok(())
+        };
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("limit levels"),
+                });
+            copy_levels(&mut encoder)?;
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })?;
+        if let Some((kernel, local)) = &mut self.local {
+            kernel.apply(ctx, &self.points, local)?;
+            let first = u64::from(*self.level_offsets.last().unwrap_or(&0)) * 3 * WORD;
+            ctx.scoped(|| {
+                let mut encoder =
+                    ctx.device
+                        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                            label: Some("limit local points"),
+                        });
+                encoder.copy_buffer_to_buffer(
+                    local.raw(),
+                    0,
+                    self.points.raw(),
+                    first,
+                    local.len_floats() as u64 * WORD,
+                );
+                ctx.queue.submit([encoder.finish()]);
+                Ok(())
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Uploads a sample set of `(ptex face, u, v)` queries; `derivatives` selects 12 floats per
+    /// sample (with `∂P/∂u`, `∂P/∂v`) instead of 6. A sample in a hole, or of a ptex face out
+    /// of range, evaluates to zeros (as [`subsurf::limit::LimitSurface::tessellate`] writes
+    /// it); parameters are clamped to `[0, 1]` and must be finite.
+    pub fn samples(
+        &self,
+        ctx: &GpuContext,
+        queries: &[(u32, f32, f32)],
+        derivatives: bool,
+    ) -> Result<GpuSamples> {
+        if let Some(i) = queries
+            .iter()
+            .position(|q| !(q.1.is_finite() && q.2.is_finite()))
+        {
+            return Err(GpuError::BufferMismatch(format!(
+                "sample {i} has a non-finite parameter {:?}",
+                queries[i]
+            )));
+        }
+        let stride = if derivatives { 12 } else { 6 };
+        let count = queries.len();
+        if count >= u32::MAX as usize / stride {
+            return Err(GpuError::BufferMismatch(format!(
+                "{count} samples exceed 32-bit indexing"
+            )));
+        }
+        let words = pack_queries(queries);
+        let queries_buf = storage_buffer_init(ctx, "limit queries", bytemuck::cast_slice(&words))?;
+        let out_bytes = (count * stride) as u64 * WORD;
+        let output = ctx.scoped(|| {
+            Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("limit samples"),
+                size: out_bytes.max(WORD),
+                usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX,
+                mapped_at_creation: false,
+            }))
+        })?;
+        let layout = self.pipeline.get_bind_group_layout(0);
+        let mut chunks = Vec::new();
+        let mut configs = Vec::new();
+        for (start, end) in self.sample_chunks(count, stride)? {
+            let n = (end - start) as u32;
+            let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, self.limits.max_workgroups_per_dimension);
+            let config = LimitConfig {
+                item_count: n,
+                grid_width: gx * WORKGROUP_SIZE,
+                out_stride: stride as u32,
+                num_roots: self.num_roots,
+            };
+            let config_buf = uniform_init(ctx, bytemuck::bytes_of(&config))?;
+            let bind_group = ctx.scoped(|| {
+                Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("limit_eval"),
+                    layout: &layout,
+                    entries: &[
+                        entry(0, config_buf.as_entire_binding()),
+                        entry(1, part(&queries_buf, start, n, QUERY_WORDS)),
+                        entry(2, self.patch_map.as_entire_binding()),
+                        entry(3, self.patch_info.as_entire_binding()),
+                        entry(4, self.cvs.as_entire_binding()),
+                        entry(5, self.points.raw().as_entire_binding()),
+                        entry(6, part(&output, start, n, stride)),
+                    ],
+                }))
+            })?;
+            chunks.push((bind_group, (gx, gy)));
+            configs.push(config_buf);
+        }
+        Ok(GpuSamples {
+            count,
+            stride,
+            output,
+            chunks,
+            _queries: queries_buf,
+            _configs: configs,
+        })
+    }
+
+    /// Sample ranges `[start, end)` of the dispatches: starts are multiples of the binding
+    /// offset alignment (in words, so aligned for any stride), bindings and grids within the
+    /// limits.
+    fn sample_chunks(&self, count: usize, stride: usize) -> Result<Vec<(usize, usize)>> {
+        let max_words = (self.limits.max_binding_bytes / WORD) as usize;
+        let max_dispatch =
+            u64::from(self.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
+        let mut per = (max_words / stride.max(QUERY_WORDS)).min(max_dispatch as usize);
+        if count > per {
+            per -= per % self.row_align;
+        }
+        if per == 0 {
+            return Err(GpuError::TooLarge {
+                what: "one aligned chunk of limit samples",
+                needed: (self.row_align * stride) as u64 * WORD,
+                limit: self.limits.max_binding_bytes,
+            });
+        }
+        Ok((0..count)
+            .step_by(per)
+            .map(|s| (s, (s + per).min(count)))
+            .collect())
+    }
+
+    /// The samples of the `N × N` watertight tessellation ([`PatchTable::tessellation_plan`])
+    /// with its index buffer.
+    pub fn tessellation(
+        &self,
+        ctx: &GpuContext,
+        table: &PatchTable,
+        samples_per_side: usize,
+    ) -> Result<GpuTessellation> {
+        let plan = table.tessellation_plan(samples_per_side)?;
+        let samples = self.samples(ctx, &plan.queries, false)?;
+        let tris = plan.triangles();
+        let index_words: &[u32] = tris.as_flattened();
+        let indices = ctx.scoped(|| {
+            use wgpu::util::DeviceExt;
+            let zero = [0u32];
+            let words = if index_words.is_empty() {
+                &zero[..]
+            } else {
+                index_words
+            };
+            Ok(ctx
+                .device
+                .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some("limit indices"),
+                    contents: bytemuck::cast_slice(words),
+                    usage: wgpu::BufferUsages::INDEX
+                        | wgpu::BufferUsages::STORAGE
+                        | wgpu::BufferUsages::COPY_SRC,
+                }))
+        })?;
+        Ok(GpuTessellation {
+            samples_per_side: plan.samples_per_side,
+            samples,
+            indices,
+            num_indices: index_words.len(),
+            quads: plan.quads,
+        })
+    }
+
+    /// Submits the evaluation of `samples` from the current point array (the result stays on
+    /// the GPU until downloaded).
+    pub fn eval(&self, ctx: &GpuContext, samples: &GpuSamples) -> Result<()> {
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("limit_eval"),
+                });
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("limit_eval"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(&self.pipeline);
+                for (bind_group, (gx, gy)) in &samples.chunks {
+                    pass.set_bind_group(0, bind_group, &[]);
+                    pass.dispatch_workgroups(*gx, *gy, 1);
+                }
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
+    }
+}
+
+/// Samples `start .. start + n` of a buffer of `words_per` words per sample.
+fn part(
+    buffer: &wgpu::Buffer,
+    start: usize,
+    n: u32,
+    words_per: usize,
+) -> wgpu::BindingResource<'_> {
+    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+        buffer,
+        offset: (start * words_per) as u64 * WORD,
+        size: wgpu::BufferSize::new(u64::from(n) * words_per as u64 * WORD),
+    })
+}
+
+fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource }
+}
