@@ -3,9 +3,11 @@
 //! index, `u, v = i/(N−1)`, `v` the outer loop; holes write nothing).
 
 use crate::cmd_limit::SurfaceArgs;
+use crate::common::{gpu_context, Backend};
 use anyhow::Context;
 use std::io::Write;
 use std::path::PathBuf;
+use subsurf::limit::{LimitPoint, LimitSurface};
 
 /// Sample the limit surface and its derivatives.
 #[derive(Debug, clap::Args)]
@@ -26,18 +28,46 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         "--samples {} not in 2..=4096",
         a.samples
     );
-    let s = a.surface.load()?;
+    let (mesh, table) = a.surface.load_table()?;
     let n = a.samples;
     let d = (n - 1) as f32;
-    let mut queries = Vec::with_capacity(s.table.num_ptex_faces() * n * n);
-    for f in 0..s.table.num_ptex_faces() as u32 {
+    let mut queries = Vec::with_capacity(table.num_ptex_faces() * n * n);
+    for f in 0..table.num_ptex_faces() as u32 {
         for j in 0..n {
             for i in 0..n {
                 queries.push((f, i as f32 / d, j as f32 / d));
             }
         }
     }
-    let results = s.eval_batch(&queries);
+    let results = match a.surface.backend {
+        Backend::Cpu => LimitSurface::new(table.clone(), &mesh.positions).eval_batch(&queries),
+        Backend::Gpu => {
+            // Holes (no patch) are known from the patch map alone: only the rest is sent.
+            let found: Vec<bool> = queries
+                .iter()
+                .map(|&(f, u, v)| table.patch_map.find(f as usize, u, v).is_some())
+                .collect();
+            let sent: Vec<(u32, f32, f32)> = queries
+                .iter()
+                .zip(&found)
+                .filter(|(_, &k)| k)
+                .map(|(q, _)| *q)
+                .collect();
+            let ctx = gpu_context()?;
+            let gpu = a.surface.upload(&ctx, &mesh, &table)?;
+            let samples = gpu.samples(&ctx, &sent, true)?;
+            gpu.eval(&ctx, &samples)
+                .context("--backend gpu: evaluating the samples")?;
+            let mut points = samples
+                .download_points(&ctx)
+                .context("--backend gpu: reading the samples back")?
+                .into_iter();
+            found
+                .iter()
+                .map(|&k| if k { points.next() } else { None })
+                .collect::<Vec<Option<LimitPoint>>>()
+        }
+    };
     let file = std::fs::File::create(&a.output)
         .with_context(|| format!("creating {}", a.output.display()))?;
     let mut w = std::io::BufWriter::new(file);
@@ -54,7 +84,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     w.flush()?;
     eprintln!(
         "{written} samples on {} ptex faces -> {}",
-        s.table.num_ptex_faces(),
+        table.num_ptex_faces(),
         a.output.display()
     );
     Ok(())

@@ -2,10 +2,11 @@
 //! tessellated watertight with `N` samples per ptex-face side, written as OBJ or PLY with
 //! normals.
 
-use crate::common::{write_mesh, SchemeArgs};
+use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
+use anyhow::Context;
 use std::path::PathBuf;
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
-use subsurf::Topology;
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, Tessellation};
+use subsurf::{Mesh, Topology};
 
 /// The limit surface of a mesh file: the input and the patch-table options shared by
 /// `limit` and `eval`.
@@ -21,11 +22,15 @@ pub struct SurfaceArgs {
     pub no_single_crease: bool,
     #[command(flatten)]
     pub scheme: SchemeArgs,
+    /// Where the surface is evaluated: the GPU runs refinement, end-cap points and patch
+    /// evaluation as wgpu kernels (same samples, f32 rounding of the device).
+    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    pub backend: Backend,
 }
 
 impl SurfaceArgs {
     /// Reads the mesh and builds its patch table.
-    pub fn load(&self) -> anyhow::Result<LimitSurface> {
+    pub fn load_table(&self) -> anyhow::Result<(Mesh, PatchTable)> {
         let mesh = self.scheme.read(&self.input)?;
         let topo = Topology::new(&mesh)?;
         let table = PatchTable::build(
@@ -36,7 +41,21 @@ impl SurfaceArgs {
                 ..Default::default()
             },
         )?;
-        Ok(LimitSurface::new(table, &mesh.positions))
+        Ok((mesh, table))
+    }
+
+    /// Uploads the patch table to the GPU and computes its points from `mesh`'s positions.
+    pub fn upload(
+        &self,
+        ctx: &subsurf_gpu::GpuContext,
+        mesh: &Mesh,
+        table: &PatchTable,
+    ) -> anyhow::Result<subsurf_gpu::GpuLimit> {
+        let mut gpu = subsurf_gpu::GpuLimit::new(ctx, table)
+            .context("--backend gpu: uploading the patch table")?;
+        gpu.update(ctx, &mesh.positions)
+            .context("--backend gpu: refining and computing end-cap points")?;
+        Ok(gpu)
     }
 }
 
@@ -58,23 +77,41 @@ pub struct LimitArgs {
 }
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
-    let s = a.surface.load()?;
-    let tess = s.tessellate(a.tess)?;
+    let (mesh, table) = a.surface.load_table()?;
+    let tess = match a.surface.backend {
+        Backend::Cpu => LimitSurface::new(table.clone(), &mesh.positions).tessellate(a.tess)?,
+        Backend::Gpu => tessellate_gpu(&a.surface, &mesh, &table, a.tess)?,
+    };
     let out = tess.to_mesh(a.quads);
     write_mesh(&a.output, &out, Some(&tess.normals))?;
-    let c = s.table.counts();
+    let c = table.counts();
     eprintln!(
         "{} patches ({} regular, {} single-crease, {} Gregory) on {} ptex faces; \
          {} samples per side: {} vertices, {} faces -> {}",
-        s.table.num_patches(),
+        table.num_patches(),
         c.regular,
         c.single_crease,
         c.gregory,
-        s.table.num_ptex_faces(),
+        table.num_ptex_faces(),
         tess.samples_per_side,
         out.positions.len(),
         out.num_faces(),
         a.output.display()
     );
     Ok(())
+}
+
+fn tessellate_gpu(
+    surface: &SurfaceArgs,
+    mesh: &Mesh,
+    table: &PatchTable,
+    n: usize,
+) -> anyhow::Result<Tessellation> {
+    let ctx = gpu_context()?;
+    let gpu = surface.upload(&ctx, mesh, table)?;
+    let t = gpu.tessellation(&ctx, table, n)?;
+    gpu.eval(&ctx, &t.samples)
+        .context("--backend gpu: evaluating the samples")?;
+    Ok(t.download(&ctx)
+        .context("--backend gpu: reading the tessellation back")?)
 }

@@ -1,4 +1,4 @@
-//! `--backend gpu` of `subsurf refine` and `subsurf prep` against `--backend cpu`.
+//! `--backend gpu` of `subsurf refine`, `prep`, `limit` and `eval` against `--backend cpu`.
 //!
 //! Without a GPU adapter these tests fail with the driver installation hint, unless
 //! `SUBSURF_SKIP_GPU=1`.
@@ -89,6 +89,73 @@ fn refine_gpu_matches_cpu() {
 fn prep_gpu_matches_cpu() {
     let input = repo("crates/subsurf/tests/data/prep/catmark_torus.obj");
     compare_backends("prep", &input, &["--tess", "5"], "torus");
+}
+
+#[test]
+fn limit_gpu_matches_cpu() {
+    // Gregory end caps, single-crease patches and boundaries; same vertex order and faces.
+    compare_backends(
+        "limit",
+        &repo("testdata/shapes/catmark_car.obj"),
+        &["--isolation", "2", "--tess", "4"],
+        "car_limit",
+    );
+    // Triangles: non-quad ptex faces (odd sample count).
+    compare_backends(
+        "limit",
+        &repo("testdata/shapes/catmark_pyramid.obj"),
+        &["--tess", "5"],
+        "pyramid_limit",
+    );
+}
+
+/// Parses `eval` output lines.
+fn eval_lines(path: &Path) -> Vec<Vec<f32>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn eval_gpu_matches_cpu() {
+    let input = repo("testdata/shapes/catmark_hole_test1.obj");
+    let (g, c) = (tmp("eval_gpu.txt"), tmp("eval_cpu.txt"));
+    let args = |o: &Path| -> Vec<std::ffi::OsString> {
+        vec![
+            "eval".into(),
+            input.clone().into(),
+            "--samples".into(),
+            "4".into(),
+            "-o".into(),
+            o.into(),
+        ]
+    };
+    let ga = args(&g);
+    let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_os_str()).collect();
+    if run_gpu(&ga).is_none() {
+        return;
+    }
+    let ca = args(&c);
+    let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_os_str()).collect();
+    run_cpu(&ca);
+    let (gl, cl) = (eval_lines(&g), eval_lines(&c));
+    // Same samples (holes skipped on both), values within f32 rounding: positions relative to
+    // the mesh size (a few units), derivatives to theirs.
+    assert_eq!(gl.len(), cl.len());
+    assert!(!gl.is_empty());
+    for (k, (a, b)) in gl.iter().zip(&cl).enumerate() {
+        assert_eq!(a[..3], b[..3], "line {k}: sample");
+        for i in 3..12 {
+            assert!(
+                (a[i] - b[i]).abs() <= 1e-4 * (1.0 + b[i].abs()),
+                "line {k} column {i}: GPU {} vs CPU {}",
+                a[i],
+                b[i]
+            );
+        }
+    }
 }
 
 #[test]
