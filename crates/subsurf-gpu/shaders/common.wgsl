@@ -46,7 +46,9 @@ struct PrepConfig {
     grid_width: u32,
     // Samples per patch side of prep_eval_grid (>= 2).
     samples: u32,
-    _pad: u32,
+    // Item of invocation 0 (the dispatch covers first_item .. first_item + item_count); the
+    // outputs of prep_eval_grid are bound at the chunk's first item.
+    first_item: u32,
 }
 
 // Offset (in floats) of valence n's constants in `valence_consts`: valence m holds

@@ -127,10 +127,11 @@ fn emit(item: u32, p: vec3<f32>, nrm: vec3<f32>) {
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let item = gid.y * config.grid_width + gid.x;
-    if item >= config.item_count {
+    let local = gid.y * config.grid_width + gid.x;
+    if local >= config.item_count {
         return;
     }
+    let item = config.first_item + local;
     let n = config.samples;
     let m = n - 2u;
     let nv = config.num_vertices;
@@ -138,7 +139,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if item < nv {
         let e1 = vd(nv + item);
         let e2 = vd(2u * nv + item);
-        emit(item, vd(item), normalized(cross(e1, e2)));
+        emit(local, vd(item), normalized(cross(e1, e2)));
         return;
     }
     if item < nv + ne * m {
@@ -160,7 +161,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         }
         let uv = corner_index(c, s, 0u, n - 1u);
         let smp = eval_patch(f, basis(params[uv / n]), basis(params[uv % n]));
-        emit(item, p, normalized(cross(smp.du, smp.dv)));
+        emit(local, p, normalized(cross(smp.du, smp.dv)));
         return;
     }
     let q = item - nv - ne * m;
@@ -169,7 +170,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let j = r / m + 1u;
     let i = r % m + 1u;
     let smp = eval_patch(f, basis(params[i]), basis(params[j]));
-    emit(item, smp.p, normalized(cross(smp.du, smp.dv)));
+    emit(local, smp.p, normalized(cross(smp.du, smp.dv)));
 }
 
 // Index in the vertex array of grid sample (i, j) of face f (see the layout above).
@@ -218,10 +219,11 @@ fn grid_vertex(f: u32, i: u32, j: u32) -> u32 {
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn indices(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let item = gid.y * config.grid_width + gid.x;
-    if item >= config.item_count {
+    let local = gid.y * config.grid_width + gid.x;
+    if local >= config.item_count {
         return;
     }
+    let item = config.first_item + local;
     let cells = config.samples - 1u;
     let f = item / (cells * cells);
     let r = item % (cells * cells);
@@ -231,7 +233,7 @@ fn indices(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = grid_vertex(f, i + 1u, j);
     let c = grid_vertex(f, i + 1u, j + 1u);
     let d = grid_vertex(f, i, j + 1u);
-    let o = 6u * item;
+    let o = 6u * local;
     out_indices[o] = a;
     out_indices[o + 1u] = b;
     out_indices[o + 2u] = c;

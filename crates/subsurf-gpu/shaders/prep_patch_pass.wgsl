@@ -121,10 +121,11 @@ fn case4_inner(ca: f32, cb: f32, ha: vec3<f32>, hb: vec3<f32>, p0: vec3<f32>, p1
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let f = gid.y * config.grid_width + gid.x;
-    if f >= config.item_count {
+    let local = gid.y * config.grid_width + gid.x;
+    if local >= config.item_count {
         return;
     }
+    let f = config.first_item + local;
     for (var c = 0u; c < 4u; c++) {
         let v = face_verts[4u * f + c];
         let k = corner_sector[4u * f + c];

@@ -28,10 +28,11 @@ fn store(slot: u32, x: vec3<f32>) {
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    let v = gid.y * config.grid_width + gid.x;
-    if v >= config.item_count {
+    let local = gid.y * config.grid_width + gid.x;
+    if local >= config.item_count {
         return;
     }
+    let v = config.first_item + local;
     let nv = config.num_vertices;
     let r0 = ring_offsets[v];
     let n = (ring_offsets[v + 1u] - r0) / 2u;

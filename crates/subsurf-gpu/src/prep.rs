@@ -5,8 +5,15 @@
 //! [`GpuPrep::new`] uploads the connectivity once; per frame [`GpuPrep::update`] writes the
 //! positions and runs both passes, and [`GpuPrep::eval_grid`] fills a [`GpuGrid`] (vertex
 //! buffer of position + normal, index buffer of triangles) allocated once per `n`. All data
-//! stays on the GPU until read back. Buffers are bound whole; a mesh whose buffers exceed the
-//! adapter's binding limit is refused with [`GpuError::TooLarge`].
+//! stays on the GPU until read back.
+//!
+//! Every pass is split into chunks of items (vertices, faces, grid vertices, grid cells):
+//! a chunk's first item is a field of its uniform (`first_item`), so no dispatch exceeds
+//! `max_compute_workgroups_per_dimension`², and the per-item outputs of the tessellation
+//! (vertex and index buffers, the largest by far) are bound at the chunk's first item, at an
+//! aligned offset, so no binding exceeds `max_storage_buffer_binding_size`. The inputs
+//! gathered at arbitrary indices (positions, rings, vertex and patch coefficients) are bound
+//! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
 
 use crate::buffers::{read_back, storage_buffer_init, STORAGE_USAGE};
 use crate::context::GpuContext;
@@ -17,6 +24,7 @@ use crate::cpu::prep_patch_pass::{prep_patch_pass, PatchInputs};
 use crate::cpu::prep_vertex_pass::{prep_vertex_pass, valence_consts};
 use crate::error::{GpuError, Result};
 use crate::kernels::grid_2d;
+use crate::kernels::stencil::ChunkLimits;
 use crate::refine::{auto_pipeline, uniform_init};
 use crate::shaders;
 use crate::shared::PrepConfig;
@@ -195,9 +203,24 @@ fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
 #[derive(Debug)]
 struct Pass {
     pipeline: wgpu::ComputePipeline,
-    bind_group: wgpu::BindGroup,
-    groups: (u32, u32),
-    _config: wgpu::Buffer,
+    /// One bind group and workgroup grid per chunk of items.
+    dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
+    _configs: Vec<wgpu::Buffer>,
+}
+
+/// A binding of a pass: bound whole, or per chunk of items at `words` words per item
+/// (outputs indexed by the item's position in the chunk).
+#[derive(Clone, Copy)]
+enum Bind<'a> {
+    Whole(u32, &'a wgpu::Buffer),
+    PerItem(u32, &'a wgpu::Buffer, u32),
+}
+
+/// Limits a pass is chunked against, with the binding offset alignment in words.
+#[derive(Debug, Clone, Copy)]
+struct PassLimits {
+    limits: ChunkLimits,
+    row_align: usize,
 }
 
 /// A p-rep resident on the GPU: connectivity tables, positions and both passes' outputs.
@@ -212,6 +235,7 @@ pub struct GpuPrep {
     face_verts: wgpu::Buffer,
     face_edges: wgpu::Buffer,
     passes: [Pass; 2],
+    lim: PassLimits,
 }
 
 /// An `n×n` watertight tessellation on the GPU: `vertices` (6 floats: position, unit normal)
@@ -233,6 +257,11 @@ pub struct GpuGrid {
 }
 
 impl GpuGrid {
+    /// Dispatches of one [`GpuPrep::eval_grid`] (more than one when chunked).
+    pub fn num_dispatches(&self) -> usize {
+        self.passes[0].dispatches.len()
+    }
+
     /// Reads the tessellation back (waits for the submitted work).
     pub fn download(&self, ctx: &GpuContext) -> Result<Tessellation<f32>> {
         let v = read_back(ctx, &self.vertices, (6 * self.num_vertices) as u64 * WORD)?;
@@ -259,8 +288,27 @@ fn checked_size(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<u64>
     Ok(bytes.max(WORD))
 }
 
-fn empty_storage(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<wgpu::Buffer> {
-    let size = checked_size(ctx, what, bytes)?;
+/// An uninitialised buffer of `bytes`: bound whole (`whole`), it must fit one binding;
+/// bound per chunk, only the adapter's buffer size limits it.
+fn empty_storage(
+    ctx: &GpuContext,
+    what: &'static str,
+    bytes: u64,
+    whole: bool,
+) -> Result<wgpu::Buffer> {
+    let size = if whole {
+        checked_size(ctx, what, bytes)?
+    } else {
+        let limit = ctx.limits().max_buffer_size;
+        if bytes > limit {
+            return Err(GpuError::TooLarge {
+                what,
+                needed: bytes,
+                limit,
+            });
+        }
+        bytes.max(WORD)
+    };
     ctx.scoped(|| {
         Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some(what),
@@ -276,43 +324,95 @@ fn upload_u32(ctx: &GpuContext, what: &'static str, data: &[u32]) -> Result<wgpu
     storage_buffer_init(ctx, what, bytemuck::cast_slice(data))
 }
 
+/// Item ranges `[start, end)` of a pass's dispatches: each within the dispatch grid limit,
+/// each per-item binding within the binding limit, starts aligned (in words, so for any
+/// number of words per item) when there is more than one chunk.
+fn chunk_items(items: u32, words_per_item: u32, lim: &PassLimits) -> Result<Vec<(u32, u32)>> {
+    let max_dispatch =
+        u64::from(lim.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
+    let mut per = max_dispatch.min(u64::from(u32::MAX));
+    if words_per_item > 0 {
+        per = per.min(lim.limits.max_binding_bytes / WORD / u64::from(words_per_item));
+    }
+    if u64::from(items) > per {
+        per -= per % lim.row_align as u64;
+    }
+    if per == 0 {
+        return Err(GpuError::TooLarge {
+            what: "one aligned chunk of p-rep items",
+            needed: lim.row_align as u64 * u64::from(words_per_item) * WORD,
+            limit: lim.limits.max_binding_bytes,
+        });
+    }
+    let per = per as u32;
+    Ok((0..items.div_ceil(per))
+        .map(|k| (k * per, (k * per).saturating_add(per).min(items)))
+        .collect())
+}
+
 fn pass(
     ctx: &GpuContext,
+    lim: &PassLimits,
     label: &'static str,
     source: &'static str,
     entry: &'static str,
     config: PrepConfig,
-    bindings: &[(u32, &wgpu::Buffer)],
+    bindings: &[Bind<'_>],
 ) -> Result<Pass> {
-    let max = ctx.limits().max_compute_workgroups_per_dimension;
-    let (gx, gy) = grid_2d(config.item_count, WORKGROUP_SIZE, max);
-    let config = PrepConfig {
-        grid_width: gx * WORKGROUP_SIZE,
-        ..config
-    };
-    let config_buf = uniform_init(ctx, bytemuck::bytes_of(&config))?;
-    ctx.scoped(|| {
-        let pipeline = auto_pipeline(ctx, label, source, entry);
-        let layout = pipeline.get_bind_group_layout(0);
-        let mut entries = vec![wgpu::BindGroupEntry {
-            binding: 0,
-            resource: config_buf.as_entire_binding(),
-        }];
-        entries.extend(bindings.iter().map(|&(binding, b)| wgpu::BindGroupEntry {
-            binding,
-            resource: b.as_entire_binding(),
-        }));
-        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some(label),
-            layout: &layout,
-            entries: &entries,
-        });
-        Ok(Pass {
-            pipeline,
-            bind_group,
-            groups: (gx, gy),
-            _config: config_buf,
+    let words = bindings
+        .iter()
+        .map(|b| match b {
+            Bind::PerItem(_, _, w) => *w,
+            Bind::Whole(..) => 0,
         })
+        .max()
+        .unwrap_or(0);
+    let pipeline = ctx.scoped(|| Ok(auto_pipeline(ctx, label, source, entry)))?;
+    let layout = pipeline.get_bind_group_layout(0);
+    let mut dispatches = Vec::new();
+    let mut configs = Vec::new();
+    for (start, end) in chunk_items(config.item_count, words, lim)? {
+        let n = end - start;
+        let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, lim.limits.max_workgroups_per_dimension);
+        let chunk_config = PrepConfig {
+            item_count: n,
+            grid_width: gx * WORKGROUP_SIZE,
+            first_item: start,
+            ..config
+        };
+        let config_buf = uniform_init(ctx, bytemuck::bytes_of(&chunk_config))?;
+        let bind_group = ctx.scoped(|| {
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: config_buf.as_entire_binding(),
+            }];
+            entries.extend(bindings.iter().map(|b| match *b {
+                Bind::Whole(binding, buf) => wgpu::BindGroupEntry {
+                    binding,
+                    resource: buf.as_entire_binding(),
+                },
+                Bind::PerItem(binding, buf, w) => wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: buf,
+                        offset: u64::from(start) * u64::from(w) * WORD,
+                        size: wgpu::BufferSize::new(u64::from(n) * u64::from(w) * WORD),
+                    }),
+                },
+            }));
+            Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &layout,
+                entries: &entries,
+            }))
+        })?;
+        dispatches.push((bind_group, (gx, gy)));
+        configs.push(config_buf);
+    }
+    Ok(Pass {
+        pipeline,
+        dispatches,
+        _configs: configs,
     })
 }
 
@@ -328,8 +428,10 @@ fn submit(ctx: &GpuContext, label: &'static str, passes: &[Pass]) -> Result<()> 
             });
             for p in passes {
                 cp.set_pipeline(&p.pipeline);
-                cp.set_bind_group(0, &p.bind_group, &[]);
-                cp.dispatch_workgroups(p.groups.0, p.groups.1, 1);
+                for (bind_group, (gx, gy)) in &p.dispatches {
+                    cp.set_bind_group(0, bind_group, &[]);
+                    cp.dispatch_workgroups(*gx, *gy, 1);
+                }
             }
         }
         ctx.queue.submit([encoder.finish()]);
@@ -341,9 +443,29 @@ impl GpuPrep {
     /// Uploads the connectivity of `topo` and creates both passes (positions still zero:
     /// call [`Self::update`]).
     pub fn new(ctx: &GpuContext, topo: &PrepTopology) -> Result<Self> {
+        Self::with_limits(ctx, topo, ChunkLimits::from_context(ctx))
+    }
+
+    /// [`Self::new`] with the dispatches chunked against `limits` (clamped to the adapter's):
+    /// lower values force more chunks, which tests use to exercise chunking. The limits bound
+    /// the per-chunk bindings (grid outputs) and dispatch grids; the buffers bound whole must
+    /// fit the adapter's binding limit.
+    pub fn with_limits(ctx: &GpuContext, topo: &PrepTopology, limits: ChunkLimits) -> Result<Self> {
+        let adapter = ChunkLimits::from_context(ctx);
+        let lim = PassLimits {
+            limits: ChunkLimits {
+                max_binding_bytes: limits.max_binding_bytes.min(adapter.max_binding_bytes),
+                max_workgroups_per_dimension: limits
+                    .max_workgroups_per_dimension
+                    .clamp(1, adapter.max_workgroups_per_dimension),
+                max_stride: 6,
+            },
+            row_align: (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize)
+                .max(1),
+        };
         let tables = PrepTables::new(topo)?;
         let nv = tables.config.num_vertices as usize;
-        let positions = empty_storage(ctx, "prep positions", (3 * nv) as u64 * WORD)?;
+        let positions = empty_storage(ctx, "prep positions", (3 * nv) as u64 * WORD, true)?;
         let ring_offsets = upload_u32(ctx, "prep ring offsets", &tables.ring_offsets)?;
         let ring_indices = upload_u32(ctx, "prep ring indices", &tables.ring_indices)?;
         let consts = storage_buffer_init(
@@ -360,40 +482,44 @@ impl GpuPrep {
             ctx,
             "prep vertex data",
             tables.vertex_data_len() as u64 * WORD,
+            true,
         )?;
         let patch_data = empty_storage(
             ctx,
             "prep patch data",
             tables.patch_data_len() as u64 * WORD,
+            true,
         )?;
         let vp = pass(
             ctx,
+            &lim,
             "prep_vertex_pass",
             shaders::PREP_VERTEX_PASS,
             "main",
             tables.config_for(nv, 0),
             &[
-                (1, &positions),
-                (2, &ring_offsets),
-                (3, &ring_indices),
-                (4, &consts),
-                (5, &vertex_data),
+                Bind::Whole(1, &positions),
+                Bind::Whole(2, &ring_offsets),
+                Bind::Whole(3, &ring_indices),
+                Bind::Whole(4, &consts),
+                Bind::Whole(5, &vertex_data),
             ],
         )?;
         let pp = pass(
             ctx,
+            &lim,
             "prep_patch_pass",
             shaders::PREP_PATCH_PASS,
             "main",
             tables.config_for(tables.config.num_faces as usize, 0),
             &[
-                (1, &face_verts),
-                (2, &corner_sector),
-                (3, &ring_offsets),
-                (4, &h_index),
-                (5, &consts),
-                (6, &vertex_data),
-                (7, &patch_data),
+                Bind::Whole(1, &face_verts),
+                Bind::Whole(2, &corner_sector),
+                Bind::Whole(3, &ring_offsets),
+                Bind::Whole(4, &h_index),
+                Bind::Whole(5, &consts),
+                Bind::Whole(6, &vertex_data),
+                Bind::Whole(7, &patch_data),
             ],
         )?;
         Ok(Self {
@@ -406,7 +532,13 @@ impl GpuPrep {
             face_verts,
             face_edges,
             passes: [vp, pp],
+            lim,
         })
+    }
+
+    /// Dispatches of one [`Self::update`] (vertex and patch pass; more than two when chunked).
+    pub fn num_dispatches(&self) -> usize {
+        self.passes.iter().map(|p| p.dispatches.len()).sum()
     }
 
     /// The flat tables (for the CPU twins).
@@ -460,30 +592,36 @@ impl GpuPrep {
         }
         let params =
             storage_buffer_init(ctx, "prep params", bytemuck::cast_slice(&grid_params(n)))?;
-        let vertices = empty_storage(ctx, "prep grid vertices", (6 * nvert) as u64 * WORD)?;
-        let indices = empty_storage(ctx, "prep grid indices", (6 * cells) as u64 * WORD)?;
+        let vertices = empty_storage(ctx, "prep grid vertices", (6 * nvert) as u64 * WORD, false)?;
+        let indices = empty_storage(ctx, "prep grid indices", (6 * cells) as u64 * WORD, false)?;
         let ev = pass(
             ctx,
+            &self.lim,
             "prep_eval_grid",
             shaders::PREP_EVAL_GRID,
             "main",
             self.tables.config_for(nvert, n),
             &[
-                (1, &params),
-                (2, &self.edge_corner),
-                (3, &self.h_index),
-                (4, &self.vertex_data),
-                (5, &self.patch_data),
-                (6, &vertices),
+                Bind::Whole(1, &params),
+                Bind::Whole(2, &self.edge_corner),
+                Bind::Whole(3, &self.h_index),
+                Bind::Whole(4, &self.vertex_data),
+                Bind::Whole(5, &self.patch_data),
+                Bind::PerItem(6, &vertices, 6),
             ],
         )?;
         let ix = pass(
             ctx,
+            &self.lim,
             "prep_grid_indices",
             shaders::PREP_EVAL_GRID,
             "indices",
             self.tables.config_for(cells, n),
-            &[(7, &self.face_verts), (8, &self.face_edges), (9, &indices)],
+            &[
+                Bind::Whole(7, &self.face_verts),
+                Bind::Whole(8, &self.face_edges),
+                Bind::PerItem(9, &indices, 6),
+            ],
         )?;
         let grid = GpuGrid {
             n,

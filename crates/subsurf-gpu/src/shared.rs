@@ -63,8 +63,10 @@ pub struct PrepConfig {
     pub grid_width: u32,
     /// Samples per patch side of `prep_eval_grid` (>= 2).
     pub samples: u32,
-    /// Padding to 32 bytes.
-    pub _pad: u32,
+    /// Item (vertex, face, grid vertex or cell) of invocation 0: a dispatch covers items
+    /// `first_item .. first_item + item_count`; per-item outputs of `prep_eval_grid` are bound
+    /// at the chunk's first item.
+    pub first_item: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<PrepConfig>() == 32);

@@ -7,7 +7,7 @@ use common::context_or_skip;
 use subsurf::prep::quadrangulate::quadrangulate;
 use subsurf::prep::{PrepPatches, PrepTopology, Tessellation};
 use subsurf::{Mesh, Topology};
-use subsurf_gpu::{GpuPrep, PrepTables};
+use subsurf_gpu::{ChunkLimits, GpuPrep, PrepTables};
 
 /// Closed quad meshes: the p-rep test shapes (split into quads where needed) and a cube.
 fn meshes() -> Vec<(String, Mesh)> {
@@ -188,4 +188,32 @@ fn gpu_update_follows_a_deformation() {
         compare_tessellation("deformed", &got, &p.tessellate(4), bbox_diagonal(&moved));
     }
     assert!(gpu.update(&ctx, &mesh.positions[1..]).is_err());
+}
+
+#[test]
+fn chunked_passes_match_cpu() {
+    let Some(ctx) = context_or_skip("chunked_passes_match_cpu") else {
+        return;
+    };
+    // Grids of at most 2 x 2 workgroups and 16 KiB per-chunk bindings: every pass and the
+    // grid's vertex and index buffers are split.
+    let limits = ChunkLimits {
+        max_binding_bytes: 1 << 14,
+        max_workgroups_per_dimension: 2,
+        max_stride: 6,
+    };
+    // The torus refined twice: 512 quads, 512 vertices.
+    let (name, base) = meshes().swap_remove(3);
+    let refiner = subsurf::Refiner::new(Topology::new(&base).unwrap(), 2).unwrap();
+    let mesh = refiner.to_mesh(2, refiner.refine_positions(&base.positions));
+    let p = PrepPatches::<f32>::build(&mesh).unwrap();
+    let gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
+    gpu.update(&ctx, &mesh.positions).unwrap();
+    let diag = bbox_diagonal(&mesh.positions);
+    let n = 9;
+    let grid = gpu.grid(&ctx, n).unwrap();
+    assert!(gpu.num_dispatches() > 2 && grid.num_dispatches() > 4);
+    gpu.eval_grid(&ctx, &grid).unwrap();
+    let t = grid.download(&ctx).unwrap();
+    compare_tessellation(&format!("{name} chunked"), &t, &p.tessellate(n), diag);
 }

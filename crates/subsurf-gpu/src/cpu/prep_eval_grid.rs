@@ -152,16 +152,18 @@ fn eval_patch(cfg: &PrepConfig, inp: &EvalInputs<'_>, f: u32, bu: &Basis, bv: &B
     [p, du, dv]
 }
 
-/// One invocation of entry `main`: output vertex `item` (binding 6 = `out_vertices`).
+/// One invocation of entry `main`: output vertex `first_item + local`, written at `local`
+/// of binding 6 (`out_vertices`, bound at the chunk's first item).
 pub fn prep_eval_grid_invocation(
-    item: u32,
+    local: u32,
     cfg: &PrepConfig,
     inp: &EvalInputs<'_>,
     out_vertices: &mut [f32],
 ) {
-    if item >= cfg.item_count {
+    if local >= cfg.item_count {
         return;
     }
+    let item = cfg.first_item + local;
     let n = cfg.samples;
     let m = n - 2;
     let (nv, ne) = (cfg.num_vertices, cfg.num_edges);
@@ -204,7 +206,7 @@ pub fn prep_eval_grid_invocation(
         let [p, du, dv] = eval_patch(cfg, inp, f, &bu, &bv);
         (p, normalized(cross(du, dv)))
     };
-    let o = 6 * item as usize;
+    let o = 6 * local as usize;
     out_vertices[o..o + 3].copy_from_slice(&p);
     out_vertices[o + 3..o + 6].copy_from_slice(&nrm);
 }
@@ -254,25 +256,26 @@ pub fn grid_vertex(
     }
 }
 
-/// One invocation of entry `indices`: the two triangles of grid cell `item` (binding 9 =
-/// `out_indices`).
+/// One invocation of entry `indices`: the two triangles of grid cell `first_item + local`,
+/// written at `local` of binding 9 (`out_indices`, bound at the chunk's first cell).
 pub fn prep_grid_indices_invocation(
-    item: u32,
+    local: u32,
     cfg: &PrepConfig,
     face_verts: &[u32],
     face_edges: &[u32],
     out_indices: &mut [u32],
 ) {
-    if item >= cfg.item_count {
+    if local >= cfg.item_count {
         return;
     }
+    let item = cfg.first_item + local;
     let cells = cfg.samples - 1;
     let f = item / (cells * cells);
     let r = item % (cells * cells);
     let (j, i) = (r / cells, r % cells);
     let g = |i, j| grid_vertex(cfg, face_verts, face_edges, f, i, j);
     let (a, b, c, d) = (g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1));
-    let o = 6 * item as usize;
+    let o = 6 * local as usize;
     out_indices[o..o + 6].copy_from_slice(&[a, b, c, a, c, d]);
 }
 

@@ -57,17 +57,18 @@ fn store(out: &mut [f32], slot: usize, x: V) {
     out[3 * slot..3 * slot + 3].copy_from_slice(&x);
 }
 
-/// One invocation: face `f`'s `g` and, when perturbed, its `h` (binding 7 = `patch_data`).
+/// One invocation: face `first_item + local`'s `g` and, when perturbed, its `h` (binding 7 =
+/// `patch_data`).
 pub fn prep_patch_pass_invocation(
-    f: u32,
+    local: u32,
     config: &PrepConfig,
     inp: &PatchInputs<'_>,
     patch_data: &mut [f32],
 ) {
-    if f >= config.item_count {
+    if local >= config.item_count {
         return;
     }
-    let f = f as usize;
+    let f = (config.first_item + local) as usize;
     for c in 0..4 {
         let v = inp.face_verts[4 * f + c] as usize;
         let k = inp.corner_sector[4 * f + c] as usize;

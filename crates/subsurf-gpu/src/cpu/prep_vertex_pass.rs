@@ -72,9 +72,10 @@ fn scale(s: f32, a: V) -> V {
     [s * a[0], s * a[1], s * a[2]]
 }
 
-/// One invocation (bindings 0..=5 in order): vertex `v`'s frame and its sectors.
+/// One invocation (bindings 0..=5 in order): vertex `first_item + local`'s frame and its
+/// sectors.
 pub fn prep_vertex_pass_invocation(
-    v: u32,
+    local: u32,
     config: &PrepConfig,
     positions: &[f32],
     ring_offsets: &[u32],
@@ -82,9 +83,10 @@ pub fn prep_vertex_pass_invocation(
     valence_consts: &[f32],
     vertex_data: &mut [f32],
 ) {
-    if v >= config.item_count {
+    if local >= config.item_count {
         return;
     }
+    let v = config.first_item + local;
     let nv = config.num_vertices as usize;
     let vi = v as usize;
     let r0 = ring_offsets[vi] as usize;
