@@ -8,7 +8,13 @@
 //!   `catmark_lefthanded` (1,302 closed quads, valences 3–5, 47.9% B-quads: the mesh of
 //!   subsurf's `prep` bench). CPU = `PrepPatches::update` + `eval_grid_into` (unshared grid,
 //!   reused buffers) and `update` + `tessellate(N)` (watertight, the GPU's output); GPU =
-//!   `GpuPrep::update` + `eval_grid` (watertight) + wait.
+//!   `GpuPrep::update` + `eval_grid` (watertight) + wait;
+//! * limit-surface tessellation throughput (samples per second): `catmark_car` (1,575 faces,
+//!   creases, extraordinary vertices) at isolation level 3, the watertight N×N tessellation,
+//!   N = 5, 9, 17, 33. CPU = new points (`PatchTable::points`) + `LimitSurface::eval_batch`
+//!   of the plan's samples, and + `tessellate(N)` (which also rebuilds the plan); GPU =
+//!   `GpuLimit::update` (refinement, end-cap points) + `eval` + wait, and the same plus
+//!   read-back.
 //!
 //! Every line names the adapter. Plain `main` (no criterion) so that the same file also
 //! builds as a standalone example binary to copy to a machine with a real GPU:

@@ -3,7 +3,8 @@ use std::time::{Duration, Instant};
 
 use subsurf::prep::{Grid, PrepPatches, PrepTopology};
 use subsurf::{Mesh, Refiner, Scheme, Topology};
-use subsurf_gpu::{GpuContext, GpuPrep, GpuRefiner};
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf_gpu::{GpuContext, GpuLimit, GpuPrep, GpuRefiner};
 
 const CAR: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes/catmark_car.obj"));
 const LEFTHANDED: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../subsurf/tests/data/prep/catmark_lefthanded.obj"));
@@ -109,6 +110,58 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
     }
 }
 
+fn limit_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, iso: u32, sizes: &[usize]) {
+    let options = PatchOptions { isolation_level: iso, ..Default::default() };
+    let table = PatchTable::build(&Topology::new(mesh).expect("topology"), &options).expect("patch table");
+    let c = table.counts();
+    println!(
+        "limit {name} iso {iso}: {} patches ({} regular, {} single-crease, {} Gregory), {} points",
+        table.num_patches(), c.regular, c.single_crease, c.gregory, table.num_points()
+    );
+    let mut surface = LimitSurface::new(table.clone(), &mesh.positions);
+    let mut gpu = ctx.map(|c| GpuLimit::new(c, &table).expect("GPU limit upload"));
+    for &n in sizes {
+        let plan = table.tessellation_plan(n).expect("plan");
+        let samples = plan.queries.len() as f64;
+        let t_eval = median(|| {
+            surface.points = surface.table.points(&mesh.positions);
+            std::hint::black_box(surface.eval_batch(&plan.queries));
+        });
+        let t_tess = median(|| {
+            surface.points = surface.table.points(&mesh.positions);
+            std::hint::black_box(surface.tessellate(n).expect("tessellate"));
+        });
+        for (what, t) in [("points + eval_batch(plan)", t_eval), ("points + tessellate", t_tess)] {
+            println!(
+                "limit {name} N={n:2} ({samples:.0} samples) | CPU ({} threads) {what} | {:9.3} ms | {:8.2} Msamples/s",
+                rayon::current_num_threads(),
+                ms(t),
+                samples / t.as_secs_f64() / 1e6
+            );
+        }
+        if let (Some(ctx), Some(gpu)) = (ctx, gpu.as_mut()) {
+            let tess = gpu.tessellation(ctx, &table, n).expect("tessellation buffers");
+            let resident = median(|| {
+                gpu.update(ctx, &mesh.positions).expect("update");
+                gpu.eval(ctx, &tess.samples).expect("eval");
+                ctx.wait_idle().expect("wait");
+            });
+            let readback = median(|| {
+                gpu.update(ctx, &mesh.positions).expect("update");
+                gpu.eval(ctx, &tess.samples).expect("eval");
+                std::hint::black_box(tess.download(ctx).expect("download"));
+            });
+            for (what, t) in [("update + eval, resident", resident), ("+ read-back", readback)] {
+                println!(
+                    "limit {name} N={n:2} ({samples:.0} samples) | GPU {adapter} {what} | {:9.3} ms | {:8.2} Msamples/s",
+                    ms(t),
+                    samples / t.as_secs_f64() / 1e6
+                );
+            }
+        }
+    }
+}
+
 /// `n` disjoint copies of `base` side by side in x (the shape is 0.69 wide), as subsurf's
 /// `prep` bench builds its 1,302-face mesh.
 fn copies(base: &Mesh, n: usize) -> Mesh {
@@ -163,4 +216,6 @@ fn main() {
     let lh = copies(&lh, 3);
     let sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
     prep_case(ctx.as_ref(), &adapter, &lh, sizes);
+    let limit_sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
+    limit_case(ctx.as_ref(), &adapter, "catmark_car", &car, 3, limit_sizes);
 }
