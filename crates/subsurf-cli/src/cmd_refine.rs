@@ -63,14 +63,15 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     let mesh = a.scheme.read(&a.input)?;
     let topo = Topology::new(&mesh)?;
     let refiner = Refiner::new(topo, a.level)?;
-    let mut positions = match a.backend {
-        Backend::Cpu => refiner.refine_positions(&mesh.positions),
-        Backend::Gpu => {
-            let ctx = gpu_context()?;
-            subsurf_gpu::GpuRefiner::new(&ctx, &refiner)
-                .and_then(|g| g.refine(&ctx, &mesh.positions))
-                .context("--backend gpu: refining on the GPU")?
-        }
+    let ctx = match a.backend {
+        Backend::Cpu => None,
+        Backend::Gpu => Some(gpu_context()?),
+    };
+    let mut positions = match &ctx {
+        None => refiner.refine_positions(&mesh.positions),
+        Some(ctx) => subsurf_gpu::GpuRefiner::new(ctx, &refiner)
+            .and_then(|g| g.refine(ctx, &mesh.positions))
+            .context("--backend gpu: refining on the GPU")?,
     };
     if a.limit {
         positions = refiner.limit(&positions);
@@ -80,10 +81,18 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         let mode = a
             .uv_interp
             .map_or(mesh.options.fvar_interpolation, Into::into);
-        let last = refiner
-            .refine_uvs(fv, mode)?
-            .pop()
-            .expect("base level present");
+        let last = match &ctx {
+            None => refiner
+                .refine_uvs(fv, mode)?
+                .pop()
+                .expect("base level present"),
+            Some(ctx) => {
+                let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
+                subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
+                    .and_then(|mut g| g.refine(ctx, &fv.values))
+                    .context("--backend gpu: refining UVs on the GPU")?
+            }
+        };
         let corner: Vec<[f32; 2]> = last
             .indices
             .iter()

@@ -92,6 +92,49 @@ fn prep_gpu_matches_cpu() {
 }
 
 #[test]
+fn refine_uvs_gpu_match_cpu() {
+    let input = repo("testdata/shapes/catmark_fvar_bound1.obj");
+    let (g, c) = (tmp("uv_gpu.obj"), tmp("uv_cpu.obj"));
+    let args = |o: &Path| -> Vec<std::ffi::OsString> {
+        vec![
+            "refine".into(),
+            input.clone().into(),
+            "--level".into(),
+            "2".into(),
+            "-o".into(),
+            o.into(),
+        ]
+    };
+    let ga = args(&g);
+    let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_os_str()).collect();
+    if run_gpu(&ga).is_none() {
+        return;
+    }
+    let ca = args(&c);
+    let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_os_str()).collect();
+    run_cpu(&ca);
+    assert_same_mesh(&g, &c);
+    let (gu, cu) = (
+        subsurf::io::read_path(&g)
+            .unwrap()
+            .uvs
+            .expect("GPU output has UVs"),
+        subsurf::io::read_path(&c)
+            .unwrap()
+            .uvs
+            .expect("CPU output has UVs"),
+    );
+    assert_eq!(gu.indices, cu.indices);
+    assert_eq!(gu.values.len(), cu.values.len());
+    for (a, b) in gu.values.iter().zip(&cu.values) {
+        assert!(
+            (a[0] - b[0]).abs() <= 1e-5 && (a[1] - b[1]).abs() <= 1e-5,
+            "{a:?} vs {b:?}"
+        );
+    }
+}
+
+#[test]
 fn limit_gpu_matches_cpu() {
     // Gregory end caps, single-crease patches and boundaries; same vertex order and faces.
     compare_backends(

@@ -13,7 +13,7 @@
 //! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
 //! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`) and
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
-//! patches, `limit_eval`).
+//! patches, `limit_eval`) and [`GpuUvRefiner`] (face-varying refinement of UVs).
 
 pub mod buffers;
 pub mod context;
@@ -25,6 +25,7 @@ pub mod prep;
 pub mod refine;
 pub mod shared;
 pub mod table;
+pub mod uv;
 
 pub use buffers::VertexBuffer;
 pub use context::GpuContext;
@@ -34,6 +35,7 @@ pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use refine::GpuRefiner;
 pub use table::StencilTable;
+pub use uv::GpuUvRefiner;
 
 /// Constants extracted from the WGSL sources by `build.rs` (`<KERNEL>_WORKGROUP_SIZE`).
 pub mod shader_consts {
