@@ -24,6 +24,7 @@
 //! target/release/examples/gpu_pipeline            # or: cargo bench -p subsurf-gpu --bench gpu_pipeline
 //! ```
 //!
-//! The meshes are embedded in the binary. `GPU_PIPELINE_QUICK=1` runs only the smaller cases.
+//! The meshes are embedded in the binary. `GPU_PIPELINE_QUICK=1` runs only the smaller cases,
+//! `GPU_PIPELINE_ONLY=refine|prep|limit` one section.
 
 include!("../benches/common/pipeline.rs");

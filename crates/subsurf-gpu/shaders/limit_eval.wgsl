@@ -205,27 +205,30 @@ fn gregory_rational(k: u32, u: f32, v: f32) -> f32 {
 }
 
 // Bezier (column, row) of Gregory point k = 5 c + r: r < 3 boundary points, r = 3 f+,
-// r = 4 f- (see crates/subsurf/src/patch/gregory.rs for the figure).
-const GREGORY_I = array<u32, 20>(0u, 1u, 0u, 1u, 1u, 3u, 3u, 2u, 2u, 2u,
-                                 3u, 2u, 3u, 2u, 2u, 0u, 0u, 1u, 1u, 1u);
-const GREGORY_J = array<u32, 20>(0u, 0u, 1u, 1u, 1u, 0u, 1u, 0u, 1u, 1u,
-                                 3u, 3u, 2u, 2u, 2u, 3u, 2u, 3u, 2u, 2u);
+// r = 4 f- (see crates/subsurf/src/patch/gregory.rs for the figure), 2 bits per point:
+// points 0..16 in the _LO words, 16..20 in the _HI words (no per-invocation arrays).
+const GREGORY_I_LO: u32 = 0x2bbabd44u;
+const GREGORY_I_HI: u32 = 0x54u;
+const GREGORY_J_LO: u32 = 0xeaf51150u;
+const GREGORY_J_HI: u32 = 0xaeu;
+
+fn two_bits(lo: u32, hi: u32, k: u32) -> u32 {
+    return (select(hi, lo, k < 16u) >> (2u * (k % 16u))) & 3u;
+}
 
 fn eval_gregory(first: u32, u: f32, v: f32, scale: f32) -> Eval {
     let bu = bezier_curve(u);
     let bv = bezier_curve(v);
     let g = vec4<f32>(gregory_rational(0u, u, v), gregory_rational(1u, u, v),
                       gregory_rational(2u, u, v), gregory_rational(3u, u, v));
-    var gi = GREGORY_I;
-    var gj = GREGORY_J;
     var r: Eval;
     r.p = vec3<f32>(0.0);
     r.du = vec3<f32>(0.0);
     r.dv = vec3<f32>(0.0);
     r.found = true;
     for (var k = 0u; k < 20u; k++) {
-        let i = gi[k];
-        let j = gj[k];
+        let i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k);
+        let j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k);
         let slot = k % 5u;
         var wp: f32;
         var wdu: f32;

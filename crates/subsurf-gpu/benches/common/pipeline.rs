@@ -151,7 +151,15 @@ fn limit_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, 
                 gpu.eval(ctx, &tess.samples).expect("eval");
                 std::hint::black_box(tess.download(ctx).expect("download"));
             });
-            for (what, t) in [("update + eval, resident", resident), ("+ read-back", readback)] {
+            let eval_only = median(|| {
+                gpu.eval(ctx, &tess.samples).expect("eval");
+                ctx.wait_idle().expect("wait");
+            });
+            for (what, t) in [
+                ("update + eval, resident", resident),
+                ("+ read-back", readback),
+                ("eval only", eval_only),
+            ] {
                 println!(
                     "limit {name} N={n:2} ({samples:.0} samples) | GPU {adapter} {what} | {:9.3} ms | {:8.2} Msamples/s",
                     ms(t),
@@ -209,13 +217,21 @@ fn main() {
         cases.push(("catmark_car", &car, 4));
         cases.push(("torus262k", &torus, 2));
     }
-    for (name, mesh, level) in cases {
-        refine_case(ctx.as_ref(), &adapter, name, mesh, level);
+    // `GPU_PIPELINE_ONLY=refine|prep|limit` runs one section.
+    let only = std::env::var("GPU_PIPELINE_ONLY").unwrap_or_default();
+    let run = |section: &str| only.is_empty() || only == section;
+    if run("refine") {
+        for (name, mesh, level) in cases {
+            refine_case(ctx.as_ref(), &adapter, name, mesh, level);
+        }
     }
-    let lh = subsurf::io::obj::read_with_scheme(LEFTHANDED, Scheme::Catmark).expect("lefthanded");
-    let lh = copies(&lh, 3);
     let sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
-    prep_case(ctx.as_ref(), &adapter, &lh, sizes);
-    let limit_sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
-    limit_case(ctx.as_ref(), &adapter, "catmark_car", &car, 3, limit_sizes);
+    if run("prep") {
+        let lh =
+            subsurf::io::obj::read_with_scheme(LEFTHANDED, Scheme::Catmark).expect("lefthanded");
+        prep_case(ctx.as_ref(), &adapter, &copies(&lh, 3), sizes);
+    }
+    if run("limit") {
+        limit_case(ctx.as_ref(), &adapter, "catmark_car", &car, 3, sizes);
+    }
 }

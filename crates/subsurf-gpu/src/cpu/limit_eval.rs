@@ -42,9 +42,17 @@ const KIND_SINGLE_CREASE: u32 = 1;
 const SHARPNESS_INFINITE: f32 = 10.0;
 const ONE6: f32 = (1.0f64 / 6.0) as f32;
 const EIGHTH: f32 = 0.125;
-/// Bézier `(column, row)` of Gregory point `k = 5c + r` (`r = 3`: `f+`, `r = 4`: `f−`).
-const GREGORY_I: [usize; 20] = [0, 1, 0, 1, 1, 3, 3, 2, 2, 2, 3, 2, 3, 2, 2, 0, 0, 1, 1, 1];
-const GREGORY_J: [usize; 20] = [0, 0, 1, 1, 1, 0, 1, 0, 1, 1, 3, 3, 2, 2, 2, 3, 2, 3, 2, 2];
+/// Bézier `(column, row)` of Gregory point `k = 5c + r` (`r = 3`: `f+`, `r = 4`: `f−`),
+/// 2 bits per point, points `0..16` in the `_LO` words, `16..20` in the `_HI` words (as the
+/// shader packs them).
+const GREGORY_I_LO: u32 = 0x2bbabd44;
+const GREGORY_I_HI: u32 = 0x54;
+const GREGORY_J_LO: u32 = 0xeaf51150;
+const GREGORY_J_HI: u32 = 0xae;
+
+fn two_bits(lo: u32, hi: u32, k: u32) -> usize {
+    ((if k < 16 { lo } else { hi } >> (2 * (k % 16))) & 3) as usize
+}
 
 type V = [f32; 3];
 type W = [f32; 4];
@@ -287,7 +295,8 @@ fn eval_gregory(inp: &LimitInputs<'_>, first: u32, u: f32, v: f32, scale: f32) -
         ..Default::default()
     };
     for k in 0..20 {
-        let (i, j) = (GREGORY_I[k], GREGORY_J[k]);
+        let i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k as u32);
+        let j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k as u32);
         let slot = k % 5;
         let (wp, wdu, wdv) = if slot < 3 {
             (
@@ -453,4 +462,33 @@ pub fn pack_queries(queries: &[(u32, f32, f32)]) -> Vec<u32> {
         .iter()
         .flat_map(|&(f, u, v)| [f, u.to_bits(), v.to_bits()])
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use subsurf::patch::gregory::{GREGORY_BOUNDARY, GREGORY_INTERIOR};
+
+    #[test]
+    fn packed_gregory_slots_match_the_library_tables() {
+        for &(g, i, j) in &GREGORY_BOUNDARY {
+            assert!(g % 5 < 3, "boundary point {g} in an f± slot");
+            let k = g as u32;
+            assert_eq!(
+                (
+                    two_bits(GREGORY_I_LO, GREGORY_I_HI, k),
+                    two_bits(GREGORY_J_LO, GREGORY_J_HI, k)
+                ),
+                (i, j),
+                "point {g}"
+            );
+        }
+        for (c, &(plus, minus, i, j)) in GREGORY_INTERIOR.iter().enumerate() {
+            assert_eq!((plus, minus), (5 * c + 3, 5 * c + 4));
+            for k in [plus as u32, minus as u32] {
+                assert_eq!(two_bits(GREGORY_I_LO, GREGORY_I_HI, k), i);
+                assert_eq!(two_bits(GREGORY_J_LO, GREGORY_J_HI, k), j);
+            }
+        }
+    }
 }
