@@ -1,7 +1,7 @@
 //! CPU twin of `shaders/limit_eval.wgsl`: the limit surface of a
 //! [`subsurf::limit::PatchTable`] at a list of `(ptex face, u, v)` samples.
 //!
-//! For each sample: the patch map gives the patch covering `(u, v)`; its [`PatchParam`]
+//! For each sample: the patch map gives the patch covering `(u, v)`; its [`PatchParam`](subsurf::patch::PatchParam)
 //! maps `(u, v)` to the patch's own `(s, t) = (u 2^l − U, v 2^l − V)`, `l = depth − non_quad`;
 //! the basis of the patch kind gives one weight per control point,
 //!
