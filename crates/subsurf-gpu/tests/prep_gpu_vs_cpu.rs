@@ -121,6 +121,45 @@ fn twins_reproduce_the_cpu_construction() {
     }
 }
 
+/// The twin of `prep_eval_grid` run in chunks (`first_item`, output at the chunk's start)
+/// writes exactly what one dispatch writes.
+#[test]
+fn twin_chunks_compose() {
+    use subsurf_gpu::cpu::prep_eval_grid::{grid_params, prep_eval_grid_invocation, EvalInputs};
+    let (_, mesh) = meshes().swap_remove(3);
+    let p = PrepPatches::<f32>::build(&mesh).unwrap();
+    let tables = PrepTables::new(&p.topology).unwrap();
+    let (vd, pd) = tables.run_passes_cpu(&mesh.positions);
+    let n = 5;
+    let params = grid_params(n);
+    let inp = EvalInputs {
+        params: &params,
+        edge_corner: &tables.edge_corner,
+        h_index: &tables.h_index,
+        vertex_data: &vd,
+        patch_data: &pd,
+    };
+    let whole = tables.eval_grid_cpu(n, &vd, &pd);
+    let total = tables.grid_vertices(n) as u32;
+    let mut out = vec![0.0f32; 6 * total as usize];
+    for start in (0..total).step_by(37) {
+        let count = 37.min(total - start);
+        let cfg = subsurf_gpu::shared::PrepConfig {
+            item_count: count,
+            grid_width: count,
+            samples: n as u32,
+            first_item: start,
+            ..tables.config
+        };
+        let chunk = &mut out[6 * start as usize..6 * (start + count) as usize];
+        for local in 0..count {
+            prep_eval_grid_invocation(local, &cfg, &inp, chunk);
+        }
+    }
+    let positions: Vec<[f32; 3]> = out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect();
+    assert_eq!(positions, whole.positions);
+}
+
 #[test]
 fn gpu_coefficients_match_cpu() {
     let Some(ctx) = context_or_skip("gpu_coefficients_match_cpu") else {
