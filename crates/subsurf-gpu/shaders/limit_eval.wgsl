@@ -313,37 +313,45 @@ fn eval_raw(ptex: u32, u0: f32, v0: f32) -> Eval {
     let scale = pow2(level);
     let s = u * scale - pu;
     let t = v * scale - pv;
-    if kind == KIND_REGULAR {
-        let wu = bounded(s, (boundary & 8u) != 0u, (boundary & 2u) != 0u);
-        let wv = bounded(t, (boundary & 1u) != 0u, (boundary & 4u) != 0u);
-        return eval_tensor(first, wu, wv, scale);
+    if kind != KIND_REGULAR && kind != KIND_SINGLE_CREASE {
+        return eval_gregory(first, s, t, scale);
     }
+    // Tensor-product kinds share one gather: the boundary mask folds phantom points, a
+    // single crease (0 < sharpness < 10) replaces the curve across its edge, an infinitely
+    // sharp one is a boundary, a smooth one nothing.
+    var mask = boundary;
+    var crease_edge = 4u;
     if kind == KIND_SINGLE_CREASE {
         let bits = boundary & 0xfu;
-        if bits == 0u || !(sharpness > 0.0) {
-            return eval_tensor(first, bspline_curve(s), bspline_curve(t), scale);
+        mask = 0u;
+        if bits != 0u && sharpness > 0.0 {
+            let edge = countTrailingZeros(bits);
+            if sharpness >= SHARPNESS_INFINITE {
+                mask = 1u << edge;
+            } else {
+                crease_edge = edge;
+            }
         }
-        let edge = countTrailingZeros(bits);
-        if sharpness >= SHARPNESS_INFINITE {
-            let mask = 1u << edge;
-            let wu = bounded(s, (mask & 8u) != 0u, (mask & 2u) != 0u);
-            let wv = bounded(t, (mask & 1u) != 0u, (mask & 4u) != 0u);
-            return eval_tensor(first, wu, wv, scale);
-        }
-        if edge == 1u {
-            return eval_tensor(first, crease_curve(s, 1.0 - s, sharpness), bspline_curve(t), scale);
-        }
-        if edge == 3u {
-            return eval_tensor(first, reversed(crease_curve(1.0 - s, s, sharpness)),
-                               bspline_curve(t), scale);
-        }
-        if edge == 2u {
-            return eval_tensor(first, bspline_curve(s), crease_curve(t, 1.0 - t, sharpness), scale);
-        }
-        return eval_tensor(first, bspline_curve(s),
-                           reversed(crease_curve(1.0 - t, t, sharpness)), scale);
     }
-    return eval_gregory(first, s, t, scale);
+    var wu = bounded(s, (mask & 8u) != 0u, (mask & 2u) != 0u);
+    var wv = bounded(t, (mask & 1u) != 0u, (mask & 4u) != 0u);
+    if crease_edge < 4u {
+        // Edges 1 (u = 1) and 3 (u = 0) crease the u curve, 2 (v = 1) and 0 (v = 0) the v
+        // curve; at the 0 end the curve is evaluated reversed at 1 - x.
+        let along_u = crease_edge == 1u || crease_edge == 3u;
+        let high = crease_edge == 1u || crease_edge == 2u;
+        let x = select(t, s, along_u);
+        var c = crease_curve(select(1.0 - x, x, high), select(x, 1.0 - x, high), sharpness);
+        if !high {
+            c = reversed(c);
+        }
+        if along_u {
+            wu = c;
+        } else {
+            wv = c;
+        }
+    }
+    return eval_tensor(first, wu, wv, scale);
 }
 
 fn cross3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {

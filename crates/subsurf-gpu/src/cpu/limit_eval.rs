@@ -363,42 +363,43 @@ fn eval_raw(cfg: &LimitConfig, inp: &LimitInputs<'_>, ptex: u32, u0: f32, v0: f3
     let pu = ((field1 >> 22) & 0x3ff) as f32;
     let scale = pow2((depth - non_quad).max(0));
     let (s, t) = (u * scale - pu, v * scale - pv);
-    let masked = |mask: u32| {
-        (
-            bounded(s, mask & 8 != 0, mask & 2 != 0),
-            bounded(t, mask & 1 != 0, mask & 4 != 0),
-        )
-    };
-    if kind == KIND_REGULAR {
-        let (wu, wv) = masked(boundary);
-        return eval_tensor(inp, first, wu, wv, scale);
+    if kind != KIND_REGULAR && kind != KIND_SINGLE_CREASE {
+        return eval_gregory(inp, first, s, t, scale);
     }
+    // Tensor-product kinds share one gather (see the shader).
+    let mut mask = boundary;
+    let mut crease_edge = 4;
     if kind == KIND_SINGLE_CREASE {
         let bits = boundary & 0xf;
-        // Not greater than zero, NaN included: smooth.
-        if bits == 0 || sharpness.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-            return eval_tensor(inp, first, bspline_curve(s), bspline_curve(t), scale);
+        mask = 0;
+        // Greater than zero (NaN is smooth).
+        if bits != 0 && sharpness.partial_cmp(&0.0) == Some(std::cmp::Ordering::Greater) {
+            let edge = bits.trailing_zeros();
+            if sharpness >= SHARPNESS_INFINITE {
+                mask = 1 << edge;
+            } else {
+                crease_edge = edge;
+            }
         }
-        let edge = bits.trailing_zeros();
-        if sharpness >= SHARPNESS_INFINITE {
-            let (wu, wv) = masked(1 << edge);
-            return eval_tensor(inp, first, wu, wv, scale);
-        }
-        let (wu, wv) = match edge {
-            1 => (crease_curve(s, 1.0 - s, sharpness), bspline_curve(t)),
-            3 => (
-                reversed(crease_curve(1.0 - s, s, sharpness)),
-                bspline_curve(t),
-            ),
-            2 => (bspline_curve(s), crease_curve(t, 1.0 - t, sharpness)),
-            _ => (
-                bspline_curve(s),
-                reversed(crease_curve(1.0 - t, t, sharpness)),
-            ),
-        };
-        return eval_tensor(inp, first, wu, wv, scale);
     }
-    eval_gregory(inp, first, s, t, scale)
+    let mut wu = bounded(s, mask & 8 != 0, mask & 2 != 0);
+    let mut wv = bounded(t, mask & 1 != 0, mask & 4 != 0);
+    if crease_edge < 4 {
+        let along_u = crease_edge == 1 || crease_edge == 3;
+        let high = crease_edge == 1 || crease_edge == 2;
+        let x = if along_u { s } else { t };
+        let (tc, dc) = if high { (x, 1.0 - x) } else { (1.0 - x, x) };
+        let mut c = crease_curve(tc, dc, sharpness);
+        if !high {
+            c = reversed(c);
+        }
+        if along_u {
+            wu = c;
+        } else {
+            wv = c;
+        }
+    }
+    eval_tensor(inp, first, wu, wv, scale)
 }
 
 fn cross3(a: V, b: V) -> V {
