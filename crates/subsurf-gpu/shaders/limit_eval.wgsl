@@ -166,24 +166,6 @@ struct Eval {
     found: bool,
 }
 
-// Tensor-product patch: point (i, j) (index 4 j + i) has weight wu[i] wv[j].
-fn eval_tensor(first: u32, wu: Curve, wv: Curve, scale: f32) -> Eval {
-    var r: Eval;
-    r.p = vec3<f32>(0.0);
-    r.du = vec3<f32>(0.0);
-    r.dv = vec3<f32>(0.0);
-    r.found = true;
-    for (var j = 0u; j < 4u; j++) {
-        for (var i = 0u; i < 4u; i++) {
-            let x = point(first + 4u * j + i);
-            r.p += (wu.p[i] * wv.p[j]) * x;
-            r.du += (wu.d[i] * wv.p[j] * scale) * x;
-            r.dv += (wu.p[i] * wv.d[j] * scale) * x;
-        }
-    }
-    return r;
-}
-
 // Rational weight of the f+ point of corner k (0 where the denominator vanishes).
 fn gregory_rational(k: u32, u: f32, v: f32) -> f32 {
     var n = u;
@@ -216,40 +198,36 @@ fn two_bits(lo: u32, hi: u32, k: u32) -> u32 {
     return (select(hi, lo, k < 16u) >> (2u * (k % 16u))) & 3u;
 }
 
-fn eval_gregory(first: u32, u: f32, v: f32, scale: f32) -> Eval {
-    let bu = bezier_curve(u);
-    let bv = bezier_curve(v);
-    let g = vec4<f32>(gregory_rational(0u, u, v), gregory_rational(1u, u, v),
-                      gregory_rational(2u, u, v), gregory_rational(3u, u, v));
+// One gather for every kind. Tensor-product patches: point k = 4 j + i has weight
+// wu[i] wv[j]. Gregory patches (wu, wv Bezier): point k has the Bezier weight of its slot
+// (i, j), times g or 1 - g for the face points f+ and f- of corner k / 5 (weights held
+// constant in the derivatives: OpenSubdiv's Bezier approximation). Products are formed in
+// the library's order; the factor 1 of the other points is exact.
+fn gather(first: u32, gregory: bool, wu: Curve, wv: Curve, g: vec4<f32>, scale: f32) -> Eval {
     var r: Eval;
     r.p = vec3<f32>(0.0);
     r.du = vec3<f32>(0.0);
     r.dv = vec3<f32>(0.0);
     r.found = true;
-    for (var k = 0u; k < 20u; k++) {
-        let i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k);
-        let j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k);
-        let slot = k % 5u;
-        var wp: f32;
-        var wdu: f32;
-        var wdv: f32;
-        if slot < 3u {
-            wp = bu.p[i] * bv.p[j];
-            wdu = bu.d[i] * bv.p[j] * scale;
-            wdv = bu.p[i] * bv.d[j] * scale;
-        } else {
-            var gk = g[k / 5u];
-            if slot == 4u {
-                gk = 1.0 - gk;
+    let count = select(16u, 20u, gregory);
+    for (var k = 0u; k < count; k++) {
+        var i = k % 4u;
+        var j = k / 4u;
+        var gk = 1.0;
+        if gregory {
+            i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k);
+            j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k);
+            let slot = k % 5u;
+            if slot == 3u {
+                gk = g[k / 5u];
+            } else if slot == 4u {
+                gk = 1.0 - g[k / 5u];
             }
-            wp = bu.p[i] * bv.p[j] * gk;
-            wdu = bu.d[i] * gk * bv.p[j] * scale;
-            wdv = bv.d[j] * gk * bu.p[i] * scale;
         }
         let x = point(first + k);
-        r.p += wp * x;
-        r.du += wdu * x;
-        r.dv += wdv * x;
+        r.p += (wu.p[i] * wv.p[j] * gk) * x;
+        r.du += (wu.d[i] * gk * wv.p[j] * scale) * x;
+        r.dv += (wv.d[j] * gk * wu.p[i] * scale) * x;
     }
     return r;
 }
@@ -314,11 +292,13 @@ fn eval_raw(ptex: u32, u0: f32, v0: f32) -> Eval {
     let s = u * scale - pu;
     let t = v * scale - pv;
     if kind != KIND_REGULAR && kind != KIND_SINGLE_CREASE {
-        return eval_gregory(first, s, t, scale);
+        let g = vec4<f32>(gregory_rational(0u, s, t), gregory_rational(1u, s, t),
+                          gregory_rational(2u, s, t), gregory_rational(3u, s, t));
+        return gather(first, true, bezier_curve(s), bezier_curve(t), g, scale);
     }
-    // Tensor-product kinds share one gather: the boundary mask folds phantom points, a
-    // single crease (0 < sharpness < 10) replaces the curve across its edge, an infinitely
-    // sharp one is a boundary, a smooth one nothing.
+    // B-spline kinds: the boundary mask folds phantom points, a single crease
+    // (0 < sharpness < 10) replaces the curve across its edge, an infinitely sharp one is a
+    // boundary, a smooth one nothing.
     var mask = boundary;
     var crease_edge = 4u;
     if kind == KIND_SINGLE_CREASE {
@@ -351,7 +331,7 @@ fn eval_raw(ptex: u32, u0: f32, v0: f32) -> Eval {
             wv = c;
         }
     }
-    return eval_tensor(first, wu, wv, scale);
+    return gather(first, false, wu, wv, vec4<f32>(0.0), scale);
 }
 
 fn cross3(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {

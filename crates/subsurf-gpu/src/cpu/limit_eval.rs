@@ -257,18 +257,36 @@ fn axpy(acc: &mut V, w: f32, x: V) {
     }
 }
 
-fn eval_tensor(inp: &LimitInputs<'_>, first: u32, wu: Curve, wv: Curve, scale: f32) -> Eval {
+/// One gather for every kind (see the shader's `gather`).
+fn gather(
+    inp: &LimitInputs<'_>,
+    first: u32,
+    gregory: bool,
+    wu: Curve,
+    wv: Curve,
+    g: [f32; 4],
+    scale: f32,
+) -> Eval {
     let mut r = Eval {
         found: true,
         ..Default::default()
     };
-    for j in 0..4 {
-        for i in 0..4 {
-            let x = point(inp, first + 4 * j as u32 + i as u32);
-            axpy(&mut r.p, wu.p[i] * wv.p[j], x);
-            axpy(&mut r.du, wu.d[i] * wv.p[j] * scale, x);
-            axpy(&mut r.dv, wu.p[i] * wv.d[j] * scale, x);
+    let count = if gregory { 20 } else { 16 };
+    for k in 0..count {
+        let (mut i, mut j, mut gk) = ((k % 4) as usize, (k / 4) as usize, 1.0f32);
+        if gregory {
+            i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k);
+            j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k);
+            match k % 5 {
+                3 => gk = g[(k / 5) as usize],
+                4 => gk = 1.0 - g[(k / 5) as usize],
+                _ => {}
+            }
         }
+        let x = point(inp, first + k);
+        axpy(&mut r.p, wu.p[i] * wv.p[j] * gk, x);
+        axpy(&mut r.du, wu.d[i] * gk * wv.p[j] * scale, x);
+        axpy(&mut r.dv, wv.d[j] * gk * wu.p[i] * scale, x);
     }
     r
 }
@@ -285,39 +303,6 @@ fn gregory_rational(k: usize, u: f32, v: f32) -> f32 {
     } else {
         n / d
     }
-}
-
-fn eval_gregory(inp: &LimitInputs<'_>, first: u32, u: f32, v: f32, scale: f32) -> Eval {
-    let (bu, bv) = (bezier_curve(u), bezier_curve(v));
-    let g: [f32; 4] = std::array::from_fn(|k| gregory_rational(k, u, v));
-    let mut r = Eval {
-        found: true,
-        ..Default::default()
-    };
-    for k in 0..20 {
-        let i = two_bits(GREGORY_I_LO, GREGORY_I_HI, k as u32);
-        let j = two_bits(GREGORY_J_LO, GREGORY_J_HI, k as u32);
-        let slot = k % 5;
-        let (wp, wdu, wdv) = if slot < 3 {
-            (
-                bu.p[i] * bv.p[j],
-                bu.d[i] * bv.p[j] * scale,
-                bu.p[i] * bv.d[j] * scale,
-            )
-        } else {
-            let gk = if slot == 4 { 1.0 - g[k / 5] } else { g[k / 5] };
-            (
-                bu.p[i] * bv.p[j] * gk,
-                bu.d[i] * gk * bv.p[j] * scale,
-                bv.d[j] * gk * bu.p[i] * scale,
-            )
-        };
-        let x = point(inp, first + k as u32);
-        axpy(&mut r.p, wp, x);
-        axpy(&mut r.du, wdu, x);
-        axpy(&mut r.dv, wdv, x);
-    }
-    r
 }
 
 fn find_patch(cfg: &LimitConfig, map: &[u32], ptex: u32, u0: f32, v0: f32) -> u32 {
@@ -364,7 +349,8 @@ fn eval_raw(cfg: &LimitConfig, inp: &LimitInputs<'_>, ptex: u32, u0: f32, v0: f3
     let scale = pow2((depth - non_quad).max(0));
     let (s, t) = (u * scale - pu, v * scale - pv);
     if kind != KIND_REGULAR && kind != KIND_SINGLE_CREASE {
-        return eval_gregory(inp, first, s, t, scale);
+        let g: [f32; 4] = std::array::from_fn(|k| gregory_rational(k, s, t));
+        return gather(inp, first, true, bezier_curve(s), bezier_curve(t), g, scale);
     }
     // Tensor-product kinds share one gather (see the shader).
     let mut mask = boundary;
@@ -399,7 +385,7 @@ fn eval_raw(cfg: &LimitConfig, inp: &LimitInputs<'_>, ptex: u32, u0: f32, v0: f3
             wv = c;
         }
     }
-    eval_tensor(inp, first, wu, wv, scale)
+    gather(inp, first, false, wu, wv, [0.0; 4], scale)
 }
 
 fn cross3(a: V, b: V) -> V {
