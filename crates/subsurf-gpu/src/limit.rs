@@ -31,15 +31,17 @@
 //!
 //! | N | samples | CPU, 2 threads: points + `eval_batch` | lavapipe: `update` + `eval` | lavapipe: `eval` only |
 //! |---|---|---|---|---|
-//! | 5 | 25,357 | 2.96 ms (8.6 M/s) | 31 ms (0.8 M/s) | 28–52 ms (0.5–0.9 M/s) |
-//! | 9 | 101,077 | 10.4 ms (9.7 M/s) | 113–191 ms (0.5–0.9 M/s) | 95–165 ms (0.6–1.1 M/s) |
-//! | 17 | 403,717 | 36–52 ms (7.8–11 M/s) | 400–612 ms (0.7–1.0 M/s) | 572 ms (0.7 M/s) |
-//! | 33 | 1,613,797 | 107–268 ms (6–15 M/s) | 1.2–2.3 s (0.7–1.3 M/s) | 0.72 s (2.2 M/s) |
+//! | 5 | 25,357 | 3.4–3.5 ms (7.3–7.4 M/s) | 17–18 ms (1.4–1.5 M/s) | 1.7–3.9 ms (6.5–15 M/s) |
+//! | 9 | 101,077 | 5.2–10 ms (9.7–19 M/s) | 14–26 ms (3.9–7.1 M/s) | 6.9–13 ms (7.5–15 M/s) |
+//! | 17 | 403,717 | 18–40 ms (10–22 M/s) | 33–83 ms (4.8–12 M/s) | 26–51 ms (7.9–15 M/s) |
+//! | 33 | 1,613,797 | 95–174 ms (9.3–17 M/s) | 200–207 ms (7.8–8.1 M/s) | 99–192 ms (8.4–16 M/s) |
 //!
-//! A software rasterizer runs the kernel as SIMD lanes on the same two cores, with every
-//! patch kind's branch executed for mixed lanes, so it is about ten times slower than the
-//! rayon CPU path; the figures only show that the pipeline runs end to end. The kernel is
-//! meant for a real GPU (run the same example there).
+//! (two runs; M/s = million samples per second). The software rasterizer runs the kernel as
+//! 8-wide SIMD lanes on the same two cores, so evaluation alone is about as fast as the rayon
+//! CPU path; `update` (refinement to level 3, end-cap stencils, copies) adds 10–15 ms. One
+//! gather loop serves every patch kind (the weights' curves are chosen per kind, the Gregory
+//! face points scaled by their rational weights): a kernel with one gather per kind, whose
+//! divergent lanes ran every branch, was 10–20 times slower on lavapipe.
 
 use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
