@@ -15,7 +15,7 @@
 //! gathered at arbitrary indices (positions, rings, vertex and patch coefficients) are bound
 //! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
 
-use crate::buffers::{read_back, storage_buffer_init, STORAGE_USAGE};
+use crate::buffers::{read_back, storage_buffer_init};
 use crate::context::GpuContext;
 use crate::cpu::prep_eval_grid::{
     grid_params, prep_eval_grid_invocation, prep_grid_indices_invocation, EvalInputs,
@@ -23,14 +23,14 @@ use crate::cpu::prep_eval_grid::{
 use crate::cpu::prep_patch_pass::{prep_patch_pass, PatchInputs};
 use crate::cpu::prep_vertex_pass::{prep_vertex_pass, valence_consts};
 use crate::error::{GpuError, Result};
-use crate::kernels::grid_2d;
+use crate::kernels::chunked_pass::{
+    empty_storage, pass, submit, upload_u32, Bind, Pass, PassLimits,
+};
 use crate::kernels::stencil::ChunkLimits;
-use crate::refine::{auto_pipeline, uniform_init};
 use crate::shaders;
 use crate::shared::PrepConfig;
 use subsurf::prep::{PrepTopology, Tessellation};
 
-const WORKGROUP_SIZE: u32 = 64;
 const WORD: u64 = 4;
 
 /// The flat tables the p-rep kernels read, built from a [`PrepTopology`].
@@ -200,29 +200,6 @@ fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
     }
 }
 
-#[derive(Debug)]
-struct Pass {
-    pipeline: wgpu::ComputePipeline,
-    /// One bind group and workgroup grid per chunk of items.
-    dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
-    _configs: Vec<wgpu::Buffer>,
-}
-
-/// A binding of a pass: bound whole, or per chunk of items at `words` words per item
-/// (outputs indexed by the item's position in the chunk).
-#[derive(Clone, Copy)]
-enum Bind<'a> {
-    Whole(u32, &'a wgpu::Buffer),
-    PerItem(u32, &'a wgpu::Buffer, u32),
-}
-
-/// Limits a pass is chunked against, with the binding offset alignment in words.
-#[derive(Debug, Clone, Copy)]
-struct PassLimits {
-    limits: ChunkLimits,
-    row_align: usize,
-}
-
 /// A p-rep resident on the GPU: connectivity tables, positions and both passes' outputs.
 #[derive(Debug)]
 pub struct GpuPrep {
@@ -271,172 +248,6 @@ impl GpuGrid {
             .collect();
         Ok(unpack(&v, &i))
     }
-}
-
-fn checked_size(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<u64> {
-    let limit = ctx
-        .limits()
-        .max_storage_buffer_binding_size
-        .min(ctx.limits().max_buffer_size);
-    if bytes > limit {
-        return Err(GpuError::TooLarge {
-            what,
-            needed: bytes,
-            limit,
-        });
-    }
-    Ok(bytes.max(WORD))
-}
-
-/// An uninitialised buffer of `bytes`: bound whole (`whole`), it must fit one binding;
-/// bound per chunk, only the adapter's buffer size limits it.
-fn empty_storage(
-    ctx: &GpuContext,
-    what: &'static str,
-    bytes: u64,
-    whole: bool,
-) -> Result<wgpu::Buffer> {
-    let size = if whole {
-        checked_size(ctx, what, bytes)?
-    } else {
-        let limit = ctx.limits().max_buffer_size;
-        if bytes > limit {
-            return Err(GpuError::TooLarge {
-                what,
-                needed: bytes,
-                limit,
-            });
-        }
-        bytes.max(WORD)
-    };
-    ctx.scoped(|| {
-        Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some(what),
-            size,
-            usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::INDEX,
-            mapped_at_creation: false,
-        }))
-    })
-}
-
-fn upload_u32(ctx: &GpuContext, what: &'static str, data: &[u32]) -> Result<wgpu::Buffer> {
-    checked_size(ctx, what, data.len() as u64 * WORD)?;
-    storage_buffer_init(ctx, what, bytemuck::cast_slice(data))
-}
-
-/// Item ranges `[start, end)` of a pass's dispatches: each within the dispatch grid limit,
-/// each per-item binding within the binding limit, starts aligned (in words, so for any
-/// number of words per item) when there is more than one chunk.
-fn chunk_items(items: u32, words_per_item: u32, lim: &PassLimits) -> Result<Vec<(u32, u32)>> {
-    let max_dispatch =
-        u64::from(lim.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
-    let mut per = max_dispatch.min(u64::from(u32::MAX));
-    if words_per_item > 0 {
-        per = per.min(lim.limits.max_binding_bytes / WORD / u64::from(words_per_item));
-    }
-    if u64::from(items) > per {
-        per -= per % lim.row_align as u64;
-    }
-    if per == 0 {
-        return Err(GpuError::TooLarge {
-            what: "one aligned chunk of p-rep items",
-            needed: lim.row_align as u64 * u64::from(words_per_item) * WORD,
-            limit: lim.limits.max_binding_bytes,
-        });
-    }
-    let per = per as u32;
-    Ok((0..items.div_ceil(per))
-        .map(|k| (k * per, (k * per).saturating_add(per).min(items)))
-        .collect())
-}
-
-fn pass(
-    ctx: &GpuContext,
-    lim: &PassLimits,
-    label: &'static str,
-    source: &'static str,
-    entry: &'static str,
-    config: PrepConfig,
-    bindings: &[Bind<'_>],
-) -> Result<Pass> {
-    let words = bindings
-        .iter()
-        .map(|b| match b {
-            Bind::PerItem(_, _, w) => *w,
-            Bind::Whole(..) => 0,
-        })
-        .max()
-        .unwrap_or(0);
-    let pipeline = ctx.scoped(|| Ok(auto_pipeline(ctx, label, source, entry)))?;
-    let layout = pipeline.get_bind_group_layout(0);
-    let mut dispatches = Vec::new();
-    let mut configs = Vec::new();
-    for (start, end) in chunk_items(config.item_count, words, lim)? {
-        let n = end - start;
-        let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, lim.limits.max_workgroups_per_dimension);
-        let chunk_config = PrepConfig {
-            item_count: n,
-            grid_width: gx * WORKGROUP_SIZE,
-            first_item: start,
-            ..config
-        };
-        let config_buf = uniform_init(ctx, bytemuck::bytes_of(&chunk_config))?;
-        let bind_group = ctx.scoped(|| {
-            let mut entries = vec![wgpu::BindGroupEntry {
-                binding: 0,
-                resource: config_buf.as_entire_binding(),
-            }];
-            entries.extend(bindings.iter().map(|b| match *b {
-                Bind::Whole(binding, buf) => wgpu::BindGroupEntry {
-                    binding,
-                    resource: buf.as_entire_binding(),
-                },
-                Bind::PerItem(binding, buf, w) => wgpu::BindGroupEntry {
-                    binding,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: buf,
-                        offset: u64::from(start) * u64::from(w) * WORD,
-                        size: wgpu::BufferSize::new(u64::from(n) * u64::from(w) * WORD),
-                    }),
-                },
-            }));
-            Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some(label),
-                layout: &layout,
-                entries: &entries,
-            }))
-        })?;
-        dispatches.push((bind_group, (gx, gy)));
-        configs.push(config_buf);
-    }
-    Ok(Pass {
-        pipeline,
-        dispatches,
-        _configs: configs,
-    })
-}
-
-fn submit(ctx: &GpuContext, label: &'static str, passes: &[Pass]) -> Result<()> {
-    ctx.scoped(|| {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-        {
-            let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: None,
-            });
-            for p in passes {
-                cp.set_pipeline(&p.pipeline);
-                for (bind_group, (gx, gy)) in &p.dispatches {
-                    cp.set_bind_group(0, bind_group, &[]);
-                    cp.dispatch_workgroups(*gx, *gy, 1);
-                }
-            }
-        }
-        ctx.queue.submit([encoder.finish()]);
-        Ok(())
-    })
 }
 
 impl GpuPrep {

@@ -2,6 +2,7 @@
 //!
 //! Helpers shared by kernels (pipeline creation, dispatch-grid shape) live here.
 
+pub(crate) mod chunked_pass;
 pub mod stencil;
 
 /// Workgroup grid covering `invocations` invocations of `workgroup_size` each without

@@ -1,0 +1,217 @@
+//! Compute passes chunked over items, shared by the p-rep kernels.
+//!
+//! A pass runs one entry point over `item_count` items (vertices, faces, grid vertices, grid
+//! cells) in chunks: a chunk's first item is the `first_item` field of its uniform
+//! ([`PrepConfig`]), so no dispatch exceeds `max_compute_workgroups_per_dimension`², and
+//! bindings marked [`Bind::PerItem`] (outputs written at the item's position in the chunk)
+//! are bound at the chunk's first item, at an aligned offset, so none exceeds
+//! `max_storage_buffer_binding_size`. Other bindings are bound whole.
+
+use crate::buffers::{storage_buffer_init, STORAGE_USAGE};
+use crate::context::GpuContext;
+use crate::error::{GpuError, Result};
+use crate::kernels::grid_2d;
+use crate::kernels::stencil::ChunkLimits;
+use crate::refine::{auto_pipeline, uniform_init};
+use crate::shared::PrepConfig;
+
+/// Invocations per workgroup of the p-rep kernels.
+pub(crate) const WORKGROUP_SIZE: u32 = 64;
+const WORD: u64 = 4;
+
+#[derive(Debug)]
+pub(crate) struct Pass {
+    pipeline: wgpu::ComputePipeline,
+    /// One bind group and workgroup grid per chunk of items.
+    pub(crate) dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
+    _configs: Vec<wgpu::Buffer>,
+}
+
+/// A binding of a pass: bound whole, or per chunk of items at `words` words per item
+/// (outputs indexed by the item's position in the chunk).
+#[derive(Clone, Copy)]
+pub(crate) enum Bind<'a> {
+    Whole(u32, &'a wgpu::Buffer),
+    PerItem(u32, &'a wgpu::Buffer, u32),
+}
+
+/// Limits a pass is chunked against, with the binding offset alignment in words.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PassLimits {
+    pub(crate) limits: ChunkLimits,
+    pub(crate) row_align: usize,
+}
+
+pub(crate) fn checked_size(ctx: &GpuContext, what: &'static str, bytes: u64) -> Result<u64> {
+    let limit = ctx
+        .limits()
+        .max_storage_buffer_binding_size
+        .min(ctx.limits().max_buffer_size);
+    if bytes > limit {
+        return Err(GpuError::TooLarge {
+            what,
+            needed: bytes,
+            limit,
+        });
+    }
+    Ok(bytes.max(WORD))
+}
+
+/// An uninitialised buffer of `bytes`: bound whole (`whole`), it must fit one binding;
+/// bound per chunk, only the adapter's buffer size limits it.
+pub(crate) fn empty_storage(
+    ctx: &GpuContext,
+    what: &'static str,
+    bytes: u64,
+    whole: bool,
+) -> Result<wgpu::Buffer> {
+    let size = if whole {
+        checked_size(ctx, what, bytes)?
+    } else {
+        let limit = ctx.limits().max_buffer_size;
+        if bytes > limit {
+            return Err(GpuError::TooLarge {
+                what,
+                needed: bytes,
+                limit,
+            });
+        }
+        bytes.max(WORD)
+    };
+    ctx.scoped(|| {
+        Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(what),
+            size,
+            usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::INDEX,
+            mapped_at_creation: false,
+        }))
+    })
+}
+
+pub(crate) fn upload_u32(
+    ctx: &GpuContext,
+    what: &'static str,
+    data: &[u32],
+) -> Result<wgpu::Buffer> {
+    checked_size(ctx, what, data.len() as u64 * WORD)?;
+    storage_buffer_init(ctx, what, bytemuck::cast_slice(data))
+}
+
+/// Item ranges `[start, end)` of a pass's dispatches: each within the dispatch grid limit,
+/// each per-item binding within the binding limit, starts aligned (in words, so for any
+/// number of words per item) when there is more than one chunk.
+pub(crate) fn chunk_items(
+    items: u32,
+    words_per_item: u32,
+    lim: &PassLimits,
+) -> Result<Vec<(u32, u32)>> {
+    let max_dispatch =
+        u64::from(lim.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
+    let mut per = max_dispatch.min(u64::from(u32::MAX));
+    if words_per_item > 0 {
+        per = per.min(lim.limits.max_binding_bytes / WORD / u64::from(words_per_item));
+    }
+    if u64::from(items) > per {
+        per -= per % lim.row_align as u64;
+    }
+    if per == 0 {
+        return Err(GpuError::TooLarge {
+            what: "one aligned chunk of p-rep items",
+            needed: lim.row_align as u64 * u64::from(words_per_item) * WORD,
+            limit: lim.limits.max_binding_bytes,
+        });
+    }
+    let per = per as u32;
+    Ok((0..items.div_ceil(per))
+        .map(|k| (k * per, (k * per).saturating_add(per).min(items)))
+        .collect())
+}
+
+pub(crate) fn pass(
+    ctx: &GpuContext,
+    lim: &PassLimits,
+    label: &'static str,
+    source: &'static str,
+    entry: &'static str,
+    config: PrepConfig,
+    bindings: &[Bind<'_>],
+) -> Result<Pass> {
+    let words = bindings
+        .iter()
+        .map(|b| match b {
+            Bind::PerItem(_, _, w) => *w,
+            Bind::Whole(..) => 0,
+        })
+        .max()
+        .unwrap_or(0);
+    let pipeline = ctx.scoped(|| Ok(auto_pipeline(ctx, label, source, entry)))?;
+    let layout = pipeline.get_bind_group_layout(0);
+    let mut dispatches = Vec::new();
+    let mut configs = Vec::new();
+    for (start, end) in chunk_items(config.item_count, words, lim)? {
+        let n = end - start;
+        let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, lim.limits.max_workgroups_per_dimension);
+        let chunk_config = PrepConfig {
+            item_count: n,
+            grid_width: gx * WORKGROUP_SIZE,
+            first_item: start,
+            ..config
+        };
+        let config_buf = uniform_init(ctx, bytemuck::bytes_of(&chunk_config))?;
+        let bind_group = ctx.scoped(|| {
+            let mut entries = vec![wgpu::BindGroupEntry {
+                binding: 0,
+                resource: config_buf.as_entire_binding(),
+            }];
+            entries.extend(bindings.iter().map(|b| match *b {
+                Bind::Whole(binding, buf) => wgpu::BindGroupEntry {
+                    binding,
+                    resource: buf.as_entire_binding(),
+                },
+                Bind::PerItem(binding, buf, w) => wgpu::BindGroupEntry {
+                    binding,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: buf,
+                        offset: u64::from(start) * u64::from(w) * WORD,
+                        size: wgpu::BufferSize::new(u64::from(n) * u64::from(w) * WORD),
+                    }),
+                },
+            }));
+            Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some(label),
+                layout: &layout,
+                entries: &entries,
+            }))
+        })?;
+        dispatches.push((bind_group, (gx, gy)));
+        configs.push(config_buf);
+    }
+    Ok(Pass {
+        pipeline,
+        dispatches,
+        _configs: configs,
+    })
+}
+
+pub(crate) fn submit(ctx: &GpuContext, label: &'static str, passes: &[Pass]) -> Result<()> {
+    ctx.scoped(|| {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
+        {
+            let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some(label),
+                timestamp_writes: None,
+            });
+            for p in passes {
+                cp.set_pipeline(&p.pipeline);
+                for (bind_group, (gx, gy)) in &p.dispatches {
+                    cp.set_bind_group(0, bind_group, &[]);
+                    cp.dispatch_workgroups(*gx, *gy, 1);
+                }
+            }
+        }
+        ctx.queue.submit([encoder.finish()]);
+        Ok(())
+    })
+}
