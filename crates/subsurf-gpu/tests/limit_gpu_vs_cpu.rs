@@ -129,6 +129,33 @@ fn twin_reproduces_the_library_bit_for_bit() {
     }
 }
 
+/// Every Catmull-Clark regression shape (non-manifold ones included).
+fn catmark_shapes() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(shapes_dir())
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.starts_with("catmark_") && n.ends_with(".obj"))
+        .collect();
+    names.sort();
+    assert!(names.len() > 50, "{} shapes", names.len());
+    names
+}
+
+#[test]
+fn twin_matches_the_library_on_every_catmark_shape() {
+    for file in catmark_shapes() {
+        let (mesh, table) = load(file.trim_end_matches(".obj"), 2);
+        let surface = LimitSurface::new(table.clone(), &mesh.positions);
+        let want = surface.tessellate(5).unwrap();
+        let got = tessellate_cpu(&table, &surface.points, 5).unwrap();
+        // Tessellation's PartialEq compares f32 values: NaN-free by the same comparison.
+        assert!(
+            got == want,
+            "{file}: twin differs from LimitSurface::tessellate"
+        );
+    }
+}
+
 #[test]
 fn twin_derivatives_match_library_eval() {
     for (name, iso) in SHAPES {
@@ -198,6 +225,24 @@ fn gpu_tessellation_matches_cpu() {
             if let Err(e) = compare(&got, &want, diag) {
                 panic!("{name} n={n}: {e}");
             }
+        }
+    }
+}
+
+#[test]
+fn gpu_matches_cpu_on_every_catmark_shape() {
+    let Some(ctx) = context_or_skip("gpu_matches_cpu_on_every_catmark_shape") else {
+        return;
+    };
+    for file in catmark_shapes() {
+        let (mesh, table) = load(file.trim_end_matches(".obj"), 2);
+        let want = LimitSurface::new(table.clone(), &mesh.positions)
+            .tessellate(5)
+            .unwrap();
+        let mut gpu = GpuLimit::new(&ctx, &table).unwrap();
+        let got = gpu_tessellation(&ctx, &mut gpu, &table, &mesh, 5);
+        if let Err(e) = compare(&got, &want, bbox_diagonal(&mesh.positions)) {
+            panic!("{file}: {e}");
         }
     }
 }
