@@ -86,7 +86,11 @@ struct Sample {
     dv: vec3<f32>,
 }
 
-fn eval_patch(f: u32, bu: Basis, bv: Basis) -> Sample {
+fn eval_patch(f: u32, bu_in: Basis, bv_in: Basis) -> Sample {
+    // Indexed through function variables: naga spills a dynamically indexed array value to a
+    // temporary at every access otherwise.
+    var bu = bu_in;
+    var bv = bv_in;
     var r: Sample;
     r.p = vec3<f32>(0.0);
     r.du = vec3<f32>(0.0);
@@ -148,7 +152,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         let corner = edge_corner[e];
         let f = corner / 4u;
         let c = corner % 4u;
-        let b = basis(params[s]);
+        var b = basis(params[s]);
         var p = vec3<f32>(0.0);
         for (var i = 0u; i < 4u; i++) {
             p = p + b.b3[i] * pd(16u * f + corner_index(c, i, 0u, 3u));
