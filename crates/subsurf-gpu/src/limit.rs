@@ -25,23 +25,23 @@
 //!
 //! `cargo run --release -p subsurf-gpu --example gpu_pipeline` (`GPU_PIPELINE_ONLY=limit`):
 //! `catmark_car` at isolation level 3 (11,499 patches: 8,943 regular, 1,316 single-crease,
-//! 1,240 Gregory; 159,273 points), watertight `N × N` tessellation, medians. On Mesa lavapipe
-//! (`llvmpipe (LLVM 15.0.6, 256 bits)`, Vulkan) sharing a 2-core machine under load (figures
-//! vary by about 2× between runs):
+//! 1,240 Gregory; 159,273 points), watertight `N × N` tessellation, medians, on Mesa lavapipe
+//! (`llvmpipe (LLVM 15.0.6, 256 bits)`, Vulkan) on a shared 2-core machine (quietest of
+//! several runs; others were up to 2× slower on both sides). M/s = million samples per second.
 //!
-//! | N | samples | CPU, 2 threads: points + `eval_batch` | lavapipe: `update` + `eval` | lavapipe: `eval` only |
-//! |---|---|---|---|---|
-//! | 5 | 25,357 | 3.4–3.5 ms (7.3–7.4 M/s) | 17–18 ms (1.4–1.5 M/s) | 1.7–3.9 ms (6.5–15 M/s) |
-//! | 9 | 101,077 | 5.2–10 ms (9.7–19 M/s) | 14–26 ms (3.9–7.1 M/s) | 6.9–13 ms (7.5–15 M/s) |
-//! | 17 | 403,717 | 18–40 ms (10–22 M/s) | 33–83 ms (4.8–12 M/s) | 26–51 ms (7.9–15 M/s) |
-//! | 33 | 1,613,797 | 95–174 ms (9.3–17 M/s) | 200–207 ms (7.8–8.1 M/s) | 99–192 ms (8.4–16 M/s) |
+//! | N | samples | CPU, 2 threads: points + `eval_batch` | + `tessellate` | lavapipe: `update` + `eval` | + read-back | `eval` only |
+//! |---|---|---|---|---|---|---|
+//! | 5 | 25,357 | 1.97 ms (12.9 M/s) | 2.46 ms (10.3 M/s) | 9.11 ms (2.8 M/s) | 9.39 ms | 1.87 ms (13.6 M/s) |
+//! | 9 | 101,077 | 5.41 ms (18.7 M/s) | 7.36 ms (13.7 M/s) | 15.0 ms (6.8 M/s) | 15.0 ms | 7.18 ms (14.1 M/s) |
+//! | 17 | 403,717 | 18.0 ms (22.4 M/s) | 25.0 ms (16.2 M/s) | 33.4 ms (12.1 M/s) | 39.2 ms | 26.2 ms (15.4 M/s) |
+//! | 33 | 1,613,797 | 94.5 ms (17.1 M/s) | 130 ms (12.4 M/s) | 107 ms (15.1 M/s) | 143 ms | 99.7 ms (16.2 M/s) |
 //!
-//! (two runs; M/s = million samples per second). The software rasterizer runs the kernel as
-//! 8-wide SIMD lanes on the same two cores, so evaluation alone is about as fast as the rayon
-//! CPU path; `update` (refinement to level 3, end-cap stencils, copies) adds 10–15 ms. One
-//! gather loop serves every patch kind (the weights' curves are chosen per kind, the Gregory
-//! face points scaled by their rational weights): a kernel with one gather per kind, whose
-//! divergent lanes ran every branch, was 10–20 times slower on lavapipe.
+//! The software rasterizer runs the kernel as 8-wide SIMD lanes on the same two cores, so
+//! evaluation alone is about as fast as the rayon CPU path; `update` (refinement to level 3,
+//! end-cap stencils, copies) adds about 7 ms. One gather loop serves every patch kind (the
+//! curves are chosen per kind, the Gregory face points scaled by their rational weights): a
+//! first kernel with one gather per kind, whose divergent lanes ran every branch, evaluated
+//! 0.5–1 M samples/s on lavapipe.
 
 use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
