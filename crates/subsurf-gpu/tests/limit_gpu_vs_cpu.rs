@@ -16,7 +16,7 @@ fn shapes_dir() -> std::path::PathBuf {
 }
 
 /// `(name, isolation level)`: what each shape exercises is in the comment.
-const SHAPES: [(&str, u32); 8] = [
+const SHAPES: [(&str, u32); 9] = [
     ("catmark_cube", 3),           // valence-3 corners: Gregory end caps
     ("catmark_gregory_test1", 3),  // boundary and interior end caps
     ("catmark_cube_creases0", 3),  // integer semi-sharp creases: single-crease patches
@@ -25,6 +25,7 @@ const SHAPES: [(&str, u32); 8] = [
     ("catmark_pyramid", 2),        // triangles and a quad: non-quad ptex faces
     ("catmark_hole_test1", 2),     // a hole
     ("catmark_car", 1),            // a large mixed mesh with creases
+    ("catmark_cube_corner0", 0),   // no refinement: level-0 patches and end caps only
 ];
 
 fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
