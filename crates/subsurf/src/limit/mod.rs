@@ -29,6 +29,7 @@ pub mod features;
 pub mod gather;
 pub mod patch_map;
 pub mod span;
+pub mod sparse;
 pub mod table;
 pub mod tessellate;
 
@@ -36,3 +37,5 @@ pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
 pub use tessellate::Tessellation;
+#[cfg(test)]
+mod sparse_tests;

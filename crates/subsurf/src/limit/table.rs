@@ -46,16 +46,14 @@
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
 use super::endcap::gregory_points;
-use super::features::{
-    boundary_mask, face_has_features, is_patch_regular, level_tags, single_crease, FeatureMask,
-    VTag,
-};
+use super::features::{boundary_mask, is_patch_regular, single_crease, FeatureMask};
 use super::gather::regular_points;
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
+use super::sparse::{self, Hierarchy, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
-use crate::refine::{LevelStencils, Refiner, StencilTable};
+use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
 
 /// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv
@@ -126,9 +124,14 @@ pub struct PatchTable {
     pub options: PatchOptions,
     /// The base topology.
     pub base: Topology,
-    /// Stencils from each level to the next (uniform refinement to the isolation level).
+    /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
+    /// `d` that was refined ([`super::sparse`]).
     pub level_stencils: Vec<LevelStencils>,
-    /// `L + 2` offsets of each level's vertices in the flat point array.
+    /// `level_inputs[d][i]`: the level-`d` vertex that is vertex `i` of that sub-mesh (the
+    /// input of `level_stencils[d]`).
+    pub level_inputs: Vec<Vec<u32>>,
+    /// Offsets of each level's vertices in the flat point array (one more than the number of
+    /// levels, which stops early where nothing is left to isolate).
     pub level_offsets: Vec<u32>,
     /// End-cap points as stencils over the level vertices (flat indices).
     pub local_points: StencilTable,
@@ -160,12 +163,10 @@ pub struct PatchCounts {
 }
 
 struct Builder<'a> {
-    refiner: &'a Refiner,
-    tags: Vec<Vec<VTag>>,
-    mask: FeatureMask,
-    max_level: usize,
+    h: &'a Hierarchy,
     single_crease: bool,
     cap: bool,
+    max_level: usize,
     level_offsets: Vec<u32>,
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
@@ -174,6 +175,12 @@ struct Builder<'a> {
     sharpness: Vec<f32>,
     local_rows: Vec<Vec<(u32, f64)>>,
     nodes: Vec<[u32; 4]>,
+}
+
+fn not_exact(what: &str, d: usize, f: usize) -> Error {
+    Error::Internal(format!(
+        "sparse refinement: {what} of face {f} at level {d} is not exact"
+    ))
 }
 
 impl Builder<'_> {
@@ -186,12 +193,12 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let t = &self.refiner.levels[d];
-        if t.face_is_hole[f] {
+        let lv = &self.h.levels[d];
+        if lv.topo.face_is_hole[f] {
             return Ok(EMPTY);
         }
-        if d < self.max_level && face_has_features(t, &self.tags[d], f, d, &self.mask) {
-            let first = t.face_offsets[f] as usize;
+        if lv.refine[f] {
+            let first = lv.child[f] as usize;
             let node = self.nodes.len();
             self.nodes.push([EMPTY; 4]);
             for (j, &(du, dv)) in QUADRANT.iter().enumerate() {
@@ -212,8 +219,11 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let t = &self.refiner.levels[d];
-        let tags = &self.tags[d];
+        let lv = &self.h.levels[d];
+        let (t, tags) = (&lv.topo, &lv.tags);
+        if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
+            return Err(not_exact("a corner", d, f));
+        }
         let off = self.level_offsets[d];
         let patch = self.kinds.len() as u32;
         let regular = is_patch_regular(t, tags, f);
@@ -224,9 +234,11 @@ impl Builder<'_> {
             } else {
                 None
             };
-            for p in regular_points(t, f) {
-                self.cvs.push(off + p);
+            let pts = regular_points(t, f);
+            if pts.iter().any(|&p| !lv.exact[p as usize]) {
+                return Err(not_exact("a control point", d, f));
             }
+            self.cvs.extend(pts.iter().map(|&p| off + p));
             match crease {
                 Some((k, s)) => (
                     PatchType::SingleCrease,
@@ -247,6 +259,9 @@ impl Builder<'_> {
             }
             let first_local = self.local_rows.len() as u32;
             for (i, row) in gregory_points(t, f).into_iter().enumerate() {
+                if row.iter().any(|&(x, _)| !lv.exact[x as usize]) {
+                    return Err(not_exact("an end-cap input", d, f));
+                }
                 self.local_rows
                     .push(row.into_iter().map(|(x, w)| (x + off, w)).collect());
                 // Local points are numbered after all level vertices; fixed up in `build`.
@@ -272,8 +287,19 @@ impl Builder<'_> {
 }
 
 impl PatchTable {
-    /// Builds the patch table of `base` (Catmull-Clark only).
+    /// Builds the patch table of `base` (Catmull-Clark only) by sparse feature-adaptive
+    /// refinement ([`super::sparse`]).
     pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
+        Self::build_with(base, options, Selection::Sparse)
+    }
+
+    /// Builds the patch table refining every face of every level: the same patches, at the
+    /// cost of uniform refinement (the reference of the sparse construction's tests).
+    pub(crate) fn build_with(
+        base: &Topology,
+        options: &PatchOptions,
+        selection: Selection,
+    ) -> Result<PatchTable> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
                 "limit patches are implemented for the Catmull-Clark scheme only".into(),
@@ -289,22 +315,23 @@ impl PatchTable {
         if !base.is_all_quads() {
             level = level.max(1);
         }
-        let refiner = Refiner::new(base.clone(), level)?;
+        let h = sparse::build(
+            base,
+            level,
+            &FeatureMask::new(options.single_crease),
+            selection,
+        )?;
         let mut level_offsets = vec![0u32];
-        for t in &refiner.levels {
+        for lv in &h.levels {
             let last = *level_offsets.last().unwrap_or(&0);
-            level_offsets.push(last + t.num_vertices() as u32);
+            let n = u32::try_from(lv.topo.num_vertices())
+                .ok()
+                .and_then(|n| last.checked_add(n))
+                .ok_or_else(|| Error::Internal("more than 2^32 refined vertices".into()))?;
+            level_offsets.push(n);
         }
-        let tags = refiner
-            .levels
-            .iter()
-            .enumerate()
-            .map(|(d, t)| level_tags(t, d == 0))
-            .collect();
         let mut b = Builder {
-            refiner: &refiner,
-            tags,
-            mask: FeatureMask::new(options.single_crease),
+            h: &h,
             max_level: level,
             single_crease: options.single_crease,
             cap: options.cap_crease_sharpness,
@@ -327,7 +354,7 @@ impl PatchTable {
             } else if base.face_is_hole[f] {
                 roots.extend(std::iter::repeat_n(EMPTY, n));
             } else {
-                let first = base.face_offsets[f] as usize;
+                let first = h.levels[0].child[f] as usize;
                 for j in 0..n {
                     roots.push(b.visit(1, first + j, ptex + j as u32, 0, 0, true)?);
                 }
@@ -353,22 +380,22 @@ impl PatchTable {
             }
             local_points.offsets.push(local_points.indices.len() as u32);
         }
+        let (kinds, cv_offsets, cvs, params, sharpness, nodes) =
+            (b.kinds, b.cv_offsets, b.cvs, b.params, b.sharpness, b.nodes);
         Ok(PatchTable {
             options: *options,
             base: base.clone(),
-            level_stencils: refiner.stencils.clone(),
+            level_stencils: h.stencils,
+            level_inputs: h.inputs,
             level_offsets,
             local_points,
-            kinds: b.kinds,
-            cv_offsets: b.cv_offsets,
-            cvs: b.cvs,
-            params: b.params,
-            sharpness: b.sharpness,
+            kinds,
+            cv_offsets,
+            cvs,
+            params,
+            sharpness,
             ptex_offsets,
-            patch_map: PatchMap {
-                roots,
-                nodes: b.nodes,
-            },
+            patch_map: PatchMap { roots, nodes },
         })
     }
 
@@ -428,6 +455,7 @@ impl PatchTable {
             .iter()
             .map(|s| s.size_bytes())
             .sum::<usize>()
+            + 4 * self.level_inputs.iter().map(Vec::len).sum::<usize>()
             + self.local_points.size_bytes()
     }
 
@@ -441,11 +469,16 @@ impl PatchTable {
     pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
         let mut all = Vec::with_capacity(self.num_points());
         all.extend_from_slice(base);
-        let mut start = 0usize;
-        for s in &self.level_stencils {
+        for (d, (s, inputs)) in self
+            .level_stencils
+            .iter()
+            .zip(&self.level_inputs)
+            .enumerate()
+        {
+            let start = self.level_offsets[d] as usize;
+            let src: Vec<[f32; N]> = inputs.iter().map(|&i| all[start + i as usize]).collect();
             let mut dst = vec![[0.0; N]; s.num_rows()];
-            s.apply(&all[start..], &mut dst);
-            start = all.len();
+            s.apply(&src, &mut dst);
             all.extend_from_slice(&dst);
         }
         let mut local = vec![[0.0; N]; self.local_points.num_rows()];
