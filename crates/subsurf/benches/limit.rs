@@ -1,5 +1,5 @@
-//! Limit surface of `catmark_car`: patch table construction (uniform refinement to the
-//! isolation level + adaptive patch selection), evaluation of 10⁴ scattered samples in
+//! Limit surface of `catmark_car`: patch table construction (sparse feature-adaptive
+//! refinement to the isolation level), evaluation of 10⁴ scattered samples in
 //! parallel, and watertight tessellation with 9 samples per ptex side.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};

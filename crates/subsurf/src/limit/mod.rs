@@ -8,6 +8,7 @@
 //!
 //! - [`table`]: which faces become regular B-spline, single-crease or Gregory end-cap
 //!   patches, and the flat arrays that hold them;
+//! - [`sparse`]: the sparsely refined levels the patches are taken from;
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
 //! - [`endcap`]: the 20 points of a Gregory end cap;

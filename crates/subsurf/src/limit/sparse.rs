@@ -188,7 +188,7 @@ pub fn build(
         let stencils = level_stencils(&step.sub, &child_topo);
         total_vertices += child_topo.num_vertices() as u64;
         let mut next = Level::new(child_topo, false);
-        step.propagate(cur, &mut next);
+        step.propagate(&mut next);
         visited = chosen
             .iter()
             .flat_map(|&f| {
@@ -392,7 +392,7 @@ impl Step {
     }
 
     /// Exactness flags of the child level `c` (one refinement step of the sub-mesh).
-    fn propagate(&self, _lv: &Level, c: &mut Level) {
+    fn propagate(&self, c: &mut Level) {
         let p = &self.sub;
         let (nv, nf, ne, nc) = (
             p.num_vertices(),

@@ -5,12 +5,13 @@
 //!
 //! Feature-adaptive refinement (Nießner, Loop, Meyer & DeRose 2012) refines only faces with
 //! irregular features, level by level up to the isolation level `L`, and emits every other
-//! face as a patch at the coarsest level where it is no longer refined. This builder refines
-//! the base **uniformly** to level `L` with [`Refiner`] and then walks each base face's
-//! quadtree, descending only into faces that adaptive refinement would select
-//! ([`super::features::face_has_features`]). The patches, their levels and parameters are
-//! therefore those of OpenSubdiv's feature-adaptive `Far::PatchTable`; only the construction
-//! cost (time and memory) is that of uniform refinement: `~F · 4^L` faces.
+//! face as a patch at the coarsest level where it is no longer refined. [`super::sparse`]
+//! builds those levels sparsely, as OpenSubdiv's `RefineAdaptive` does: level `d + 1` refines
+//! only the faces selected at level `d` ([`super::features::face_has_features`]) and one ring
+//! of faces around them, so the cost grows linearly with `L` around each feature (not as
+//! `4^L`). The walk then descends each base face's quadtree through the selected faces. The
+//! patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
+//! `Far::PatchTable`; every control point is checked to be the one uniform refinement gives.
 //!
 //! Leaf faces become:
 //! - a regular bicubic B-spline patch (16 points, boundary mask for boundary/corner patches)
@@ -28,7 +29,6 @@
 //! - Options: `useInfSharpPatch = false` (infinitely sharp interior features are isolated
 //!   and approximated as smooth in end caps), `generateLegacySharpCornerPatches = true`
 //!   (smooth one-face corners are sharp), Gregory-basis end caps only.
-//! - Construction refines uniformly (see above); the patches are the same.
 //! - Local points are not shared between adjacent end caps (OpenSubdiv shares their corner
 //!   and edge points), so there are 20 per end cap.
 //! - Transition masks (edges shared with a deeper patch) are left 0; evaluation does not
@@ -39,9 +39,12 @@
 //!
 //! # Layout
 //!
-//! Control point indices refer to one flat point array: the vertices of level 0, then level
-//! 1, … level `L` (`level_offsets`), then the local points (rows of `local_points`, whose
-//! inputs are the level vertices). Per patch: `kinds` ([`PatchType`] as `u8`), `cv_offsets`
+//! Control point indices refer to one flat point array: the vertices of level 0, then of each
+//! sparse level 1, 2, … (`level_offsets`; fewer than `L` levels where nothing is left to
+//! isolate), then the local points (rows of `local_points`, whose inputs are the level
+//! vertices). Level `d + 1` is `level_stencils[d]` applied to the level-`d` vertices listed in
+//! `level_inputs[d]` (its sub-mesh); vertices on a sub-mesh's border are computed but never
+//! referenced by a patch. Per patch: `kinds` ([`PatchType`] as `u8`), `cv_offsets`
 //! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
