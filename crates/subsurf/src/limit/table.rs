@@ -58,6 +58,7 @@ use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
 use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
+use rayon::prelude::*;
 
 /// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv
 /// allows 10).
@@ -170,14 +171,64 @@ struct Builder<'a> {
     single_crease: bool,
     cap: bool,
     max_level: usize,
-    level_offsets: Vec<u32>,
+    level_offsets: &'a [u32],
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
     cvs: Vec<u32>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
-    local_rows: Vec<Vec<(u32, f64)>>,
+    /// End-cap points: a stencil table whose inputs are flat level-vertex indices.
+    local: StencilTable,
     nodes: Vec<[u32; 4]>,
+    roots: Vec<u32>,
+}
+
+/// The arrays of all walked base faces, joined in base face order.
+#[derive(Default)]
+struct Joined {
+    kinds: Vec<u8>,
+    cv_offsets: Vec<u32>,
+    cvs: Vec<u32>,
+    params: Vec<PatchParam>,
+    sharpness: Vec<f32>,
+    local: StencilTable,
+    nodes: Vec<[u32; 4]>,
+    roots: Vec<u32>,
+}
+
+impl Joined {
+    /// Appends one chunk's arrays, renumbering its patches, nodes and local points, and
+    /// placing local points after the `num_level_points` level vertices.
+    fn append(&mut self, b: Builder, num_level_points: u32) {
+        let (p0, n0) = (self.kinds.len() as u32, self.nodes.len() as u32);
+        let (l0, c0) = (self.local.num_rows() as u32, self.cvs.len() as u32);
+        let handle = |h: u32| match h {
+            EMPTY => EMPTY,
+            h if h & LEAF != 0 => LEAF | ((h & !LEAF) + p0),
+            h => h + n0,
+        };
+        self.roots.extend(b.roots.iter().map(|&h| handle(h)));
+        self.nodes
+            .extend(b.nodes.iter().map(|n| [0, 1, 2, 3].map(|q| handle(n[q]))));
+        self.cvs.extend(b.cvs.iter().map(|&c| {
+            if c & LEAF != 0 {
+                num_level_points + l0 + (c & !LEAF)
+            } else {
+                c
+            }
+        }));
+        self.cv_offsets
+            .extend(b.cv_offsets[1..].iter().map(|&o| o + c0));
+        self.kinds.extend_from_slice(&b.kinds);
+        self.params.extend_from_slice(&b.params);
+        self.sharpness.extend_from_slice(&b.sharpness);
+        let e0 = self.local.indices.len() as u32;
+        self.local.indices.extend_from_slice(&b.local.indices);
+        self.local.weights.extend_from_slice(&b.local.weights);
+        self.local
+            .offsets
+            .extend(b.local.offsets[1..].iter().map(|&o| o + e0));
+    }
 }
 
 fn not_exact(what: &str, d: usize, f: usize) -> Error {
@@ -260,13 +311,16 @@ impl Builder<'_> {
                     "irregular non-quad face {f} at level {d} cannot take an end cap"
                 )));
             }
-            let first_local = self.local_rows.len() as u32;
+            let first_local = self.local.num_rows() as u32;
             for (i, row) in gregory_points(t, f).into_iter().enumerate() {
-                if row.iter().any(|&(x, _)| !lv.exact[x as usize]) {
-                    return Err(not_exact("an end-cap input", d, f));
+                for (x, w) in row {
+                    if !lv.exact[x as usize] {
+                        return Err(not_exact("an end-cap input", d, f));
+                    }
+                    self.local.indices.push(x + off);
+                    self.local.weights.push(w as f32);
                 }
-                self.local_rows
-                    .push(row.into_iter().map(|(x, w)| (x + off, w)).collect());
+                self.local.offsets.push(self.local.indices.len() as u32);
                 // Local points are numbered after all level vertices; fixed up in `build`.
                 self.cvs.push(LEAF | (first_local + i as u32));
             }
@@ -333,58 +387,78 @@ impl PatchTable {
                 .ok_or_else(|| Error::Internal("more than 2^32 refined vertices".into()))?;
             level_offsets.push(n);
         }
-        let mut b = Builder {
-            h: &h,
-            max_level: level,
-            single_crease: options.single_crease,
-            cap: options.cap_crease_sharpness,
-            level_offsets: level_offsets.clone(),
-            kinds: Vec::new(),
-            cv_offsets: vec![0],
-            cvs: Vec::new(),
-            params: Vec::new(),
-            sharpness: Vec::new(),
-            local_rows: Vec::new(),
-            nodes: Vec::new(),
-        };
         let mut ptex_offsets = vec![0u32];
-        let mut roots = Vec::new();
         for f in 0..base.num_faces() {
-            let n = base.face_size(f);
-            let ptex = *ptex_offsets.last().unwrap_or(&0);
-            if n == 4 {
-                roots.push(b.visit(0, f, ptex, 0, 0, false)?);
-            } else if base.face_is_hole[f] {
-                roots.extend(std::iter::repeat_n(EMPTY, n));
-            } else {
-                let first = h.levels[0].child[f] as usize;
-                for j in 0..n {
-                    roots.push(b.visit(1, first + j, ptex + j as u32, 0, 0, true)?);
-                }
-            }
-            ptex_offsets.push(ptex + if n == 4 { 1 } else { n as u32 });
+            let n = base.face_size(f) as u32;
+            let last = *ptex_offsets.last().unwrap_or(&0);
+            ptex_offsets.push(last + if n == 4 { 1 } else { n });
         }
+        // Base faces are walked in parallel chunks, each into its own arrays, then joined.
         let num_level_points = *level_offsets.last().unwrap_or(&0);
-        for c in &mut b.cvs {
-            if *c & LEAF != 0 {
-                *c = num_level_points + (*c & !LEAF);
-            }
-        }
-        let mut local_points = StencilTable {
-            offsets: vec![0],
-            indices: Vec::new(),
-            weights: Vec::new(),
-            num_inputs: num_level_points as usize,
+        let nf = base.num_faces();
+        let chunk = nf.div_ceil(8 * rayon::current_num_threads().max(1)).max(16);
+        let parts = (0..nf.div_ceil(chunk))
+            .into_par_iter()
+            .map(|c| {
+                let mut b = Builder {
+                    h: &h,
+                    max_level: level,
+                    single_crease: options.single_crease,
+                    cap: options.cap_crease_sharpness,
+                    level_offsets: &level_offsets,
+                    kinds: Vec::new(),
+                    cv_offsets: vec![0],
+                    cvs: Vec::new(),
+                    params: Vec::new(),
+                    sharpness: Vec::new(),
+                    local: StencilTable {
+                        offsets: vec![0],
+                        num_inputs: num_level_points as usize,
+                        ..Default::default()
+                    },
+                    nodes: Vec::new(),
+                    roots: Vec::new(),
+                };
+                for f in c * chunk..((c + 1) * chunk).min(nf) {
+                    let (n, ptex) = (base.face_size(f), ptex_offsets[f]);
+                    if n == 4 {
+                        let r = b.visit(0, f, ptex, 0, 0, false)?;
+                        b.roots.push(r);
+                    } else if base.face_is_hole[f] {
+                        b.roots.extend(std::iter::repeat_n(EMPTY, n));
+                    } else {
+                        let first = h.levels[0].child[f] as usize;
+                        for j in 0..n {
+                            let r = b.visit(1, first + j, ptex + j as u32, 0, 0, true)?;
+                            b.roots.push(r);
+                        }
+                    }
+                }
+                Ok(b)
+            })
+            .collect::<Result<Vec<Builder>>>()?;
+        let mut all = Joined {
+            local: StencilTable {
+                offsets: vec![0],
+                num_inputs: num_level_points as usize,
+                ..Default::default()
+            },
+            cv_offsets: vec![0],
+            ..Default::default()
         };
-        for row in &b.local_rows {
-            for &(i, w) in row {
-                local_points.indices.push(i);
-                local_points.weights.push(w as f32);
-            }
-            local_points.offsets.push(local_points.indices.len() as u32);
+        for b in parts {
+            all.append(b, num_level_points);
         }
-        let (kinds, cv_offsets, cvs, params, sharpness, nodes) =
-            (b.kinds, b.cv_offsets, b.cvs, b.params, b.sharpness, b.nodes);
+        let Joined {
+            kinds,
+            cv_offsets,
+            cvs,
+            params,
+            sharpness,
+            local: local_points,
+            nodes,
+            roots,
+        } = all;
         Ok(PatchTable {
             options: *options,
             base: base.clone(),
