@@ -268,9 +268,11 @@ impl Step {
             fmap[f as usize] = m as u32;
         }
         let (mut vmap, mut emap) = (vec![NONE; s.num_vertices()], vec![NONE; s.num_edges()]);
-        let (mut verts, mut edges) = (Vec::new(), Vec::new());
+        // Capacities: about one vertex and two edges per quad, each edge in two faces.
+        let nc: usize = faces.iter().map(|&f| s.face_size(f as usize)).sum();
+        let (mut verts, mut edges) = (Vec::with_capacity(nc / 2), Vec::with_capacity(nc));
         let mut face_offsets = Vec::with_capacity(faces.len() + 1);
-        let (mut face_verts, mut face_edges) = (Vec::new(), Vec::new());
+        let (mut face_verts, mut face_edges) = (Vec::with_capacity(nc), Vec::with_capacity(nc));
         face_offsets.push(0u32);
         let take = |map: &mut [u32], list: &mut Vec<u32>, x: u32| -> u32 {
             if map[x as usize] == NONE {
@@ -289,8 +291,10 @@ impl Step {
         }
         // Every relation is the level's, restricted to the kept faces: elements whose faces
         // are all kept keep their exact rings (order included).
-        let mut edge_face_offsets = vec![0u32];
-        let (mut edge_faces, mut edge_face_local) = (Vec::new(), Vec::new());
+        let mut edge_face_offsets = Vec::with_capacity(edges.len() + 1);
+        edge_face_offsets.push(0u32);
+        let (mut edge_faces, mut edge_face_local) =
+            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
         for &e in &edges {
             for (&f, &l) in s
                 .edge_faces(e as usize)
@@ -304,10 +308,13 @@ impl Step {
             }
             edge_face_offsets.push(edge_faces.len() as u32);
         }
-        let mut vert_face_offsets = vec![0u32];
-        let (mut vert_faces, mut vert_face_local) = (Vec::new(), Vec::new());
-        let mut vert_edge_offsets = vec![0u32];
-        let mut vert_edges = Vec::new();
+        let mut vert_face_offsets = Vec::with_capacity(verts.len() + 1);
+        vert_face_offsets.push(0u32);
+        let (mut vert_faces, mut vert_face_local) =
+            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
+        let mut vert_edge_offsets = Vec::with_capacity(verts.len() + 1);
+        vert_edge_offsets.push(0u32);
+        let mut vert_edges = Vec::with_capacity(2 * edges.len() + 8);
         for &v in &verts {
             let v = v as usize;
             for (&f, &l) in s.vertex_faces(v).iter().zip(s.vertex_faces_local(v)) {

@@ -197,6 +197,22 @@ struct Joined {
 }
 
 impl Joined {
+    /// Reserves room for every chunk.
+    fn reserve(&mut self, parts: &[Builder]) {
+        let sum = |f: &dyn Fn(&Builder) -> usize| parts.iter().map(f).sum::<usize>();
+        let patches = sum(&|b| b.kinds.len());
+        self.kinds.reserve(patches);
+        self.cv_offsets.reserve(patches);
+        self.params.reserve(patches);
+        self.sharpness.reserve(patches);
+        self.cvs.reserve(sum(&|b| b.cvs.len()));
+        self.nodes.reserve(sum(&|b| b.nodes.len()));
+        self.roots.reserve(sum(&|b| b.roots.len()));
+        self.local.offsets.reserve(sum(&|b| b.local.num_rows()));
+        self.local.indices.reserve(sum(&|b| b.local.indices.len()));
+        self.local.weights.reserve(sum(&|b| b.local.weights.len()));
+    }
+
     /// Appends one chunk's arrays, renumbering its patches, nodes and local points, and
     /// placing local points after the `num_level_points` level vertices.
     fn append(&mut self, b: Builder, num_level_points: u32) {
@@ -446,6 +462,7 @@ impl PatchTable {
             cv_offsets: vec![0],
             ..Default::default()
         };
+        all.reserve(&parts);
         for b in parts {
             all.append(b, num_level_points);
         }
