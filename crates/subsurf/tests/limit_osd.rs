@@ -154,3 +154,29 @@ fn matches_opensubdiv_at_other_isolation_levels() {
         );
     }
 }
+
+/// Deep isolation (levels 6 to 10, built sparsely): the same patches as OpenSubdiv's
+/// adaptive refinement, and the same surface.
+#[test]
+fn matches_opensubdiv_at_deep_isolation_levels() {
+    if !osd_or_skip("matches_opensubdiv_at_deep_isolation_levels") {
+        return;
+    }
+    for name in [
+        "catmark_car",
+        "catmark_cube",
+        "catmark_chaikin0",
+        "catmark_gregory_test6",
+        "catmark_nonman_quadpole8",
+        "catmark_hole_test1",
+    ] {
+        for level in [6, 8, 10] {
+            let d = compare(name, level, 5);
+            assert_eq!(d.patches.0, d.patches.1, "{name} level {level}");
+            assert!(
+                d.regular < 1e-5 && d.end_cap < 5e-5,
+                "{name} level {level}: {d:?}"
+            );
+        }
+    }
+}

@@ -196,3 +196,62 @@ fn sub_meshes_without_a_ring_are_detected_as_inexact() {
         assert_eq!(h.levels.len(), 5, "{name}");
     }
 }
+
+/// A torus of `n × n` quads with one quad split into two triangles (two valence-5 vertices
+/// and two non-quad faces, the only irregular spot).
+fn torus_with_one_irregular_spot(n: u32) -> Mesh {
+    let mut positions = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let (a, b) = (
+                std::f32::consts::TAU * i as f32 / n as f32,
+                std::f32::consts::TAU * j as f32 / n as f32,
+            );
+            let r = 3.0 + b.cos();
+            positions.push([r * a.cos(), r * a.sin(), b.sin()]);
+        }
+    }
+    let id = |i: u32, j: u32| (i % n) * n + (j % n);
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            let q = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            if i == n / 2 && j == n / 2 {
+                faces.push(vec![q[0], q[1], q[2]]);
+                faces.push(vec![q[0], q[2], q[3]]);
+            } else {
+                faces.push(q.to_vec());
+            }
+        }
+    }
+    Mesh::from_faces(positions, &faces)
+}
+
+#[test]
+fn a_big_mesh_isolates_one_spot_to_level_ten_in_linear_size() {
+    // Uniform refinement to level 10 would make 128² · 4^10 ≈ 1.7 · 10^10 faces.
+    let mesh = torus_with_one_irregular_spot(128);
+    let t = Topology::new(&mesh).unwrap();
+    let mut patches = Vec::new();
+    for level in 6..=10 {
+        let o = PatchOptions {
+            isolation_level: level,
+            ..Default::default()
+        };
+        let table = PatchTable::build(&t, &o).unwrap();
+        let sizes = level_sizes(&table);
+        assert_eq!(sizes.len(), level as usize + 1);
+        // A few hundred vertices per level, the same from level 5 on.
+        for d in 6..sizes.len() {
+            assert_eq!(sizes[d], sizes[5], "level {d}: {sizes:?}");
+        }
+        assert!(sizes[1..].iter().all(|&s| s < 400), "{sizes:?}");
+        patches.push(table.num_patches());
+    }
+    // Each level adds the same number of patches around the spot.
+    let step = patches[1] - patches[0];
+    assert!(step > 0);
+    for w in patches.windows(2) {
+        assert_eq!(w[1] - w[0], step, "{patches:?}");
+    }
+}
