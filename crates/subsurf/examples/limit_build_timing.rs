@@ -5,7 +5,8 @@
 //! replaced.
 //!
 //! `cargo run --release -p subsurf --example limit_build_timing [-- FILE RUNS]` (default
-//! `testdata/shapes/catmark_car.obj`, 7 runs). Prints a markdown table of medians.
+//! `testdata/shapes/catmark_car.obj`, 21 runs). Prints a markdown table of medians; the runs
+//! of the two libraries alternate, so that both see the same machine load.
 //! subsurf's time includes `Topology::new`, as OpenSubdiv's includes its refiner's creation;
 //! it is measured on all threads and on one (OpenSubdiv's construction is serial).
 
@@ -16,17 +17,15 @@ use subsurf::limit::{PatchOptions, PatchTable};
 use subsurf::refine::Refiner;
 use subsurf::Topology;
 
-fn median_ms<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut out = f(); // warm-up
-    let mut times: Vec<f64> = (0..runs)
-        .map(|_| {
-            let t = Instant::now();
-            out = f();
-            t.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
+fn time_ms<T>(f: impl FnOnce() -> T) -> f64 {
+    let t = Instant::now();
+    std::hint::black_box(f());
+    t.elapsed().as_secs_f64() * 1e3
+}
+
+fn median(times: &mut [f64]) -> f64 {
     times.sort_by(f64::total_cmp);
-    (times[times.len() / 2], out)
+    times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -35,7 +34,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .get(1)
         .map(String::as_str)
         .unwrap_or("testdata/shapes/catmark_car.obj");
-    let runs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(7).max(1);
+    let runs: usize = args
+        .get(2)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(21)
+        .max(1);
     let mesh = subsurf::io::read_path(path)?;
     let topo = Topology::new(&mesh)?;
     let osd_mesh = OsdMesh::from(&mesh);
@@ -61,31 +64,39 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let t = Topology::new(&mesh).expect("topology");
             PatchTable::build(&t, &o).expect("patch table")
         };
-        let (ms, table) = median_ms(runs, build);
-        let (ms1, _) = serial.install(|| median_ms(runs, build));
         let oo = OsdOptions {
             isolation_level: level,
             use_single_crease: true,
             use_inf_sharp: false,
             end_cap: EndCap::Gregory,
         };
-        let osd = match osd_ref::patch_table_only(&osd_mesh, &oo) {
-            Ok(_) => {
-                let (t, b) = median_ms(runs, || osd_ref::patch_table_only(&osd_mesh, &oo));
-                let b = b?;
-                (
-                    format!("{t:.1}"),
-                    b.num_patches.to_string(),
-                    b.num_refined_vertices.to_string(),
-                )
+        let table = build();
+        let osd_build = osd_ref::patch_table_only(&osd_mesh, &oo);
+        // The three measurements alternate run by run, so that they share the machine's load.
+        let (mut ours, mut ours1, mut theirs) = (Vec::new(), Vec::new(), Vec::new());
+        for _ in 0..runs {
+            ours.push(time_ms(build));
+            ours1.push(serial.install(|| time_ms(build)));
+            if osd_build.is_ok() {
+                theirs.push(time_ms(|| osd_ref::patch_table_only(&osd_mesh, &oo)));
             }
+        }
+        let (ms, ms1) = (median(&mut ours), median(&mut ours1));
+        let osd = match &osd_build {
+            Ok(b) => (
+                format!("{:.1}", median(&mut theirs)),
+                b.num_patches.to_string(),
+                b.num_refined_vertices.to_string(),
+            ),
             Err(e) => (format!("({e})"), "-".into(), "-".into()),
         };
         // Uniform refinement (topology and stencils), what the construction used to cost at
         // least; skipped where it would not fit in memory.
         let uniform = if level <= 5 {
-            let (t, _) = median_ms(runs.min(3), || Refiner::new(topo.clone(), level as usize));
-            format!("{t:.0}")
+            let mut t: Vec<f64> = (0..runs.min(3))
+                .map(|_| time_ms(|| Refiner::new(topo.clone(), level as usize)))
+                .collect();
+            format!("{:.0}", median(&mut t))
         } else {
             "-".into()
         };
