@@ -180,3 +180,41 @@ fn matches_opensubdiv_at_deep_isolation_levels() {
         }
     }
 }
+
+/// Every catmark shape isolated to the maximum level 10 (sparsely; uniform refinement would
+/// need up to 10⁶ times the base): OpenSubdiv's patch count, with and without single-crease
+/// patches.
+#[test]
+fn every_catmark_shape_at_isolation_ten_has_opensubdivs_patch_count() {
+    if !osd_or_skip("every_catmark_shape_at_isolation_ten_has_opensubdivs_patch_count") {
+        return;
+    }
+    for name in shape_names() {
+        let mesh = load_shape(&name);
+        let topo = Topology::new(&mesh).unwrap();
+        let osd_mesh = OsdMesh::from(&mesh);
+        for single_crease in [true, false] {
+            let table = PatchTable::build(
+                &topo,
+                &PatchOptions {
+                    isolation_level: 10,
+                    single_crease,
+                    cap_crease_sharpness: true,
+                },
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let o = OsdPatchOptions {
+                isolation_level: 10,
+                use_single_crease: single_crease,
+                use_inf_sharp: false,
+                end_cap: EndCap::Gregory,
+            };
+            let osd = osd_ref::patch_table_only(&osd_mesh, &o).unwrap();
+            assert_eq!(
+                table.num_patches(),
+                osd.num_patches,
+                "{name} single-crease {single_crease}"
+            );
+        }
+    }
+}
