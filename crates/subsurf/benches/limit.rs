@@ -23,6 +23,13 @@ fn bench(c: &mut Criterion) {
     g.bench_function("build_table_iso4", |b| {
         b.iter(|| PatchTable::build(black_box(&topo), &PatchOptions::default()).unwrap())
     });
+    let iso10 = PatchOptions {
+        isolation_level: 10,
+        ..Default::default()
+    };
+    g.bench_function("build_table_iso10", |b| {
+        b.iter(|| PatchTable::build(black_box(&topo), &iso10).unwrap())
+    });
     let table = PatchTable::build(&topo, &PatchOptions::default()).unwrap();
     g.bench_function("points", |b| {
         b.iter(|| table.points(black_box(&mesh.positions)))
