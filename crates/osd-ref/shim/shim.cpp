@@ -337,6 +337,35 @@ osd_adaptive *osd_adaptive_new(const osd_mesh_desc *mesh, int isolation, int sin
 
 void osd_adaptive_free(osd_adaptive *a) { delete a; }
 
+int osd_patch_table_only(const osd_mesh_desc *mesh, int isolation, int single_crease,
+                         int inf_sharp, int end_cap, int64_t *counts) {
+    install_callbacks();
+    try {
+        std::unique_ptr<Far::TopologyRefiner> refiner(create_refiner(*mesh));
+        if (!refiner) return -1;
+        Far::PatchTableFactory::Options popts(isolation);
+        popts.useSingleCreasePatch = single_crease != 0;
+        popts.useInfSharpPatch = inf_sharp != 0;
+        popts.SetEndCapType((Far::PatchTableFactory::Options::EndCapType)end_cap);
+        refiner->RefineAdaptive(popts.GetRefineAdaptiveOptions());
+        std::unique_ptr<Far::PatchTable> pt(Far::PatchTableFactory::Create(*refiner, popts));
+        if (!pt) {
+            set_error("PatchTableFactory::Create failed");
+            return -1;
+        }
+        counts[0] = pt->GetNumPatchesTotal();
+        counts[1] = (int64_t)(pt->GetPatchControlVerticesTable().size() * sizeof(Far::Index) +
+                              pt->GetPatchParamTable().size() * sizeof(Far::PatchParam));
+        counts[2] = refiner->GetNumVerticesTotal();
+        return 0;
+    } catch (const std::exception &e) {
+        set_error(e.what());
+    } catch (...) {
+        set_error("unknown C++ exception");
+    }
+    return -1;
+}
+
 int osd_adaptive_counts(const osd_adaptive *a, int64_t *counts) {
     const Far::PatchTable &pt = *a->patches;
     counts[0] = pt.GetNumPatchesTotal();

@@ -87,6 +87,11 @@ osd_adaptive *osd_adaptive_new(const osd_mesh_desc *mesh, int isolation, int sin
 void osd_adaptive_free(osd_adaptive *a);
 /* counts[4] = patches, bytes of control-vertex + param arrays, ptex faces, local points */
 int osd_adaptive_counts(const osd_adaptive *a, int64_t *counts);
+/* Adaptive refinement and the patch table only (no patch map, no points), for timing:
+ * counts[3] = patches, bytes of control-vertex + param arrays, refined vertices (all levels).
+ * Returns 0 or -1. */
+int osd_patch_table_only(const osd_mesh_desc *mesh, int isolation, int single_crease,
+                         int inf_sharp, int end_cap, int64_t *counts);
 /* Samples an n x n grid on every ptex face with a patch; returns the count written
  * (at most cap) or -1. */
 int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *out, size_t cap);

@@ -206,3 +206,47 @@ pub fn patch_counts(
 pub fn patch_stats(mesh: &OsdMesh, o: &PatchOptions) -> Result<PatchStats> {
     Adaptive::new(mesh, o)?.stats()
 }
+
+/// Result of [`patch_table_only`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct PatchTableBuild {
+    /// `GetNumPatchesTotal()`.
+    pub num_patches: usize,
+    /// Bytes of the patch control-vertex indices plus the `PatchParam`s.
+    pub bytes: usize,
+    /// Vertices of every adaptively refined level (`GetNumVerticesTotal()`).
+    pub num_refined_vertices: usize,
+}
+
+/// Builds the topology refiner, refines adaptively and builds the patch table, nothing more
+/// (no patch map, no point evaluation): OpenSubdiv's patch-table construction, for timing.
+pub fn patch_table_only(mesh: &OsdMesh, o: &PatchOptions) -> Result<PatchTableBuild> {
+    if o.isolation_level > 10 {
+        return Err(Error::Invalid(format!(
+            "isolation level {} > 10",
+            o.isolation_level
+        )));
+    }
+    let desc = Desc::new(mesh)?;
+    let raw_desc = desc.raw();
+    let mut c = [0i64; 3];
+    // SAFETY: `raw_desc` points into validated data alive for the call; 3 count slots.
+    let rc = unsafe {
+        ffi::osd_patch_table_only(
+            &raw_desc,
+            o.isolation_level as i32,
+            o.use_single_crease as i32,
+            o.use_inf_sharp as i32,
+            o.end_cap.raw(),
+            c.as_mut_ptr(),
+        )
+    };
+    if rc != 0 {
+        return Err(unavailable_or_osd());
+    }
+    Ok(PatchTableBuild {
+        num_patches: c[0] as usize,
+        bytes: c[1] as usize,
+        num_refined_vertices: c[2] as usize,
+    })
+}

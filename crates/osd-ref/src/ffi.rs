@@ -110,6 +110,14 @@ extern "C" {
         end_cap: c_int,
     ) -> *mut Adaptive;
     pub(crate) fn osd_adaptive_free(a: *mut Adaptive);
+    pub(crate) fn osd_patch_table_only(
+        mesh: *const MeshDesc,
+        isolation: c_int,
+        single_crease: c_int,
+        inf_sharp: c_int,
+        end_cap: c_int,
+        counts: *mut i64,
+    ) -> c_int;
     pub(crate) fn osd_adaptive_counts(a: *const Adaptive, counts: *mut i64) -> c_int;
     pub(crate) fn osd_adaptive_eval_grid(
         a: *const Adaptive,
@@ -207,6 +215,16 @@ mod stubs {
         null_mut()
     }
     pub(crate) unsafe fn osd_adaptive_free(_: *mut Adaptive) {}
+    pub(crate) unsafe fn osd_patch_table_only(
+        _: *const MeshDesc,
+        _: c_int,
+        _: c_int,
+        _: c_int,
+        _: c_int,
+        _: *mut i64,
+    ) -> c_int {
+        -1
+    }
     pub(crate) unsafe fn osd_adaptive_counts(_: *const Adaptive, _: *mut i64) -> c_int {
         -1
     }

@@ -23,8 +23,8 @@ mod mesh;
 mod uniform;
 
 pub use adaptive::{
-    eval_limit_grid, eval_limit_grid_with, patch_counts, patch_stats, EndCap, LimitSample,
-    PatchOptions, PatchStats,
+    eval_limit_grid, eval_limit_grid_with, patch_counts, patch_stats, patch_table_only, EndCap,
+    LimitSample, PatchOptions, PatchStats, PatchTableBuild,
 };
 pub use mesh::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
 pub use uniform::{

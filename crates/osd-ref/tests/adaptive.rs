@@ -6,8 +6,8 @@ mod common;
 
 use common::{dist, load_shape};
 use osd_ref::{
-    eval_limit_grid, limit_stencil_positions, patch_counts, patch_stats, EndCap, LimitSample,
-    OsdMesh, PatchOptions,
+    eval_limit_grid, limit_stencil_positions, patch_counts, patch_stats, patch_table_only, EndCap,
+    LimitSample, OsdMesh, PatchOptions,
 };
 use subsurf::Mesh;
 
@@ -228,4 +228,27 @@ fn derivatives_match_finite_differences() {
         worst < 1e-2 * size,
         "finite differences off by {worst} (derivative scale {size})"
     );
+}
+
+#[test]
+fn table_only_build_is_the_same_table() {
+    require_osd!();
+    let car = load_shape("catmark_car");
+    let mesh = OsdMesh::from(&car);
+    let mut last_vertices = 0;
+    for level in [1, 4, 6] {
+        let o = PatchOptions {
+            isolation_level: level,
+            use_single_crease: true,
+            use_inf_sharp: false,
+            end_cap: EndCap::Gregory,
+        };
+        let full = patch_stats(&mesh, &o).unwrap();
+        let only = patch_table_only(&mesh, &o).unwrap();
+        assert_eq!(only.num_patches, full.num_patches, "level {level}");
+        assert_eq!(only.bytes, full.bytes, "level {level}");
+        // Adaptive refinement adds vertices at every level.
+        assert!(only.num_refined_vertices > last_vertices, "level {level}");
+        last_vertices = only.num_refined_vertices;
+    }
 }

@@ -1,5 +1,5 @@
-//! Limit surface of `catmark_car`: patch table construction (uniform refinement to the
-//! isolation level + adaptive patch selection), evaluation of 10⁴ scattered samples in
+//! Limit surface of `catmark_car`: patch table construction (sparse feature-adaptive
+//! refinement to the isolation level), evaluation of 10⁴ scattered samples in
 //! parallel, and watertight tessellation with 9 samples per ptex side.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -22,6 +22,13 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     g.bench_function("build_table_iso4", |b| {
         b.iter(|| PatchTable::build(black_box(&topo), &PatchOptions::default()).unwrap())
+    });
+    let iso10 = PatchOptions {
+        isolation_level: 10,
+        ..Default::default()
+    };
+    g.bench_function("build_table_iso10", |b| {
+        b.iter(|| PatchTable::build(black_box(&topo), &iso10).unwrap())
     });
     let table = PatchTable::build(&topo, &PatchOptions::default()).unwrap();
     g.bench_function("points", |b| {

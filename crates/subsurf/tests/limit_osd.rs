@@ -154,3 +154,67 @@ fn matches_opensubdiv_at_other_isolation_levels() {
         );
     }
 }
+
+/// Deep isolation (levels 6 to 10, built sparsely): the same patches as OpenSubdiv's
+/// adaptive refinement, and the same surface.
+#[test]
+fn matches_opensubdiv_at_deep_isolation_levels() {
+    if !osd_or_skip("matches_opensubdiv_at_deep_isolation_levels") {
+        return;
+    }
+    for name in [
+        "catmark_car",
+        "catmark_cube",
+        "catmark_chaikin0",
+        "catmark_gregory_test6",
+        "catmark_nonman_quadpole8",
+        "catmark_hole_test1",
+    ] {
+        for level in [6, 8, 10] {
+            let d = compare(name, level, 5);
+            assert_eq!(d.patches.0, d.patches.1, "{name} level {level}");
+            assert!(
+                d.regular < 1e-5 && d.end_cap < 5e-5,
+                "{name} level {level}: {d:?}"
+            );
+        }
+    }
+}
+
+/// Every catmark shape isolated to the maximum level 10 (sparsely; uniform refinement would
+/// need up to 10⁶ times the base): OpenSubdiv's patch count, with and without single-crease
+/// patches.
+#[test]
+fn every_catmark_shape_at_isolation_ten_has_opensubdivs_patch_count() {
+    if !osd_or_skip("every_catmark_shape_at_isolation_ten_has_opensubdivs_patch_count") {
+        return;
+    }
+    for name in shape_names() {
+        let mesh = load_shape(&name);
+        let topo = Topology::new(&mesh).unwrap();
+        let osd_mesh = OsdMesh::from(&mesh);
+        for single_crease in [true, false] {
+            let table = PatchTable::build(
+                &topo,
+                &PatchOptions {
+                    isolation_level: 10,
+                    single_crease,
+                    cap_crease_sharpness: true,
+                },
+            )
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+            let o = OsdPatchOptions {
+                isolation_level: 10,
+                use_single_crease: single_crease,
+                use_inf_sharp: false,
+                end_cap: EndCap::Gregory,
+            };
+            let osd = osd_ref::patch_table_only(&osd_mesh, &o).unwrap();
+            assert_eq!(
+                table.num_patches(),
+                osd.num_patches,
+                "{name} single-crease {single_crease}"
+            );
+        }
+    }
+}

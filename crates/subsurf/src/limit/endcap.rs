@@ -32,21 +32,65 @@ use super::gather::ring_position;
 use super::span::{neighbours, span};
 use crate::topology::tags;
 use crate::topology::Topology;
+use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// A sparse combination of level vertices.
 pub type Row = Vec<(u32, f64)>;
 
 fn add(dst: &mut Row, src: &Row, s: f64) {
-    for &(i, w) in src {
-        push(dst, i, w * s);
-    }
+    extend(dst, src.iter().map(|&(i, w)| (i, w * s)));
 }
 
 fn push(dst: &mut Row, i: u32, w: f64) {
     match dst.iter_mut().find(|(j, _)| *j == i) {
         Some(e) => e.1 += w,
         None => dst.push((i, w)),
+    }
+}
+
+/// Multiplicative hash of a vertex index (Knuth 1973, "Sorting and Searching", 6.4).
+#[derive(Default)]
+struct IndexHasher(u64);
+
+impl Hasher for IndexHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0.rotate_left(8) ^ b as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+        }
+    }
+    fn write_u32(&mut self, i: u32) {
+        self.0 = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
+    }
+}
+
+/// Rows longer than this merge through a hash map (rings of high-valence vertices).
+const LINEAR_MERGE: usize = 32;
+
+/// [`push`] of every item in turn (same entry order, same sums), in linear time for long
+/// rows.
+fn extend(dst: &mut Row, items: impl ExactSizeIterator<Item = (u32, f64)>) {
+    if dst.len() + items.len() <= LINEAR_MERGE {
+        for (i, w) in items {
+            push(dst, i, w);
+        }
+        return;
+    }
+    let mut at: HashMap<u32, usize, BuildHasherDefault<IndexHasher>> =
+        HashMap::with_capacity_and_hasher(dst.len() + items.len(), Default::default());
+    at.extend(dst.iter().enumerate().map(|(k, &(i, _))| (i, k)));
+    for (i, w) in items {
+        match at.get(&i) {
+            Some(&k) => dst[k].1 += w,
+            None => {
+                at.insert(i, dst.len());
+                dst.push((i, w));
+            }
+        }
     }
 }
 
@@ -394,9 +438,7 @@ fn edge_points(c: &Corner, v: u32, next: u32, prev: u32) -> (Row, Row, Row) {
         let (pw, epw, emw) = interior_weights(c.valence, c.face_in_ring);
         let conv = |w: &[f64]| {
             let mut r = row(&[(v, w[0])]);
-            for i in 1..w.len() {
-                push(&mut r, g(i - 1), w[i]);
-            }
+            extend(&mut r, (1..w.len()).map(|i| (g(i - 1), w[i])));
             r
         };
         (conv(&pw), conv(&epw), conv(&emw))
@@ -404,11 +446,11 @@ fn edge_points(c: &Corner, v: u32, next: u32, prev: u32) -> (Row, Row, Row) {
         let (pw, epw, emw) = boundary_weights(c.num_faces, c.face_in_ring);
         let conv = |w: &[f64]| {
             let mut r = row(&[(v, w[0])]);
-            for i in 1..w.len() {
-                if w[i] != 0.0 {
-                    push(&mut r, g(i - 1), w[i]);
-                }
-            }
+            let nz: Vec<(u32, f64)> = (1..w.len())
+                .filter(|&i| w[i] != 0.0)
+                .map(|i| (g(i - 1), w[i]))
+                .collect();
+            extend(&mut r, nz.into_iter());
             r
         };
         (conv(&pw), conv(&epw), conv(&emw))
@@ -447,4 +489,26 @@ fn face_point(
     put(2 * edge + 1, sign / 18.0);
     put(2 * next, sign / 9.0);
     f
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hashed_merge_equals_repeated_push() {
+        // A ring of a valence-200 vertex with repeats, merged into a row that already has
+        // entries: same entries, same order, bit-identical sums.
+        let mut a: Row = vec![(7, 0.5), (3, 0.25)];
+        let items: Vec<(u32, f64)> = (0..400u32)
+            .map(|k| ((k * 37) % 251, 1.0 / (k as f64 + 3.0)))
+            .collect();
+        let mut b = a.clone();
+        for &(i, w) in &items {
+            push(&mut a, i, w);
+        }
+        extend(&mut b, items.iter().copied());
+        assert!(b.len() > LINEAR_MERGE);
+        assert_eq!(a, b);
+    }
 }

@@ -8,6 +8,7 @@
 //!
 //! - [`table`]: which faces become regular B-spline, single-crease or Gregory end-cap
 //!   patches, and the flat arrays that hold them;
+//! - [`sparse`]: the sparsely refined levels the patches are taken from;
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
@@ -29,6 +30,7 @@ pub mod features;
 pub mod gather;
 pub mod patch_map;
 pub mod span;
+pub mod sparse;
 pub mod table;
 pub mod tessellate;
 
@@ -36,3 +38,5 @@ pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
 pub use tessellate::{Tessellation, TessellationPlan};
+#[cfg(test)]
+mod sparse_tests;

@@ -5,12 +5,13 @@
 //!
 //! Feature-adaptive refinement (Nießner, Loop, Meyer & DeRose 2012) refines only faces with
 //! irregular features, level by level up to the isolation level `L`, and emits every other
-//! face as a patch at the coarsest level where it is no longer refined. This builder refines
-//! the base **uniformly** to level `L` with [`Refiner`] and then walks each base face's
-//! quadtree, descending only into faces that adaptive refinement would select
-//! ([`super::features::face_has_features`]). The patches, their levels and parameters are
-//! therefore those of OpenSubdiv's feature-adaptive `Far::PatchTable`; only the construction
-//! cost (time and memory) is that of uniform refinement: `~F · 4^L` faces.
+//! face as a patch at the coarsest level where it is no longer refined. [`super::sparse`]
+//! builds those levels sparsely, as OpenSubdiv's `RefineAdaptive` does: level `d + 1` refines
+//! only the faces selected at level `d` ([`super::features::face_has_features`]) and one ring
+//! of faces around them, so the cost grows linearly with `L` around each feature (not as
+//! `4^L`). The walk then descends each base face's quadtree through the selected faces. The
+//! patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
+//! `Far::PatchTable`; every control point is checked to be the one uniform refinement gives.
 //!
 //! Leaf faces become:
 //! - a regular bicubic B-spline patch (16 points, boundary mask for boundary/corner patches)
@@ -28,7 +29,6 @@
 //! - Options: `useInfSharpPatch = false` (infinitely sharp interior features are isolated
 //!   and approximated as smooth in end caps), `generateLegacySharpCornerPatches = true`
 //!   (smooth one-face corners are sharp), Gregory-basis end caps only.
-//! - Construction refines uniformly (see above); the patches are the same.
 //! - Local points are not shared between adjacent end caps (OpenSubdiv shares their corner
 //!   and edge points), so there are 20 per end cap.
 //! - Transition masks (edges shared with a deeper patch) are left 0; evaluation does not
@@ -39,24 +39,26 @@
 //!
 //! # Layout
 //!
-//! Control point indices refer to one flat point array: the vertices of level 0, then level
-//! 1, … level `L` (`level_offsets`), then the local points (rows of `local_points`, whose
-//! inputs are the level vertices). Per patch: `kinds` ([`PatchType`] as `u8`), `cv_offsets`
+//! Control point indices refer to one flat point array: the vertices of level 0, then of each
+//! sparse level 1, 2, … (`level_offsets`; fewer than `L` levels where nothing is left to
+//! isolate), then the local points (rows of `local_points`, whose inputs are the level
+//! vertices). Level `d + 1` is `level_stencils[d]` applied to the level-`d` vertices listed in
+//! `level_inputs[d]` (its sub-mesh); vertices on a sub-mesh's border are computed but never
+//! referenced by a patch. Per patch: `kinds` ([`PatchType`] as `u8`), `cv_offsets`
 //! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
 use super::endcap::gregory_points;
-use super::features::{
-    boundary_mask, face_has_features, is_patch_regular, level_tags, single_crease, FeatureMask,
-    VTag,
-};
+use super::features::{boundary_mask, is_patch_regular, single_crease, FeatureMask};
 use super::gather::regular_points;
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
+use super::sparse::{self, Hierarchy, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
-use crate::refine::{LevelStencils, Refiner, StencilTable};
+use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
+use rayon::prelude::*;
 
 /// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv
 /// allows 10).
@@ -126,9 +128,14 @@ pub struct PatchTable {
     pub options: PatchOptions,
     /// The base topology.
     pub base: Topology,
-    /// Stencils from each level to the next (uniform refinement to the isolation level).
+    /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
+    /// `d` that was refined ([`super::sparse`]).
     pub level_stencils: Vec<LevelStencils>,
-    /// `L + 2` offsets of each level's vertices in the flat point array.
+    /// `level_inputs[d][i]`: the level-`d` vertex that is vertex `i` of that sub-mesh (the
+    /// input of `level_stencils[d]`).
+    pub level_inputs: Vec<Vec<u32>>,
+    /// Offsets of each level's vertices in the flat point array (one more than the number of
+    /// levels, which stops early where nothing is left to isolate).
     pub level_offsets: Vec<u32>,
     /// End-cap points as stencils over the level vertices (flat indices).
     pub local_points: StencilTable,
@@ -160,20 +167,90 @@ pub struct PatchCounts {
 }
 
 struct Builder<'a> {
-    refiner: &'a Refiner,
-    tags: Vec<Vec<VTag>>,
-    mask: FeatureMask,
-    max_level: usize,
+    h: &'a Hierarchy,
     single_crease: bool,
     cap: bool,
-    level_offsets: Vec<u32>,
+    max_level: usize,
+    level_offsets: &'a [u32],
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
     cvs: Vec<u32>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
-    local_rows: Vec<Vec<(u32, f64)>>,
+    /// End-cap points: a stencil table whose inputs are flat level-vertex indices.
+    local: StencilTable,
     nodes: Vec<[u32; 4]>,
+    roots: Vec<u32>,
+}
+
+/// The arrays of all walked base faces, joined in base face order.
+#[derive(Default)]
+struct Joined {
+    kinds: Vec<u8>,
+    cv_offsets: Vec<u32>,
+    cvs: Vec<u32>,
+    params: Vec<PatchParam>,
+    sharpness: Vec<f32>,
+    local: StencilTable,
+    nodes: Vec<[u32; 4]>,
+    roots: Vec<u32>,
+}
+
+impl Joined {
+    /// Reserves room for every chunk.
+    fn reserve(&mut self, parts: &[Builder]) {
+        let sum = |f: &dyn Fn(&Builder) -> usize| parts.iter().map(f).sum::<usize>();
+        let patches = sum(&|b| b.kinds.len());
+        self.kinds.reserve(patches);
+        self.cv_offsets.reserve(patches);
+        self.params.reserve(patches);
+        self.sharpness.reserve(patches);
+        self.cvs.reserve(sum(&|b| b.cvs.len()));
+        self.nodes.reserve(sum(&|b| b.nodes.len()));
+        self.roots.reserve(sum(&|b| b.roots.len()));
+        self.local.offsets.reserve(sum(&|b| b.local.num_rows()));
+        self.local.indices.reserve(sum(&|b| b.local.indices.len()));
+        self.local.weights.reserve(sum(&|b| b.local.weights.len()));
+    }
+
+    /// Appends one chunk's arrays, renumbering its patches, nodes and local points, and
+    /// placing local points after the `num_level_points` level vertices.
+    fn append(&mut self, b: Builder, num_level_points: u32) {
+        let (p0, n0) = (self.kinds.len() as u32, self.nodes.len() as u32);
+        let (l0, c0) = (self.local.num_rows() as u32, self.cvs.len() as u32);
+        let handle = |h: u32| match h {
+            EMPTY => EMPTY,
+            h if h & LEAF != 0 => LEAF | ((h & !LEAF) + p0),
+            h => h + n0,
+        };
+        self.roots.extend(b.roots.iter().map(|&h| handle(h)));
+        self.nodes
+            .extend(b.nodes.iter().map(|n| [0, 1, 2, 3].map(|q| handle(n[q]))));
+        self.cvs.extend(b.cvs.iter().map(|&c| {
+            if c & LEAF != 0 {
+                num_level_points + l0 + (c & !LEAF)
+            } else {
+                c
+            }
+        }));
+        self.cv_offsets
+            .extend(b.cv_offsets[1..].iter().map(|&o| o + c0));
+        self.kinds.extend_from_slice(&b.kinds);
+        self.params.extend_from_slice(&b.params);
+        self.sharpness.extend_from_slice(&b.sharpness);
+        let e0 = self.local.indices.len() as u32;
+        self.local.indices.extend_from_slice(&b.local.indices);
+        self.local.weights.extend_from_slice(&b.local.weights);
+        self.local
+            .offsets
+            .extend(b.local.offsets[1..].iter().map(|&o| o + e0));
+    }
+}
+
+fn not_exact(what: &str, d: usize, f: usize) -> Error {
+    Error::Internal(format!(
+        "sparse refinement: {what} of face {f} at level {d} is not exact"
+    ))
 }
 
 impl Builder<'_> {
@@ -186,12 +263,12 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let t = &self.refiner.levels[d];
-        if t.face_is_hole[f] {
+        let lv = &self.h.levels[d];
+        if lv.topo.face_is_hole[f] {
             return Ok(EMPTY);
         }
-        if d < self.max_level && face_has_features(t, &self.tags[d], f, d, &self.mask) {
-            let first = t.face_offsets[f] as usize;
+        if lv.refine[f] {
+            let first = lv.child[f] as usize;
             let node = self.nodes.len();
             self.nodes.push([EMPTY; 4]);
             for (j, &(du, dv)) in QUADRANT.iter().enumerate() {
@@ -212,8 +289,11 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let t = &self.refiner.levels[d];
-        let tags = &self.tags[d];
+        let lv = &self.h.levels[d];
+        let (t, tags) = (&lv.topo, &lv.tags);
+        if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
+            return Err(not_exact("a corner", d, f));
+        }
         let off = self.level_offsets[d];
         let patch = self.kinds.len() as u32;
         let regular = is_patch_regular(t, tags, f);
@@ -224,9 +304,11 @@ impl Builder<'_> {
             } else {
                 None
             };
-            for p in regular_points(t, f) {
-                self.cvs.push(off + p);
+            let pts = regular_points(t, f);
+            if pts.iter().any(|&p| !lv.exact[p as usize]) {
+                return Err(not_exact("a control point", d, f));
             }
+            self.cvs.extend(pts.iter().map(|&p| off + p));
             match crease {
                 Some((k, s)) => (
                     PatchType::SingleCrease,
@@ -245,10 +327,16 @@ impl Builder<'_> {
                     "irregular non-quad face {f} at level {d} cannot take an end cap"
                 )));
             }
-            let first_local = self.local_rows.len() as u32;
+            let first_local = self.local.num_rows() as u32;
             for (i, row) in gregory_points(t, f).into_iter().enumerate() {
-                self.local_rows
-                    .push(row.into_iter().map(|(x, w)| (x + off, w)).collect());
+                for (x, w) in row {
+                    if !lv.exact[x as usize] {
+                        return Err(not_exact("an end-cap input", d, f));
+                    }
+                    self.local.indices.push(x + off);
+                    self.local.weights.push(w as f32);
+                }
+                self.local.offsets.push(self.local.indices.len() as u32);
                 // Local points are numbered after all level vertices; fixed up in `build`.
                 self.cvs.push(LEAF | (first_local + i as u32));
             }
@@ -272,8 +360,19 @@ impl Builder<'_> {
 }
 
 impl PatchTable {
-    /// Builds the patch table of `base` (Catmull-Clark only).
+    /// Builds the patch table of `base` (Catmull-Clark only) by sparse feature-adaptive
+    /// refinement ([`super::sparse`]).
     pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
+        Self::build_with(base, options, Selection::Sparse)
+    }
+
+    /// Builds the patch table refining every face of every level: the same patches, at the
+    /// cost of uniform refinement (the reference of the sparse construction's tests).
+    pub(crate) fn build_with(
+        base: &Topology,
+        options: &PatchOptions,
+        selection: Selection,
+    ) -> Result<PatchTable> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
                 "limit patches are implemented for the Catmull-Clark scheme only".into(),
@@ -289,86 +388,108 @@ impl PatchTable {
         if !base.is_all_quads() {
             level = level.max(1);
         }
-        let refiner = Refiner::new(base.clone(), level)?;
+        let h = sparse::build(
+            base,
+            level,
+            &FeatureMask::new(options.single_crease),
+            selection,
+        )?;
         let mut level_offsets = vec![0u32];
-        for t in &refiner.levels {
+        for lv in &h.levels {
             let last = *level_offsets.last().unwrap_or(&0);
-            level_offsets.push(last + t.num_vertices() as u32);
+            let n = u32::try_from(lv.topo.num_vertices())
+                .ok()
+                .and_then(|n| last.checked_add(n))
+                .ok_or_else(|| Error::Internal("more than 2^32 refined vertices".into()))?;
+            level_offsets.push(n);
         }
-        let tags = refiner
-            .levels
-            .iter()
-            .enumerate()
-            .map(|(d, t)| level_tags(t, d == 0))
-            .collect();
-        let mut b = Builder {
-            refiner: &refiner,
-            tags,
-            mask: FeatureMask::new(options.single_crease),
-            max_level: level,
-            single_crease: options.single_crease,
-            cap: options.cap_crease_sharpness,
-            level_offsets: level_offsets.clone(),
-            kinds: Vec::new(),
-            cv_offsets: vec![0],
-            cvs: Vec::new(),
-            params: Vec::new(),
-            sharpness: Vec::new(),
-            local_rows: Vec::new(),
-            nodes: Vec::new(),
-        };
         let mut ptex_offsets = vec![0u32];
-        let mut roots = Vec::new();
         for f in 0..base.num_faces() {
-            let n = base.face_size(f);
-            let ptex = *ptex_offsets.last().unwrap_or(&0);
-            if n == 4 {
-                roots.push(b.visit(0, f, ptex, 0, 0, false)?);
-            } else if base.face_is_hole[f] {
-                roots.extend(std::iter::repeat_n(EMPTY, n));
-            } else {
-                let first = base.face_offsets[f] as usize;
-                for j in 0..n {
-                    roots.push(b.visit(1, first + j, ptex + j as u32, 0, 0, true)?);
-                }
-            }
-            ptex_offsets.push(ptex + if n == 4 { 1 } else { n as u32 });
+            let n = base.face_size(f) as u32;
+            let last = *ptex_offsets.last().unwrap_or(&0);
+            ptex_offsets.push(last + if n == 4 { 1 } else { n });
         }
+        // Base faces are walked in parallel chunks, each into its own arrays, then joined.
         let num_level_points = *level_offsets.last().unwrap_or(&0);
-        for c in &mut b.cvs {
-            if *c & LEAF != 0 {
-                *c = num_level_points + (*c & !LEAF);
-            }
-        }
-        let mut local_points = StencilTable {
-            offsets: vec![0],
-            indices: Vec::new(),
-            weights: Vec::new(),
-            num_inputs: num_level_points as usize,
+        let nf = base.num_faces();
+        let chunk = nf.div_ceil(8 * rayon::current_num_threads().max(1)).max(16);
+        let parts = (0..nf.div_ceil(chunk))
+            .into_par_iter()
+            .map(|c| {
+                let mut b = Builder {
+                    h: &h,
+                    max_level: level,
+                    single_crease: options.single_crease,
+                    cap: options.cap_crease_sharpness,
+                    level_offsets: &level_offsets,
+                    kinds: Vec::new(),
+                    cv_offsets: vec![0],
+                    cvs: Vec::new(),
+                    params: Vec::new(),
+                    sharpness: Vec::new(),
+                    local: StencilTable {
+                        offsets: vec![0],
+                        num_inputs: num_level_points as usize,
+                        ..Default::default()
+                    },
+                    nodes: Vec::new(),
+                    roots: Vec::new(),
+                };
+                for f in c * chunk..((c + 1) * chunk).min(nf) {
+                    let (n, ptex) = (base.face_size(f), ptex_offsets[f]);
+                    if n == 4 {
+                        let r = b.visit(0, f, ptex, 0, 0, false)?;
+                        b.roots.push(r);
+                    } else if base.face_is_hole[f] {
+                        b.roots.extend(std::iter::repeat_n(EMPTY, n));
+                    } else {
+                        let first = h.levels[0].child[f] as usize;
+                        for j in 0..n {
+                            let r = b.visit(1, first + j, ptex + j as u32, 0, 0, true)?;
+                            b.roots.push(r);
+                        }
+                    }
+                }
+                Ok(b)
+            })
+            .collect::<Result<Vec<Builder>>>()?;
+        let mut all = Joined {
+            local: StencilTable {
+                offsets: vec![0],
+                num_inputs: num_level_points as usize,
+                ..Default::default()
+            },
+            cv_offsets: vec![0],
+            ..Default::default()
         };
-        for row in &b.local_rows {
-            for &(i, w) in row {
-                local_points.indices.push(i);
-                local_points.weights.push(w as f32);
-            }
-            local_points.offsets.push(local_points.indices.len() as u32);
+        all.reserve(&parts);
+        for b in parts {
+            all.append(b, num_level_points);
         }
+        let Joined {
+            kinds,
+            cv_offsets,
+            cvs,
+            params,
+            sharpness,
+            local: local_points,
+            nodes,
+            roots,
+        } = all;
         Ok(PatchTable {
             options: *options,
             base: base.clone(),
-            level_stencils: refiner.stencils.clone(),
+            level_stencils: h.stencils,
+            level_inputs: h.inputs,
             level_offsets,
             local_points,
-            kinds: b.kinds,
-            cv_offsets: b.cv_offsets,
-            cvs: b.cvs,
-            params: b.params,
-            sharpness: b.sharpness,
+            kinds,
+            cv_offsets,
+            cvs,
+            params,
+            sharpness,
             ptex_offsets,
-            patch_map: PatchMap {
-                roots,
-                nodes: b.nodes,
-            },
+            patch_map: PatchMap { roots, nodes },
         })
     }
 
@@ -428,6 +549,7 @@ impl PatchTable {
             .iter()
             .map(|s| s.size_bytes())
             .sum::<usize>()
+            + 4 * self.level_inputs.iter().map(Vec::len).sum::<usize>()
             + self.local_points.size_bytes()
     }
 
@@ -441,11 +563,16 @@ impl PatchTable {
     pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
         let mut all = Vec::with_capacity(self.num_points());
         all.extend_from_slice(base);
-        let mut start = 0usize;
-        for s in &self.level_stencils {
+        for (d, (s, inputs)) in self
+            .level_stencils
+            .iter()
+            .zip(&self.level_inputs)
+            .enumerate()
+        {
+            let start = self.level_offsets[d] as usize;
+            let src: Vec<[f32; N]> = inputs.iter().map(|&i| all[start + i as usize]).collect();
             let mut dst = vec![[0.0; N]; s.num_rows()];
-            s.apply(&all[start..], &mut dst);
-            start = all.len();
+            s.apply(&src, &mut dst);
             all.extend_from_slice(&dst);
         }
         let mut local = vec![[0.0; N]; self.local_points.num_rows()];

@@ -1,0 +1,473 @@
+//! Sparse feature-adaptive refinement: the levels a patch table is built from, each refined
+//! only around the faces that still need isolating (Nießner, Loop, Meyer & DeRose 2012;
+//! OpenSubdiv's `Far::TopologyRefiner::RefineAdaptive`).
+//!
+//! # Levels
+//!
+//! Level 0 is the base mesh. Level `d + 1` is one uniform refinement step
+//! ([`refine_topology`], [`level_stencils`]) of a *sub-mesh* `M_d` of level `d`: the faces
+//! `F_d` selected for isolation at level `d` ([`face_has_features`], evaluated on the faces
+//! the quadtree walk visits) and one ring of faces around them,
+//!
+//! ```text
+//! M_d = ring(F_d) = every face sharing a vertex with a face of F_d
+//! ```
+//!
+//! — the neighbourhood OpenSubdiv's sparse refinement keeps (`Vtr::SparseSelector`, whose
+//! "incomplete" faces are our ring). Each level is a real [`Topology`], so the feature rules,
+//! the regular-patch gather and the end caps read it as they read a uniformly refined level.
+//! The cost of a level is that of its sub-mesh: around an isolated extraordinary vertex it
+//! stays constant from level to level, where uniform refinement multiplies it by four.
+//!
+//! # Why one ring suffices, and how exactness is checked
+//!
+//! Let every vertex of `F_d` have its whole ring in level `d`, and every face of
+//! `ring(F_d)` exact vertices. Refining `M_d` then gives exactly:
+//!
+//! - the child of a vertex `v` of `F_d` (it reads `v`'s ring: all in `M_d`, so its valence,
+//!   rule and Chaikin crease decay are the true ones);
+//! - the edge point of every edge at such a vertex (its faces are around the vertex);
+//! - the face point of every face of `M_d`.
+//!
+//! These are the vertices of the children of `ring(F_d)` at the corners that are vertices of
+//! `F_d`, and those children are, for any child `c` of `F_d`, all the faces around `c`'s
+//! corners (child of a vertex: the children of its faces at it; edge point: the children of
+//! the edge's faces at its ends; face point: its face's children). So the faces the walk
+//! visits at level `d + 1` (children of `F_d`) have complete corners and exact one-rings,
+//! which is what a patch reads, and the next selection `F_{d+1}` satisfies the hypothesis:
+//! by induction from the base, every emitted patch is the one uniform refinement gives.
+//!
+//! The sub-mesh's own border is wrong on purpose: its edges are made infinitely sharp
+//! boundaries and its border vertices infinitely sharp non-manifold corners. Nothing
+//! computed from them is used, and this is *checked*, not assumed: every vertex carries two
+//! flags, propagated through each step from the rules' inputs —
+//!
+//! - `exact`: its value (its stencil) is the one uniform refinement gives;
+//! - `sound`: its ring is complete and its sharpness, rule, tags and incident edges'
+//!   sharpness are the true ones (what [`super::features`], [`super::gather`] and
+//!   [`super::endcap`] read);
+//!
+//! and every edge `edge_ok` (complete, sharpness and tags true). The walk refuses (an internal
+//! error) to decide a face whose corners are not sound or to emit a patch that reads a point
+//! that is not exact. The sub-mesh keeps the level's relations restricted to its faces (not
+//! rebuilt from face lists), so the rings of complete vertices are the level's own, ordering
+//! and non-manifold edge instances included.
+
+use super::features::{face_has_features, level_tags, FeatureMask, VTag};
+use crate::error::{Error, MeshError, Result};
+use crate::options::CreaseMethod;
+use crate::refine::{level_stencils, refine_topology, LevelStencils};
+use crate::topology::tags::{self, rule};
+use crate::topology::Topology;
+use crate::SHARPNESS_INFINITE;
+
+/// No child / not in the sub-mesh.
+pub const NONE: u32 = u32::MAX;
+
+/// How much of each level is refined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Selection {
+    /// The faces being isolated and one ring of faces around them (the default).
+    Sparse,
+    /// The faces being isolated and `n` rings around them (`n = 0` loses exactness, which
+    /// the construction detects).
+    #[cfg(test)]
+    Rings(usize),
+    /// Every face: uniform refinement to the isolation level (the reference the sparse
+    /// construction is tested against).
+    Uniform,
+}
+
+/// One level of the hierarchy.
+#[derive(Debug, Clone)]
+pub struct Level {
+    /// Its topology.
+    pub topo: Topology,
+    /// Feature tags of its vertices.
+    pub tags: Vec<VTag>,
+    /// Per vertex: its value is exact.
+    pub exact: Vec<bool>,
+    /// Per vertex: ring, sharpness, rule and tags are exact.
+    pub sound: Vec<bool>,
+    /// Per edge: complete, sharpness and tags exact.
+    pub edge_ok: Vec<bool>,
+    /// Per face: refined further by the walk.
+    pub refine: Vec<bool>,
+    /// Per face: its first child face in the next level, or [`NONE`].
+    pub child: Vec<u32>,
+}
+
+/// The levels, and the stencils from each to the next.
+#[derive(Debug, Clone)]
+pub struct Hierarchy {
+    /// `levels[0]` is the base.
+    pub levels: Vec<Level>,
+    /// `stencils[d]`: level `d + 1` from the vertices of the sub-mesh of level `d`.
+    pub stencils: Vec<LevelStencils>,
+    /// `inputs[d][i]`: the level-`d` vertex that is vertex `i` of its sub-mesh.
+    pub inputs: Vec<Vec<u32>>,
+}
+
+impl Level {
+    fn new(topo: Topology, base: bool) -> Level {
+        let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
+        Level {
+            tags: level_tags(&topo, base),
+            exact: vec![true; nv],
+            sound: vec![true; nv],
+            edge_ok: vec![true; ne],
+            refine: vec![false; nf],
+            child: vec![NONE; nf],
+            topo,
+        }
+    }
+}
+
+/// Builds the levels of `base` up to `max_level`, refining the faces the walk of
+/// [`super::table`] would descend into (`visited` base faces: all of them).
+pub fn build(
+    base: &Topology,
+    max_level: usize,
+    mask: &FeatureMask,
+    selection: Selection,
+) -> Result<Hierarchy> {
+    let mut h = Hierarchy {
+        levels: vec![Level::new(base.clone(), true)],
+        stencils: Vec::new(),
+        inputs: Vec::new(),
+    };
+    let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
+    let mut total_vertices = base.num_vertices() as u64;
+    for d in 0..max_level {
+        let cur = h.levels.last_mut().expect("base level");
+        let mut chosen = Vec::new();
+        for &f in &visited {
+            let f = f as usize;
+            if cur.topo.face_is_hole[f] {
+                continue;
+            }
+            let t = &cur.topo;
+            if let Some(&v) = t.face_vertices(f).iter().find(|&&v| !cur.sound[v as usize]) {
+                return Err(Error::Internal(format!(
+                    "sparse refinement: corner {v} of face {f} at level {d} is not exact"
+                )));
+            }
+            if face_has_features(t, &cur.tags, f, d, mask) {
+                cur.refine[f] = true;
+                chosen.push(f as u32);
+            }
+        }
+        if chosen.is_empty() {
+            break;
+        }
+        let keep = match selection {
+            Selection::Uniform => vec![true; cur.topo.num_faces()],
+            Selection::Sparse => rings(&cur.topo, &chosen, 1),
+            #[cfg(test)]
+            Selection::Rings(n) => rings(&cur.topo, &chosen, n),
+        };
+        let step = Step::new(cur, &keep);
+        // Child corners and vertices are indexed with `u32`, and so is the flat point array.
+        let corners = 4 * step.sub.num_corners() as u64;
+        if corners + total_vertices > (u32::MAX / 2) as u64 {
+            return Err(MeshError::TooLarge {
+                what: format!(
+                    "isolating features of level {d} ({} faces)",
+                    step.faces.len()
+                ),
+                bytes: corners * 50,
+                human: format!("{:.1} GiB", (corners * 50) as f64 / (1u64 << 30) as f64),
+                limit_human: "2^31 refined face corners and vertices (32-bit indices)".into(),
+            }
+            .into());
+        }
+        for (m, &f) in step.faces.iter().enumerate() {
+            cur.child[f as usize] = step.sub.face_offsets[m];
+        }
+        let child_topo = refine_topology(&step.sub);
+        let stencils = level_stencils(&step.sub, &child_topo);
+        total_vertices += child_topo.num_vertices() as u64;
+        let mut next = Level::new(child_topo, false);
+        step.propagate(&mut next);
+        visited = chosen
+            .iter()
+            .flat_map(|&f| {
+                let first = cur.child[f as usize];
+                first..first + cur.topo.face_size(f as usize) as u32
+            })
+            .collect();
+        h.inputs.push(step.verts);
+        h.stencils.push(stencils);
+        h.levels.push(next);
+    }
+    Ok(h)
+}
+
+/// The faces within `n` rings of `faces`.
+fn rings(t: &Topology, faces: &[u32], n: usize) -> Vec<bool> {
+    let mut m = vec![false; t.num_faces()];
+    for &f in faces {
+        m[f as usize] = true;
+    }
+    (0..n).fold(m, |m, _| ring(t, &m))
+}
+
+/// The faces sharing a vertex with a face of `sel`.
+fn ring(t: &Topology, sel: &[bool]) -> Vec<bool> {
+    let mut vmark = vec![false; t.num_vertices()];
+    for f in (0..t.num_faces()).filter(|&f| sel[f]) {
+        for &v in t.face_vertices(f) {
+            vmark[v as usize] = true;
+        }
+    }
+    let mut out = sel.to_vec();
+    for v in (0..t.num_vertices()).filter(|&v| vmark[v]) {
+        for &g in t.vertex_faces(v) {
+            out[g as usize] = true;
+        }
+    }
+    out
+}
+
+/// A sub-mesh of a level and its exactness flags.
+struct Step {
+    sub: Topology,
+    /// Sub-mesh face → level face.
+    faces: Vec<u32>,
+    /// Sub-mesh vertex → level vertex.
+    verts: Vec<u32>,
+    /// Per sub-mesh vertex: sound in the level and all its faces kept.
+    sound: Vec<bool>,
+    /// Per sub-mesh edge: ok in the level and all its faces kept.
+    edge_ok: Vec<bool>,
+    /// Per sub-mesh vertex: exact in the level.
+    exact: Vec<bool>,
+}
+
+impl Step {
+    /// The sub-mesh of the faces `keep` of `lv`, with the level's sharpness, tags, rules and
+    /// holes on every element whose faces are all kept, and the border treated as a sharp
+    /// boundary.
+    fn new(lv: &Level, keep: &[bool]) -> Step {
+        let s = &lv.topo;
+        if keep.iter().all(|&k| k) {
+            return Step {
+                sub: s.clone(),
+                faces: (0..s.num_faces() as u32).collect(),
+                verts: (0..s.num_vertices() as u32).collect(),
+                sound: lv.sound.clone(),
+                edge_ok: lv.edge_ok.clone(),
+                exact: lv.exact.clone(),
+            };
+        }
+        let faces: Vec<u32> = (0..s.num_faces() as u32)
+            .filter(|&f| keep[f as usize])
+            .collect();
+        let mut fmap = vec![NONE; s.num_faces()];
+        for (m, &f) in faces.iter().enumerate() {
+            fmap[f as usize] = m as u32;
+        }
+        let (mut vmap, mut emap) = (vec![NONE; s.num_vertices()], vec![NONE; s.num_edges()]);
+        // Capacities: about one vertex and two edges per quad, each edge in two faces.
+        let nc: usize = faces.iter().map(|&f| s.face_size(f as usize)).sum();
+        let (mut verts, mut edges) = (Vec::with_capacity(nc / 2), Vec::with_capacity(nc));
+        let mut face_offsets = Vec::with_capacity(faces.len() + 1);
+        let (mut face_verts, mut face_edges) = (Vec::with_capacity(nc), Vec::with_capacity(nc));
+        face_offsets.push(0u32);
+        let take = |map: &mut [u32], list: &mut Vec<u32>, x: u32| -> u32 {
+            if map[x as usize] == NONE {
+                map[x as usize] = list.len() as u32;
+                list.push(x);
+            }
+            map[x as usize]
+        };
+        for &f in &faces {
+            let r = s.face_offsets[f as usize] as usize..s.face_offsets[f as usize + 1] as usize;
+            for c in r {
+                face_verts.push(take(&mut vmap, &mut verts, s.face_verts[c]));
+                face_edges.push(take(&mut emap, &mut edges, s.face_edges[c]));
+            }
+            face_offsets.push(face_verts.len() as u32);
+        }
+        // Every relation is the level's, restricted to the kept faces: elements whose faces
+        // are all kept keep their exact rings (order included).
+        let mut edge_face_offsets = Vec::with_capacity(edges.len() + 1);
+        edge_face_offsets.push(0u32);
+        let (mut edge_faces, mut edge_face_local) =
+            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
+        for &e in &edges {
+            for (&f, &l) in s
+                .edge_faces(e as usize)
+                .iter()
+                .zip(s.edge_faces_local(e as usize))
+            {
+                if fmap[f as usize] != NONE {
+                    edge_faces.push(fmap[f as usize]);
+                    edge_face_local.push(l);
+                }
+            }
+            edge_face_offsets.push(edge_faces.len() as u32);
+        }
+        let mut vert_face_offsets = Vec::with_capacity(verts.len() + 1);
+        vert_face_offsets.push(0u32);
+        let (mut vert_faces, mut vert_face_local) =
+            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
+        let mut vert_edge_offsets = Vec::with_capacity(verts.len() + 1);
+        vert_edge_offsets.push(0u32);
+        let mut vert_edges = Vec::with_capacity(2 * edges.len() + 8);
+        for &v in &verts {
+            let v = v as usize;
+            for (&f, &l) in s.vertex_faces(v).iter().zip(s.vertex_faces_local(v)) {
+                if fmap[f as usize] != NONE {
+                    vert_faces.push(fmap[f as usize]);
+                    vert_face_local.push(l);
+                }
+            }
+            vert_face_offsets.push(vert_faces.len() as u32);
+            vert_edges.extend(
+                s.vertex_edges(v)
+                    .iter()
+                    .filter(|&&e| emap[e as usize] != NONE)
+                    .map(|&e| emap[e as usize]),
+            );
+            vert_edge_offsets.push(vert_edges.len() as u32);
+        }
+        let mut t = Topology {
+            options: s.options,
+            num_vertices: verts.len(),
+            face_offsets,
+            face_verts,
+            face_edges,
+            edge_verts: edges
+                .iter()
+                .map(|&e| s.edge_verts[e as usize].map(|v| vmap[v as usize]))
+                .collect(),
+            edge_face_offsets,
+            edge_faces,
+            edge_face_local,
+            vert_face_offsets,
+            vert_faces,
+            vert_face_local,
+            vert_edge_offsets,
+            vert_edges,
+            edge_sharpness: edges
+                .iter()
+                .map(|&e| s.edge_sharpness[e as usize])
+                .collect(),
+            vert_sharpness: verts
+                .iter()
+                .map(|&v| s.vert_sharpness[v as usize])
+                .collect(),
+            face_is_hole: faces.iter().map(|&f| s.face_is_hole[f as usize]).collect(),
+            edge_tags: edges.iter().map(|&e| s.edge_tags[e as usize]).collect(),
+            vert_tags: verts.iter().map(|&v| s.vert_tags[v as usize]).collect(),
+            vert_rule: verts.iter().map(|&v| s.vert_rule[v as usize]).collect(),
+        };
+        let mut edge_ok = vec![false; edges.len()];
+        for (e, &se) in edges.iter().enumerate() {
+            let se = se as usize;
+            if t.edge_faces(e).len() == s.edge_faces(se).len() {
+                edge_ok[e] = lv.edge_ok[se];
+            } else {
+                let mut tag = (t.edge_tags[e] & tags::E_NON_MANIFOLD) | tags::E_INF_SHARP;
+                if t.edge_faces(e).len() < 2 {
+                    tag |= tags::E_BOUNDARY;
+                }
+                t.edge_tags[e] = tag;
+                t.edge_sharpness[e] = SHARPNESS_INFINITE;
+            }
+        }
+        let mut sound = vec![false; verts.len()];
+        let mut exact = vec![false; verts.len()];
+        for (v, &sv) in verts.iter().enumerate() {
+            let sv = sv as usize;
+            exact[v] = lv.exact[sv];
+            if t.vertex_faces(v).len() == s.vertex_faces(sv).len() {
+                sound[v] = lv.sound[sv];
+            } else {
+                border_vertex(&mut t, v);
+            }
+        }
+        Step {
+            sub: t,
+            faces,
+            verts,
+            sound,
+            edge_ok,
+            exact,
+        }
+    }
+
+    /// Exactness flags of the child level `c` (one refinement step of the sub-mesh).
+    fn propagate(&self, c: &mut Level) {
+        let p = &self.sub;
+        let (nv, nf, ne, nc) = (
+            p.num_vertices(),
+            p.num_faces(),
+            p.num_edges(),
+            p.num_corners(),
+        );
+        let chaikin = p.options.crease_method == CreaseMethod::Chaikin;
+        let face_exact = |f: usize| p.face_vertices(f).iter().all(|&v| self.exact[v as usize]);
+        let fexact: Vec<bool> = (0..nf).map(face_exact).collect();
+        for v in 0..nv {
+            c.sound[v] = self.sound[v];
+            c.exact[v] = self.sound[v]
+                && self.exact[v]
+                && p.vertex_faces(v).iter().all(|&f| fexact[f as usize]);
+        }
+        for f in 0..nf {
+            c.sound[nv + f] = true;
+            c.exact[nv + f] = fexact[f];
+        }
+        for e in 0..ne {
+            let [a, b] = p.edge_verts[e];
+            let half_ok = |x: u32| self.edge_ok[e] && (!chaikin || self.sound[x as usize]);
+            let (ha, hb) = (half_ok(a), half_ok(b));
+            c.edge_ok[nc + 2 * e] = ha;
+            c.edge_ok[nc + 2 * e + 1] = hb;
+            c.sound[nv + nf + e] = self.edge_ok[e] && ha && hb;
+            c.exact[nv + nf + e] =
+                self.edge_ok[e] && p.edge_faces(e).iter().all(|&f| fexact[f as usize]);
+        }
+    }
+}
+
+/// Tags of a vertex on the sub-mesh's border: made an infinitely sharp non-manifold corner
+/// (its value is never used; its child is the identity of it whatever its ring), tagged from
+/// its sub-mesh ring as OpenSubdiv tags a base vertex.
+fn border_vertex(t: &mut Topology, v: usize) {
+    let (mut boundary, mut inf, mut semi) = (0usize, 0usize, 0usize);
+    for &e in t.vertex_edges(v) {
+        let et = t.edge_tags[e as usize];
+        boundary += (et & tags::E_BOUNDARY != 0) as usize;
+        inf += (et & tags::E_INF_SHARP != 0) as usize;
+        semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+    }
+    let (nfaces, nedges) = (t.vertex_faces(v).len(), t.vertex_edges(v).len());
+    // Its ring is a fragment, not an ordered fan.
+    let mut vt = tags::V_NON_MANIFOLD | tags::V_INF_SHARP;
+    if semi > 0 {
+        vt |= tags::V_SEMI_SHARP_EDGES;
+    }
+    if inf > 0 {
+        vt |= tags::V_INF_SHARP_EDGES;
+    }
+    if boundary > 0 {
+        vt |= tags::V_BOUNDARY;
+    }
+    if nfaces == 1 && nedges == 2 {
+        vt |= tags::V_CORNER;
+    } else if (boundary > 0 && nfaces != 2) || (boundary == 0 && nfaces != 4) {
+        vt |= tags::V_XORDINARY;
+    }
+    if t.vertex_faces(v)
+        .iter()
+        .any(|&f| t.face_is_hole[f as usize])
+    {
+        vt |= tags::V_INCIDENT_HOLE;
+    }
+    t.vert_tags[v] = vt;
+    t.vert_sharpness[v] = SHARPNESS_INFINITE;
+    t.vert_rule[v] = rule::CORNER;
+}
