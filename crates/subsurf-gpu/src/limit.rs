@@ -2,12 +2,15 @@
 //! evaluation with the data resident between passes (OpenSubdiv's `Osd` evaluators over a
 //! `Far::PatchTable`).
 //!
-//! [`GpuLimit::new`] uploads the table once: the level stencils (run by [`GpuRefiner`]),
-//! the end-cap local-point stencils (run by [`StencilKernel`]), and the patch map, per-patch
-//! data and control indices read by `limit_eval` ([`crate::cpu::limit_eval`]). Per frame,
+//! [`GpuLimit::new`] uploads the table once: per sparse level `d`, the gather of the level-`d`
+//! vertices of its refined sub-mesh (`level_inputs[d]`, a stencil table of unit weights run
+//! by [`StencilKernel`]) and its refinement stencils (run by a one-level [`GpuRefiner`]); the
+//! end-cap local-point stencils ([`StencilKernel`]); and the patch map, per-patch data and
+//! control indices read by `limit_eval` ([`crate::cpu::limit_eval`]). Per frame,
 //! [`GpuLimit::update`] writes the base positions and rebuilds the flat point array
-//! `[level 0 | level 1 | … | level L | local points]` on the GPU: levels are refined, copied
-//! into place, and the local points computed from them. [`GpuLimit::eval`] then evaluates a
+//! `[level 0 | level 1 | … | level L | local points]` on the GPU
+//! ([`PatchTable::points`]): each level is gathered from the flat array, refined and copied
+//! into place, then the local points are computed from the levels. [`GpuLimit::eval`] then evaluates a
 //! sample set allocated once:
 //!
 //! - [`GpuLimit::tessellation`]: the samples of [`PatchTable::tessellation_plan`], with an
@@ -62,8 +65,10 @@ const WORD: u64 = 4;
 /// A patch table resident on the GPU with its point array.
 #[derive(Debug)]
 pub struct GpuLimit {
-    refiner: GpuRefiner,
+    /// Per sparse level: the gather of its sub-mesh from the flat array, and its refinement.
+    levels: Vec<(StencilKernel, GpuRefiner)>,
     level_offsets: Vec<u32>,
+    num_base: usize,
     points: VertexBuffer,
     local: Option<(StencilKernel, VertexBuffer)>,
     patch_map: wgpu::Buffer,
@@ -232,12 +237,47 @@ impl GpuLimit {
                 .clamp(1, adapter.max_workgroups_per_dimension),
             max_stride: 12,
         };
-        let counts: Vec<usize> = table
-            .level_offsets
-            .windows(2)
-            .map(|w| (w[1] - w[0]) as usize)
-            .collect();
-        let refiner = GpuRefiner::from_stencils(ctx, &counts, &table.level_stencils, limits)?;
+        if table.level_inputs.len() != table.level_stencils.len()
+            || table.level_offsets.len() != table.level_stencils.len() + 2
+        {
+            return Err(GpuError::InvalidStencil(format!(
+                "{} level stencils, {} level inputs, {} level offsets",
+                table.level_stencils.len(),
+                table.level_inputs.len(),
+                table.level_offsets.len()
+            )));
+        }
+        let gather_limits = ChunkLimits {
+            max_stride: 3,
+            ..limits
+        };
+        let mut levels = Vec::with_capacity(table.level_stencils.len());
+        for (d, (s, inputs)) in table
+            .level_stencils
+            .iter()
+            .zip(&table.level_inputs)
+            .enumerate()
+        {
+            // Row i of the gather copies flat point level_offsets[d] + inputs[i] (weight 1:
+            // exact).
+            let first = table.level_offsets[d];
+            let offsets: Vec<u32> = (0..=inputs.len() as u32).collect();
+            let indices: Vec<u32> = inputs.iter().map(|&i| first + i).collect();
+            let weights = vec![1.0f32; inputs.len()];
+            let gather = StencilKernel::with_limits(
+                ctx,
+                &StencilTable::new(&offsets, &indices, &weights)?,
+                gather_limits,
+            )?;
+            let child = (table.level_offsets[d + 2] - table.level_offsets[d + 1]) as usize;
+            let refiner = GpuRefiner::from_stencils(
+                ctx,
+                &[inputs.len(), child],
+                std::slice::from_ref(s),
+                limits,
+            )?;
+            levels.push((gather, refiner));
+        }
         let num_points = table.num_points();
         let point_bytes = (3 * num_points) as u64 * WORD;
         if point_bytes > adapter.max_binding_bytes {
@@ -278,8 +318,9 @@ impl GpuLimit {
         let row_align =
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         Ok(Self {
-            refiner,
+            levels,
             level_offsets: table.level_offsets.clone(),
+            num_base: table.level_offsets[1] as usize,
             points,
             local,
             patch_map,
@@ -312,58 +353,32 @@ impl GpuLimit {
     /// of each level into place, end-cap local points. Sample sets keep their bindings; call
     /// [`Self::eval`] to re-evaluate them.
     pub fn update(&mut self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
-        self.refiner.update(ctx, positions)?;
-        let copy_levels = |encoder: &mut wgpu::CommandEncoder| -> Result<()> {
-            for (k, &off) in self.level_offsets[..self.level_offsets.len() - 1]
-                .iter()
-                .enumerate()
-            {
-                let level = self
-                    .refiner
-                    .level(k)
-                    .ok_or_else(|| GpuError::BufferMismatch(format!("refiner has no level {k}")))?;
-                let bytes = level.len_floats() as u64 * WORD;
-                if bytes > 0 {
-                    encoder.copy_buffer_to_buffer(
-                        level.raw(),
-                        0,
-                        self.points.raw(),
-                        u64::from(off) * 3 * WORD,
-                        bytes,
-                    );
-                }
+        if positions.len() != self.num_base {
+            return Err(GpuError::BufferMismatch(format!(
+                "{} base positions for a patch table of {} base vertices",
+                positions.len(),
+                self.num_base
+            )));
+        }
+        if !positions.is_empty() {
+            ctx.queue
+                .write_buffer(self.points.raw(), 0, bytemuck::cast_slice(positions));
+        }
+        for (d, (gather, refiner)) in self.levels.iter_mut().enumerate() {
+            gather.apply(ctx, &self.points, refiner.input_mut())?;
+            refiner.dispatch(ctx)?;
+            let out = refiner.output();
+            let bytes = out.len_floats() as u64 * WORD;
+            if bytes > 0 {
+                let at = u64::from(self.level_offsets[d + 1]) * 3 * WORD;
+                copy(ctx, out.raw(), self.points.raw(), at, bytes)?;
             }
-            Ok(())
-        };
-        ctx.scoped(|| {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("limit levels"),
-                });
-            copy_levels(&mut encoder)?;
-            ctx.queue.submit([encoder.finish()]);
-            Ok(())
-        })?;
+        }
         if let Some((kernel, local)) = &mut self.local {
             kernel.apply(ctx, &self.points, local)?;
             let first = u64::from(*self.level_offsets.last().unwrap_or(&0)) * 3 * WORD;
-            ctx.scoped(|| {
-                let mut encoder =
-                    ctx.device
-                        .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                            label: Some("limit local points"),
-                        });
-                encoder.copy_buffer_to_buffer(
-                    local.raw(),
-                    0,
-                    self.points.raw(),
-                    first,
-                    local.len_floats() as u64 * WORD,
-                );
-                ctx.queue.submit([encoder.finish()]);
-                Ok(())
-            })?;
+            let bytes = local.len_floats() as u64 * WORD;
+            copy(ctx, local.raw(), self.points.raw(), first, bytes)?;
         }
         Ok(())
     }
@@ -533,6 +548,26 @@ impl GpuLimit {
             Ok(())
         })
     }
+}
+
+/// Submits a copy of the first `bytes` of `src` to `dst` at byte offset `at`.
+fn copy(
+    ctx: &GpuContext,
+    src: &wgpu::Buffer,
+    dst: &wgpu::Buffer,
+    at: u64,
+    bytes: u64,
+) -> Result<()> {
+    ctx.scoped(|| {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("limit points copy"),
+            });
+        encoder.copy_buffer_to_buffer(src, 0, dst, at, bytes);
+        ctx.queue.submit([encoder.finish()]);
+        Ok(())
+    })
 }
 
 /// Samples `start .. start + n` of a buffer of `words_per` words per sample.

@@ -210,6 +210,12 @@ impl GpuRefiner {
             )));
         }
         self.levels[0].write(ctx, base.as_flattened())?;
+        self.dispatch(ctx)
+    }
+
+    /// Submits every level's dispatches from the current contents of the base buffer
+    /// ([`Self::input_mut`]), which a caller may have filled on the GPU.
+    pub fn dispatch(&self, ctx: &GpuContext) -> Result<()> {
         ctx.scoped(|| {
             let mut encoder = ctx
                 .device
@@ -246,6 +252,12 @@ impl GpuRefiner {
     /// Reads the last level back (waits for the submitted work).
     pub fn download(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
         self.download_level(ctx, self.max_level())
+    }
+
+    /// The base buffer, to be filled on the GPU (for example by a [`crate::StencilKernel`])
+    /// before [`Self::dispatch`].
+    pub fn input_mut(&mut self) -> &mut VertexBuffer {
+        &mut self.levels[0]
     }
 
     /// Level `level`'s vertex buffer (0 = base), on the GPU.
