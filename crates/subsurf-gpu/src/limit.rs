@@ -28,23 +28,24 @@
 //!
 //! `cargo run --release -p subsurf-gpu --example gpu_pipeline` (`GPU_PIPELINE_ONLY=limit`):
 //! `catmark_car` at isolation level 3 (11,499 patches: 8,943 regular, 1,316 single-crease,
-//! 1,240 Gregory; 159,273 points), watertight `N × N` tessellation, medians, on Mesa lavapipe
-//! (`llvmpipe (LLVM 15.0.6, 256 bits)`, Vulkan) on a shared 2-core machine (quietest of
-//! several runs; others were up to 2× slower on both sides). M/s = million samples per second.
+//! 1,240 Gregory; 67,444 points on sparse levels), watertight `N × N` tessellation, medians,
+//! on Mesa lavapipe (`llvmpipe (LLVM 15.0.6, 256 bits)`, Vulkan) on a shared 2-core machine
+//! (quietest of several runs; others were up to 2× slower on both sides). M/s = million
+//! samples per second.
 //!
 //! | N | samples | CPU, 2 threads: points + `eval_batch` | + `tessellate` | lavapipe: `update` + `eval` | + read-back | `eval` only |
 //! |---|---|---|---|---|---|---|
-//! | 5 | 25,357 | 1.97 ms (12.9 M/s) | 2.46 ms (10.3 M/s) | 9.11 ms (2.8 M/s) | 9.39 ms | 1.87 ms (13.6 M/s) |
-//! | 9 | 101,077 | 5.41 ms (18.7 M/s) | 7.36 ms (13.7 M/s) | 15.0 ms (6.8 M/s) | 15.0 ms | 7.18 ms (14.1 M/s) |
-//! | 17 | 403,717 | 18.0 ms (22.4 M/s) | 25.0 ms (16.2 M/s) | 33.4 ms (12.1 M/s) | 39.2 ms | 26.2 ms (15.4 M/s) |
-//! | 33 | 1,613,797 | 94.5 ms (17.1 M/s) | 130 ms (12.4 M/s) | 107 ms (15.1 M/s) | 143 ms | 99.7 ms (16.2 M/s) |
+//! | 5 | 25,357 | 1.50 ms (16.9 M/s) | 1.83 ms (13.8 M/s) | 5.71 ms (4.4 M/s) | 10.1 ms | 3.06 ms (8.3 M/s) |
+//! | 9 | 101,077 | 4.59 ms (22.0 M/s) | 6.15 ms (16.5 M/s) | 10.6 ms (9.5 M/s) | 11.3 ms | 6.20 ms (16.3 M/s) |
+//! | 17 | 403,717 | 16.9 ms (23.9 M/s) | 38.5 ms (10.5 M/s) | 28.5 ms (14.2 M/s) | 31.0 ms | 22.7 ms (17.8 M/s) |
+//! | 33 | 1,613,797 | 91.7 ms (17.6 M/s) | 152 ms (10.6 M/s) | 98.2 ms (16.4 M/s) | 152 ms | 93.7 ms (17.2 M/s) |
 //!
 //! The software rasterizer runs the kernel as 8-wide SIMD lanes on the same two cores, so
-//! evaluation alone is about as fast as the rayon CPU path; `update` (refinement to level 3,
-//! end-cap stencils, copies) adds about 7 ms. One gather loop serves every patch kind (the
-//! curves are chosen per kind, the Gregory face points scaled by their rational weights): a
-//! first kernel with one gather per kind, whose divergent lanes ran every branch, evaluated
-//! 0.5–1 M samples/s on lavapipe.
+//! evaluation alone is about as fast as the rayon CPU path; `update` (gathers and refinement
+//! of the sparse levels, end-cap stencils, copies) adds 3–5 ms. One gather loop serves every
+//! patch kind (the curves are chosen per kind, the Gregory face points scaled by their
+//! rational weights): a first kernel with one gather per kind, whose divergent lanes ran
+//! every branch, evaluated 0.5–1 M samples/s on lavapipe.
 
 use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
