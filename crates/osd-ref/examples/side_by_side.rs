@@ -3,8 +3,14 @@
 //!
 //! ```text
 //! cargo run --release -p osd-ref --example side_by_side -- [MESH.obj] [LEVELS] [RUNS]
-//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf
+//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf [--lean]
 //! ```
+//!
+//! Two tables, like against like: "full", where both build the last level's full topology
+//! (OpenSubdiv `fullTopologyInLastLevel = true`, subsurf `Refiner::new`), and "lean", where
+//! both build only what interpolation and output need there (OpenSubdiv's default
+//! `fullTopologyInLastLevel = false`, subsurf `RefineOptions::lean`). `--full` or `--lean`
+//! prints one of them only.
 //!
 //! (a) topology + positions: OpenSubdiv `TopologyRefinerFactory::Create` + `RefineUniform` +
 //!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`.
@@ -24,7 +30,7 @@ use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use std::time::Instant;
-use subsurf::{Refiner, Topology};
+use subsurf::{Mesh, RefineOptions, Refiner, Topology};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
@@ -100,10 +106,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let osd_mesh = OsdMesh::from(&mesh);
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
 
+    let modes: Vec<bool> = if args.iter().any(|a| a == "--lean") {
+        vec![true]
+    } else if args.iter().any(|a| a == "--full") {
+        vec![false]
+    } else {
+        vec![false, true]
+    };
     if let Some(side) = memory {
         let level = levels[0];
+        let lean = modes[0];
         if side == "osd" {
-            let r = OsdRefiner::new(&osd_mesh, level)?;
+            let r = OsdRefiner::with_last_level(&osd_mesh, level, !lean)?;
             let p = r.interpolate(&mesh.positions)?;
             println!(
                 "OpenSubdiv level {level}: {} vertices, peak RSS {:.1} MiB",
@@ -111,7 +125,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 peak_rss_mib()
             );
         } else {
-            let r = one.install(|| Refiner::new(Topology::new(&mesh).unwrap(), level))?;
+            let r = one.install(|| refiner(&mesh, level, lean))?;
             let p = one.install(|| r.refine_positions(&mesh.positions));
             println!(
                 "subsurf level {level}: {} vertices, peak RSS {:.1} MiB",
@@ -123,18 +137,52 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
 
     println!(
-        "{path}: {} faces; medians of {runs} alternating runs; subsurf on 1 thread unless noted\n",
+        "{path}: {} faces; medians of {runs} alternating runs; subsurf on 1 thread unless noted",
         mesh.num_faces()
+    );
+    for lean in modes {
+        table(&mesh, &osd_mesh, &levels, runs, lean, &one)?;
+    }
+    Ok(())
+}
+
+/// subsurf's refiner of `mesh` to `level`, with a lean or a full last level.
+fn refiner(mesh: &Mesh, level: usize, lean: bool) -> subsurf::Result<Refiner> {
+    let options = if lean {
+        RefineOptions::lean()
+    } else {
+        RefineOptions::default()
+    };
+    Refiner::with_options(Topology::new(mesh)?, level, options)
+}
+
+/// One table: every level, (a) and (b), with a full or a lean last level on both sides.
+fn table(
+    mesh: &Mesh,
+    osd_mesh: &OsdMesh,
+    levels: &[usize],
+    runs: usize,
+    lean: bool,
+    one: &rayon::ThreadPool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "\n{} last level ({})\n",
+        if lean { "Lean" } else { "Full" },
+        if lean {
+            "OpenSubdiv fullTopologyInLastLevel = false, subsurf RefineOptions::lean()"
+        } else {
+            "OpenSubdiv fullTopologyInLastLevel = true, subsurf Refiner::new"
+        }
     );
     println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |",
         rayon::current_num_threads(), rayon::current_num_threads());
     println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for &level in &levels {
+    for &level in levels {
         let (mut oa, mut sa, mut pa) = (Vec::new(), Vec::new(), Vec::new());
         let mut nverts = 0;
         for _ in 0..runs {
             let (t, p) = ms(|| {
-                let r = OsdRefiner::new(&osd_mesh, level).unwrap();
+                let r = OsdRefiner::with_last_level(osd_mesh, level, !lean).unwrap();
                 r.interpolate(&mesh.positions).unwrap()
             });
             oa.push(t);
@@ -142,20 +190,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             drop(p);
             let (t, _) = one.install(|| {
                 ms(|| {
-                    let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                    let r = refiner(mesh, level, lean).unwrap();
                     r.refine_positions(&mesh.positions)
                 })
             });
             sa.push(t);
             let (t, _) = wall(|| {
-                let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                let r = refiner(mesh, level, lean).unwrap();
                 r.refine_positions(&mesh.positions)
             });
             pa.push(t);
         }
-        let osd = OsdRefiner::new(&osd_mesh, level)?;
+        let osd = OsdRefiner::with_last_level(osd_mesh, level, !lean)?;
         let osd_st = OsdStencils::new(&osd)?;
-        let ours = Refiner::new(Topology::new(&mesh)?, level)?;
+        let ours = refiner(mesh, level, lean)?;
         let table = ours.stencil_table();
         let (mut ob, mut sb, mut pb, mut os, mut ss) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());

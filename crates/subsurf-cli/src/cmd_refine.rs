@@ -3,7 +3,7 @@
 use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::{FVarLinearInterpolation, FaceVarying, Refiner, Topology};
+use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
@@ -62,7 +62,11 @@ impl From<UvInterp> for FVarLinearInterpolation {
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     let mesh = a.scheme.read(&a.input)?;
     let topo = Topology::new(&mesh)?;
-    let refiner = Refiner::new(topo, a.level)?;
+    // The last level's full topology is only read by the limit and face-varying refinement.
+    let options = RefineOptions {
+        full_topology_in_last_level: a.limit || mesh.uvs.is_some(),
+    };
+    let refiner = Refiner::with_options(topo, a.level, options)?;
     let mut positions = match a.backend {
         Backend::Cpu => refiner.refine_positions(&mesh.positions),
         Backend::Gpu => {

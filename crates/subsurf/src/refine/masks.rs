@@ -4,6 +4,8 @@
 //! face's vertices), so each row refers to parent vertices only and one sparse table maps a
 //! level's vertex data to the next level's.
 
+use super::last_level::ChildSharpness;
+use super::level::child_end_at_vertex;
 use super::par;
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::Scheme;
@@ -69,26 +71,33 @@ impl Scratch {
     /// The vertex-point mask of parent vertex `v` (edges in ring order), from the sharpness and
     /// rules of the parent level `p` and the child level `c`.
     pub(crate) fn vertex_mask_at(&mut self, p: &Topology, c: &Topology, v: usize) -> &VertexMask {
+        self.vertex_mask_with(p, ChildSharpness::of_child(p, c), v)
+    }
+
+    /// [`Scratch::vertex_mask_at`] with the child's sharpness given as [`ChildSharpness`].
+    pub(crate) fn vertex_mask_with(
+        &mut self,
+        p: &Topology,
+        c: ChildSharpness<'_>,
+        v: usize,
+    ) -> &VertexMask {
+        let pe = p.vertex_edges(v);
         self.pe.clear();
-        self.pe.extend(
-            p.vertex_edges(v)
-                .iter()
-                .map(|&e| p.edge_sharpness[e as usize]),
-        );
+        self.pe
+            .extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
         self.ce.clear();
         self.ce.extend(
-            c.vertex_edges(v)
-                .iter()
-                .map(|&e| c.edge_sharpness[e as usize]),
+            (0..pe.len())
+                .map(|i| c.edge[2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]),
         );
         let h = VertexNeighbourhood {
             num_faces: p.vertex_faces(v).len(),
             parent_sharpness: p.vert_sharpness[v],
-            child_sharpness: c.vert_sharpness[v],
+            child_sharpness: c.vertex[v],
             parent_edges: &self.pe,
             child_edges: &self.ce,
             parent_rule: p.vert_rule[v],
-            child_rule: c.vert_rule[v],
+            child_rule: c.rule[v],
         };
         vertex_mask(
             &h,
@@ -287,6 +296,11 @@ impl LevelStencils {
 
 /// The stencils mapping parent vertex data to child vertex data (see [`LevelStencils`]).
 pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    level_stencils_with(p, ChildSharpness::of_child(p, c))
+}
+
+/// [`level_stencils`] with only the child's sharpness and rules, not its topology.
+pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
     let opts = p.options;
     let bilinear = opts.scheme == Scheme::Bilinear;
@@ -333,7 +347,7 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
             wts.push((n as f32 - 2.0) / n as f32);
             return;
         }
-        let mask = s.vertex_mask_at(p, c, v);
+        let mask = s.vertex_mask_with(p, c, v);
         for (&f, &w) in faces.iter().zip(&mask.faces) {
             if w != 0.0 {
                 idx.push(fp(f));
@@ -372,7 +386,7 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
         ];
         let m = edge_mask(
             p.edge_sharpness[e],
-            c.vert_rule[nv + nf + e],
+            c.rule[nv + nf + e],
             faces.len(),
             tri,
             opts.triangle_subdivision,

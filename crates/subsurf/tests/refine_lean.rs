@@ -1,0 +1,73 @@
+//! A lean last level (`RefineOptions::lean`) against a full one on every catmark and bilinear
+//! regression shape: the same face lists, holes and vertex count, bit-identical stencils and
+//! positions, and the same limit positions and UVs (rebuilt on demand).
+
+use std::path::PathBuf;
+use subsurf::{FVarLinearInterpolation, RefineOptions, Refiner, Topology};
+
+fn shapes() -> Vec<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            let n = p.file_name().unwrap().to_string_lossy();
+            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
+        })
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn lean_last_level_matches_full_on_every_shape() {
+    let paths = shapes();
+    assert!(paths.len() >= 60, "regression shapes: {}", paths.len());
+    for path in paths {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mesh = subsurf::io::read_path(&path).unwrap();
+        let level = if mesh.face_indices.len() * 16 <= 20_000 {
+            3
+        } else {
+            2
+        };
+        for level in 1..=level {
+            let base = Topology::new(&mesh).unwrap();
+            let full = Refiner::new(base.clone(), level).unwrap();
+            let lean = Refiner::with_options(base, level, RefineOptions::lean()).unwrap();
+            let (f, l) = (full.last(), lean.last());
+            assert!(!lean.is_full(level) && full.is_full(level));
+            assert_eq!(l.num_vertices(), f.num_vertices(), "{name} L{level}");
+            assert_eq!(l.face_offsets, f.face_offsets, "{name} L{level}");
+            assert_eq!(l.face_verts, f.face_verts, "{name} L{level}");
+            assert_eq!(l.face_is_hole, f.face_is_hole, "{name} L{level}");
+            assert!(l.edge_verts.is_empty() && l.vert_edges.is_empty());
+            // Every level's stencils, the last one built from the parent alone, bit for bit.
+            assert_eq!(lean.stencils, full.stencils, "{name} L{level}: stencils");
+            let pf = full.refine_positions(&mesh.positions);
+            let pl = lean.refine_positions(&mesh.positions);
+            assert_eq!(pl, pf, "{name} L{level}: positions");
+            assert_eq!(lean.limit(&pl), full.limit(&pf), "{name} L{level}: limit");
+            let mf = full.to_mesh(level, pf);
+            let ml = lean.to_mesh(level, pl);
+            assert_eq!(ml.face_indices, mf.face_indices, "{name} L{level}: mesh");
+            if let Some(uv) = &mesh.uvs {
+                let mode = FVarLinearInterpolation::CornersPlus1;
+                let uf = full.refine_uvs(uv, mode).unwrap().pop().unwrap();
+                let ul = lean.refine_uvs(uv, mode).unwrap().pop().unwrap();
+                assert_eq!(ul.indices, uf.indices, "{name} L{level}: UV indices");
+                assert_eq!(ul.values, uf.values, "{name} L{level}: UVs");
+            }
+        }
+    }
+}
+
+#[test]
+fn lean_refiner_of_level_zero_is_the_base() {
+    let mesh = subsurf::shapes::cube();
+    let base = Topology::new(&mesh).unwrap();
+    let r = Refiner::with_options(base.clone(), 0, RefineOptions::lean()).unwrap();
+    assert!(r.is_full(0));
+    assert_eq!(r.last().edge_verts, base.edge_verts);
+    assert_eq!(r.refine_positions(&mesh.positions), mesh.positions);
+}
