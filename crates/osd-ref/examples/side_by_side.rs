@@ -13,7 +13,10 @@
 //! prints one of them only.
 //!
 //! (a) topology + positions: OpenSubdiv `TopologyRefinerFactory::Create` + `RefineUniform` +
-//!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`.
+//!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`
+//!     (which also builds and keeps every step's stencil tables, for (b)), and versus
+//!     `refine::refine_once` ("once": the same rows evaluated as they are formed, no table
+//!     kept — how `PrimvarRefiner` interpolates).
 //! (b) positions only, tables prebuilt: `PrimvarRefiner::Interpolate` (and `StencilTable::
 //!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
 //!
@@ -30,6 +33,7 @@ use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use std::time::Instant;
+use subsurf::refine::refine_once;
 use subsurf::{Mesh, RefineOptions, Refiner, Topology};
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -174,11 +178,28 @@ fn table(
             "OpenSubdiv fullTopologyInLastLevel = true, subsurf Refiner::new"
         }
     );
-    println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |",
-        rayon::current_num_threads(), rayon::current_num_threads());
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let n = rayon::current_num_threads();
+    println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {n}T (ms) | ratio | subsurf once 1T (ms) | ratio | subsurf once {n}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {n}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |");
+    println!(
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    let options = if lean {
+        RefineOptions::lean()
+    } else {
+        RefineOptions::default()
+    };
     for &level in levels {
+        let once = || {
+            refine_once(
+                Topology::new(mesh).unwrap(),
+                level,
+                &mesh.positions,
+                options,
+            )
+            .unwrap()
+        };
         let (mut oa, mut sa, mut pa) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut sc, mut pc) = (Vec::new(), Vec::new());
         let mut nverts = 0;
         for _ in 0..runs {
             let (t, p) = ms(|| {
@@ -200,7 +221,10 @@ fn table(
                 r.refine_positions(&mesh.positions)
             });
             pa.push(t);
+            sc.push(one.install(|| ms(once).0));
+            pc.push(wall(once).0);
         }
+        let (sc, pc) = (median(sc), median(pc));
         let osd = OsdRefiner::with_last_level(osd_mesh, level, !lean)?;
         let osd_st = OsdStencils::new(&osd)?;
         let ours = refiner(mesh, level, lean)?;
@@ -226,8 +250,8 @@ fn table(
             median(ss),
         );
         println!(
-            "| {level} | {nverts} | {oa:.1} | {sa:.1} | {:.2}x | {pa:.1} | {:.2}x | {ob:.2} | {sb:.2} | {:.2}x | {pb:.2} | {os:.2} | {ss:.2} |",
-            oa / sa, oa / pa, ob / sb
+            "| {level} | {nverts} | {oa:.1} | {sa:.1} | {:.2}x | {pa:.1} | {:.2}x | {sc:.1} | {:.2}x | {pc:.1} | {:.2}x | {ob:.2} | {sb:.2} | {:.2}x | {pb:.2} | {os:.2} | {ss:.2} |",
+            oa / sa, oa / pa, oa / sc, oa / pc, ob / sb
         );
     }
     Ok(())

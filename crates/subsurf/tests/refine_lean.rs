@@ -1,8 +1,10 @@
 //! A lean last level (`RefineOptions::lean`) against a full one on every catmark and bilinear
 //! regression shape: the same face lists, holes and vertex count, bit-identical stencils and
-//! positions, and the same limit positions and UVs (rebuilt on demand).
+//! positions, and the same limit positions and UVs (rebuilt on demand). One-shot refinement
+//! (`refine_once`, no tables kept) against the `Refiner`, bit for bit.
 
 use std::path::PathBuf;
+use subsurf::refine::refine_once;
 use subsurf::{FVarLinearInterpolation, RefineOptions, Refiner, Topology};
 
 fn shapes() -> Vec<PathBuf> {
@@ -70,4 +72,42 @@ fn lean_refiner_of_level_zero_is_the_base() {
     assert!(r.is_full(0));
     assert_eq!(r.last().edge_verts, base.edge_verts);
     assert_eq!(r.refine_positions(&mesh.positions), mesh.positions);
+}
+
+#[test]
+fn refine_once_equals_the_refiner_bit_for_bit() {
+    for path in shapes() {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mesh = subsurf::io::read_path(&path).unwrap();
+        let level = if mesh.face_indices.len() * 16 <= 20_000 {
+            3
+        } else {
+            2
+        };
+        for options in [RefineOptions::default(), RefineOptions::lean()] {
+            let base = Topology::new(&mesh).unwrap();
+            let r = Refiner::with_options(base.clone(), level, options).unwrap();
+            let (t, p) = refine_once(base, level, &mesh.positions, options).unwrap();
+            let expected = r.refine_positions(&mesh.positions);
+            // Bit patterns, so that -0.0 and 0.0 (or NaN) cannot pass for each other.
+            let bits = |v: &[[f32; 3]]| -> Vec<[u32; 3]> {
+                v.iter().map(|q| q.map(f32::to_bits)).collect()
+            };
+            assert_eq!(bits(&p), bits(&expected), "{name} {options:?}");
+            let last = r.last();
+            assert_eq!(t.face_verts, last.face_verts, "{name} {options:?}");
+            assert_eq!(t.face_is_hole, last.face_is_hole, "{name} {options:?}");
+            assert_eq!(t.edge_verts, last.edge_verts, "{name} {options:?}");
+            assert_eq!(t.vert_rule, last.vert_rule, "{name} {options:?}");
+            assert_eq!(t.num_vertices(), last.num_vertices(), "{name} {options:?}");
+        }
+    }
+}
+
+#[test]
+fn refine_once_refuses_data_of_the_wrong_length() {
+    let mesh = subsurf::shapes::cube();
+    let base = Topology::new(&mesh).unwrap();
+    let short = &mesh.positions[..mesh.positions.len() - 1];
+    assert!(refine_once(base, 2, short, RefineOptions::lean()).is_err());
 }

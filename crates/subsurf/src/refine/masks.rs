@@ -301,34 +301,90 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
 
 /// [`level_stencils`] with only the child's sharpness and rules, not its topology.
 pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
+    let rows = LevelRows::new(p, c);
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    let opts = p.options;
-    let bilinear = opts.scheme == Scheme::Bilinear;
-    let face = build_direct(
-        nf,
-        nv,
-        |f| Some(p.face_size(f)),
-        |f, idx, wts, _| {
-            let fv = p.face_vertices(f);
-            let w = 1.0 / fv.len() as f32;
-            idx.extend_from_slice(fv);
-            wts.extend(std::iter::repeat_n(w, fv.len()));
-        },
-    );
     let inputs = nv + nf;
-    let fp = |f: u32| nv as u32 + f;
-    let smooth_len = |v: usize| {
+    LevelStencils {
+        num_parent_vertices: nv,
+        face: build_direct(
+            nf,
+            nv,
+            |f| Some(p.face_size(f)),
+            |f, i, w, _| rows.face(f, i, w),
+        ),
+        vertex: build_direct(
+            nv,
+            inputs,
+            |v| rows.vertex_len(v),
+            |v, i, w, s| rows.vertex(v, i, w, s),
+        ),
+        edge: build_direct(
+            ne,
+            inputs,
+            |e| rows.edge_len(e),
+            |e, i, w, _| rows.edge(e, i, w),
+        ),
+    }
+}
+
+/// The rows of one refinement step's stencils (see [`LevelStencils`]), formed one at a time
+/// from the parent's topology and the child's sharpness: what [`level_stencils_with`] stores,
+/// and what [`super::interpolate`] evaluates as it forms them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LevelRows<'a> {
+    p: &'a Topology,
+    c: ChildSharpness<'a>,
+    bilinear: bool,
+}
+
+impl<'a> LevelRows<'a> {
+    pub(crate) fn new(p: &'a Topology, c: ChildSharpness<'a>) -> Self {
+        LevelRows {
+            p,
+            c,
+            bilinear: p.options.scheme == Scheme::Bilinear,
+        }
+    }
+
+    /// The parent level.
+    pub(crate) fn parent(&self) -> &'a Topology {
+        self.p
+    }
+
+    /// Input index of the face point of parent face `f`.
+    #[inline]
+    fn fp(&self, f: u32) -> u32 {
+        self.p.num_vertices() as u32 + f
+    }
+
+    /// Face point of face `f`: the average of its vertices.
+    #[inline]
+    pub(crate) fn face(&self, f: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+        let fv = self.p.face_vertices(f);
+        let w = 1.0 / fv.len() as f32;
+        idx.extend_from_slice(fv);
+        wts.extend(std::iter::repeat_n(w, fv.len()));
+    }
+
+    /// Length of the row of vertex `v` where it is known without forming it.
+    #[inline]
+    pub(crate) fn vertex_len(&self, v: usize) -> Option<usize> {
+        let p = self.p;
         let (pr, nfc, nec) = (p.vert_rule[v], p.vertex_faces(v).len(), p.valence(v));
-        if bilinear {
+        if self.bilinear {
             Some(1)
         } else if (pr == rule::SMOOTH || pr == rule::DART) && nfc == nec {
             Some(2 * nfc + 1)
         } else {
             None
         }
-    };
-    let vertex = build_direct(nv, inputs, smooth_len, |v, idx, wts, s| {
-        if bilinear {
+    }
+
+    /// The row of the child of vertex `v`.
+    #[inline]
+    pub(crate) fn vertex(&self, v: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>, s: &mut Scratch) {
+        let p = self.p;
+        if self.bilinear {
             idx.push(v as u32);
             wts.push(1.0);
             return;
@@ -340,17 +396,17 @@ pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelS
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
             let n = faces.len();
             let w = 1.0 / (n * n) as f32;
-            idx.extend(faces.iter().map(|&f| fp(f)));
+            idx.extend(faces.iter().map(|&f| self.fp(f)));
             idx.extend(pe.iter().map(|&e| p.other_vertex(e as usize, v as u32)));
             wts.extend(std::iter::repeat_n(w, 2 * n));
             idx.push(v as u32);
             wts.push((n as f32 - 2.0) / n as f32);
             return;
         }
-        let mask = s.vertex_mask_with(p, c, v);
+        let mask = s.vertex_mask_with(p, self.c, v);
         for (&f, &w) in faces.iter().zip(&mask.faces) {
             if w != 0.0 {
-                idx.push(fp(f));
+                idx.push(self.fp(f));
                 wts.push(w);
             }
         }
@@ -362,19 +418,26 @@ pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelS
         }
         idx.push(v as u32);
         wts.push(mask.vertex);
-    });
-    let edge_len = |e: usize| {
-        if bilinear {
+    }
+
+    /// Length of the row of edge `e` where it is known without forming it.
+    #[inline]
+    pub(crate) fn edge_len(&self, e: usize) -> Option<usize> {
+        if self.bilinear {
             Some(2)
-        } else if p.edge_sharpness[e] <= 0.0 {
-            Some(p.edge_faces(e).len() + 2)
+        } else if self.p.edge_sharpness[e] <= 0.0 {
+            Some(self.p.edge_faces(e).len() + 2)
         } else {
             None
         }
-    };
-    let edge = build_direct(ne, inputs, edge_len, |e, idx, wts, _| {
+    }
+
+    /// The row of the edge point of edge `e`.
+    #[inline]
+    pub(crate) fn edge(&self, e: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+        let p = self.p;
         let ev = p.edge_verts[e];
-        if bilinear {
+        if self.bilinear {
             idx.extend_from_slice(&ev);
             wts.extend_from_slice(&[0.5, 0.5]);
             return;
@@ -384,27 +447,22 @@ pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelS
             faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
             faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
         ];
+        let (nv, nf) = (p.num_vertices(), p.num_faces());
         let m = edge_mask(
             p.edge_sharpness[e],
-            c.rule[nv + nf + e],
+            self.c.rule[nv + nf + e],
             faces.len(),
             tri,
-            opts.triangle_subdivision,
+            p.options.triangle_subdivision,
         );
         if m.face != 0.0 {
             for &f in faces {
-                idx.push(fp(f));
+                idx.push(self.fp(f));
                 wts.push(m.face);
             }
         }
         idx.extend_from_slice(&ev);
         wts.extend_from_slice(&[m.vertex, m.vertex]);
-    });
-    LevelStencils {
-        num_parent_vertices: nv,
-        face,
-        vertex,
-        edge,
     }
 }
 

@@ -17,6 +17,7 @@
 mod fvar_propagate;
 mod fvar_stencils;
 mod fvar_topology;
+mod interpolate;
 mod last_level;
 mod level;
 mod masks;
@@ -26,6 +27,7 @@ mod uv;
 
 pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
 pub use fvar_topology::FVarTopology;
+pub use interpolate::refine_once;
 use last_level::{refine_face_lists, ChildSharpnessBuf};
 pub use level::refine_topology;
 use masks::level_stencils_with;
@@ -114,6 +116,33 @@ fn human(bytes: u64) -> String {
     format!("{v:.1} {}", units[u])
 }
 
+/// Refuses the Loop scheme, and up front, with the estimated size, a level whose tables would
+/// not fit in memory or overflow 32-bit indices.
+fn check_size(base: &Topology, level: usize) -> Result<()> {
+    if base.options.scheme == Scheme::Loop {
+        return Err(Error::Unsupported(
+            "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
+        ));
+    }
+    let bytes = estimate_bytes(base, level);
+    let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
+    let limit = available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX);
+    if bytes > limit || corners > (u32::MAX as u128) / 2 {
+        return Err(MeshError::TooLarge {
+            what: format!("refining {} faces to level {level}", base.num_faces()),
+            bytes,
+            human: human(bytes),
+            limit_human: if corners > (u32::MAX as u128) / 2 {
+                "2^31 face corners (32-bit indices)".into()
+            } else {
+                format!("{} (80% of available memory)", human(limit))
+            },
+        }
+        .into());
+    }
+    Ok(())
+}
+
 impl Refiner {
     /// Refines `base` uniformly `level` times, every level with its full topology. Refuses up
     /// front, with the estimated size, a level whose tables would not fit in memory or
@@ -124,27 +153,7 @@ impl Refiner {
 
     /// As [`Refiner::new`], under `options`.
     pub fn with_options(base: Topology, level: usize, options: RefineOptions) -> Result<Refiner> {
-        if base.options.scheme == Scheme::Loop {
-            return Err(Error::Unsupported(
-                "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
-            ));
-        }
-        let bytes = estimate_bytes(&base, level);
-        let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
-        let limit = available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX);
-        if bytes > limit || corners > (u32::MAX as u128) / 2 {
-            return Err(MeshError::TooLarge {
-                what: format!("refining {} faces to level {level}", base.num_faces()),
-                bytes,
-                human: human(bytes),
-                limit_human: if corners > (u32::MAX as u128) / 2 {
-                    "2^31 face corners (32-bit indices)".into()
-                } else {
-                    format!("{} (80% of available memory)", human(limit))
-                },
-            }
-            .into());
-        }
+        check_size(&base, level)?;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
         for k in 0..level {
