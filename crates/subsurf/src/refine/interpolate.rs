@@ -70,53 +70,46 @@ pub(crate) fn apply_rows<const N: usize>(
     let (vd, rest) = dst.split_at_mut(nv);
     let (fd, ed) = rest.split_at_mut(nf);
     fd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-        let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
         for (i, o) in out.iter_mut().enumerate() {
-            idx.clear();
-            wts.clear();
-            rows.face(c * CHUNK + i, &mut idx, &mut wts);
-            *o = sum(&idx, &wts, src, &[], usize::MAX);
+            let mut acc = [0.0f32; N];
+            rows.face(c * CHUNK + i, &mut |k, w| {
+                add(&mut acc, w, &src[k as usize])
+            });
+            *o = acc;
         }
     });
     let fd: &[[f32; N]] = fd;
+    // Input `k` of a vertex or edge row: a parent vertex below `nv`, else a face point.
+    let x = |k: u32| {
+        let k = k as usize;
+        if k < nv {
+            &src[k]
+        } else {
+            &fd[k - nv]
+        }
+    };
     vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
         let mut s = Scratch::default();
-        let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
         for (i, o) in out.iter_mut().enumerate() {
-            idx.clear();
-            wts.clear();
-            rows.vertex(c * CHUNK + i, &mut idx, &mut wts, &mut s);
-            *o = sum(&idx, &wts, src, fd, nv);
+            let mut acc = [0.0f32; N];
+            rows.vertex(c * CHUNK + i, &mut s, &mut |k, w| add(&mut acc, w, x(k)));
+            *o = acc;
         }
     });
     ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-        let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
         for (i, o) in out.iter_mut().enumerate() {
-            idx.clear();
-            wts.clear();
-            rows.edge(c * CHUNK + i, &mut idx, &mut wts);
-            *o = sum(&idx, &wts, src, fd, nv);
+            let mut acc = [0.0f32; N];
+            rows.edge(c * CHUNK + i, &mut |k, w| add(&mut acc, w, x(k)));
+            *o = acc;
         }
     });
 }
 
-/// `Σ w · x[k]` in `f32`, in entry order, where `x[k]` is `src[k]` below `p` and face point
-/// `fd[k - p]` from `p` on (as [`super::LevelStencils::apply`] reads its inputs).
+/// `acc += w · x`, component by component in `f32`, in entry order (as
+/// [`super::LevelStencils::apply`] accumulates).
 #[inline(always)]
-fn sum<const N: usize>(
-    idx: &[u32],
-    wts: &[f32],
-    src: &[[f32; N]],
-    fd: &[[f32; N]],
-    p: usize,
-) -> [f32; N] {
-    let mut acc = [0.0f32; N];
-    for (&k, &w) in idx.iter().zip(wts) {
-        let k = k as usize;
-        let v = if k < p { &src[k] } else { &fd[k - p] };
-        for c in 0..N {
-            acc[c] += w * v[c];
-        }
+fn add<const N: usize>(acc: &mut [f32; N], w: f32, x: &[f32; N]) {
+    for c in 0..N {
+        acc[c] += w * x[c];
     }
-    acc
 }

@@ -236,30 +236,15 @@ impl LevelStencils {
         }
         let fd: &[[f32; N]] = fd;
         let p = self.num_parent_vertices;
+        let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
         let run = |t: &StencilTable, out: &mut [[f32; N]]| {
-            let eval = |i: usize| {
-                let (s, e) = (t.offsets[i] as usize, t.offsets[i + 1] as usize);
-                let mut acc = [0.0f32; N];
-                for (&k, &w) in t.indices[s..e].iter().zip(&t.weights[s..e]) {
-                    let k = k as usize;
-                    let v = if k < p { &src[k] } else { &fd[k - p] };
-                    for c in 0..N {
-                        acc[c] += w * v[c];
-                    }
-                }
-                acc
-            };
             if parallel {
                 const CHUNK: usize = 4096;
-                out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
-                    for (i, x) in o.iter_mut().enumerate() {
-                        *x = eval(c * CHUNK + i);
-                    }
-                });
+                out.par_chunks_mut(CHUNK)
+                    .enumerate()
+                    .for_each(|(c, o)| t.eval_rows(c * CHUNK, o, x));
             } else {
-                for (i, x) in out.iter_mut().enumerate() {
-                    *x = eval(i);
-                }
+                t.eval_rows(0, out, x);
             }
         };
         run(&self.vertex, vd);
@@ -310,26 +295,35 @@ pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelS
             nf,
             nv,
             |f| Some(p.face_size(f)),
-            |f, i, w, _| rows.face(f, i, w),
+            |f, i, w, _| rows.face(f, &mut push(i, w)),
         ),
         vertex: build_direct(
             nv,
             inputs,
             |v| rows.vertex_len(v),
-            |v, i, w, s| rows.vertex(v, i, w, s),
+            |v, i, w, s| rows.vertex(v, s, &mut push(i, w)),
         ),
         edge: build_direct(
             ne,
             inputs,
             |e| rows.edge_len(e),
-            |e, i, w, _| rows.edge(e, i, w),
+            |e, i, w, _| rows.edge(e, &mut push(i, w)),
         ),
+    }
+}
+
+/// A row sink appending entries to `idx` / `wts`.
+fn push<'b>(idx: &'b mut Vec<u32>, wts: &'b mut Vec<f32>) -> impl FnMut(u32, f32) + 'b {
+    move |i, w| {
+        idx.push(i);
+        wts.push(w);
     }
 }
 
 /// The rows of one refinement step's stencils (see [`LevelStencils`]), formed one at a time
 /// from the parent's topology and the child's sharpness: what [`level_stencils_with`] stores,
-/// and what [`super::interpolate`] evaluates as it forms them.
+/// and what [`super::refine_once`] evaluates as it forms them. Each row is handed entry by
+/// entry, in table order, to a sink `add(input, weight)`.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct LevelRows<'a> {
     p: &'a Topology,
@@ -359,11 +353,12 @@ impl<'a> LevelRows<'a> {
 
     /// Face point of face `f`: the average of its vertices.
     #[inline]
-    pub(crate) fn face(&self, f: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+    pub(crate) fn face(&self, f: usize, add: &mut impl FnMut(u32, f32)) {
         let fv = self.p.face_vertices(f);
         let w = 1.0 / fv.len() as f32;
-        idx.extend_from_slice(fv);
-        wts.extend(std::iter::repeat_n(w, fv.len()));
+        for &v in fv {
+            add(v, w);
+        }
     }
 
     /// Length of the row of vertex `v` where it is known without forming it.
@@ -382,11 +377,10 @@ impl<'a> LevelRows<'a> {
 
     /// The row of the child of vertex `v`.
     #[inline]
-    pub(crate) fn vertex(&self, v: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>, s: &mut Scratch) {
+    pub(crate) fn vertex(&self, v: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
         let p = self.p;
         if self.bilinear {
-            idx.push(v as u32);
-            wts.push(1.0);
+            add(v as u32, 1.0);
             return;
         }
         let pe = p.vertex_edges(v);
@@ -396,28 +390,27 @@ impl<'a> LevelRows<'a> {
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
             let n = faces.len();
             let w = 1.0 / (n * n) as f32;
-            idx.extend(faces.iter().map(|&f| self.fp(f)));
-            idx.extend(pe.iter().map(|&e| p.other_vertex(e as usize, v as u32)));
-            wts.extend(std::iter::repeat_n(w, 2 * n));
-            idx.push(v as u32);
-            wts.push((n as f32 - 2.0) / n as f32);
+            for &f in faces {
+                add(self.fp(f), w);
+            }
+            for &e in pe {
+                add(p.other_vertex(e as usize, v as u32), w);
+            }
+            add(v as u32, (n as f32 - 2.0) / n as f32);
             return;
         }
         let mask = s.vertex_mask_with(p, self.c, v);
         for (&f, &w) in faces.iter().zip(&mask.faces) {
             if w != 0.0 {
-                idx.push(self.fp(f));
-                wts.push(w);
+                add(self.fp(f), w);
             }
         }
         for (&e, &w) in pe.iter().zip(&mask.edges) {
             if w != 0.0 {
-                idx.push(p.other_vertex(e as usize, v as u32));
-                wts.push(w);
+                add(p.other_vertex(e as usize, v as u32), w);
             }
         }
-        idx.push(v as u32);
-        wts.push(mask.vertex);
+        add(v as u32, mask.vertex);
     }
 
     /// Length of the row of edge `e` where it is known without forming it.
@@ -434,12 +427,12 @@ impl<'a> LevelRows<'a> {
 
     /// The row of the edge point of edge `e`.
     #[inline]
-    pub(crate) fn edge(&self, e: usize, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+    pub(crate) fn edge(&self, e: usize, add: &mut impl FnMut(u32, f32)) {
         let p = self.p;
         let ev = p.edge_verts[e];
         if self.bilinear {
-            idx.extend_from_slice(&ev);
-            wts.extend_from_slice(&[0.5, 0.5]);
+            add(ev[0], 0.5);
+            add(ev[1], 0.5);
             return;
         }
         let faces = p.edge_faces(e);
@@ -457,12 +450,11 @@ impl<'a> LevelRows<'a> {
         );
         if m.face != 0.0 {
             for &f in faces {
-                idx.push(self.fp(f));
-                wts.push(m.face);
+                add(self.fp(f), m.face);
             }
         }
-        idx.extend_from_slice(&ev);
-        wts.extend_from_slice(&[m.vertex, m.vertex]);
+        add(ev[0], m.vertex);
+        add(ev[1], m.vertex);
     }
 }
 
