@@ -111,14 +111,10 @@ impl Scratch {
 
 /// Builds a table whose rows are written directly (no merging of repeated inputs).
 ///
-/// Rows are sized first (`len(r)` where the size is known without building the row, else the
-/// row is built once to count it), then written in parallel into disjoint slices of tables
-/// allocated once at their exact size.
-pub(crate) fn build_direct<L, F>(rows: usize, num_inputs: usize, len: L, row: F) -> StencilTable
-where
-    L: Fn(usize) -> Option<usize> + Sync,
-    F: Fn(usize, &mut Vec<u32>, &mut Vec<f32>, &mut Scratch) + Sync,
-{
+/// Rows are sized first (`rows.len(r)` where the size is known without forming the row, else
+/// the row is formed once to count it), then written in parallel, entry by entry, into
+/// disjoint slices of tables allocated once at their exact size.
+fn build_direct(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable {
     let b = par::bounds(rows);
     let mut offsets = vec![0u32; rows + 1];
     par::ranges(&b)
@@ -126,16 +122,14 @@ where
         .zip(par::split(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
             let mut scratch = Scratch::default();
-            let (mut idx, mut wts) = (Vec::new(), Vec::new());
             let base = r.start;
             for i in r {
-                out[i - base] = match len(i) {
+                out[i - base] = match kind.len(i) {
                     Some(n) => n as u32,
                     None => {
-                        idx.clear();
-                        wts.clear();
-                        row(i, &mut idx, &mut wts, &mut scratch);
-                        idx.len() as u32
+                        let mut n = 0u32;
+                        kind.row(i, &mut scratch, &mut |_, _| n += 1);
+                        n
                     }
                 };
             }
@@ -155,17 +149,13 @@ where
         .zip(par::split(&mut weights, &b, start))
         .for_each(|((r, io), wo)| {
             let mut scratch = Scratch::default();
-            let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
-            let base = start(r.start);
+            let mut k = 0;
             for i in r {
-                idx.clear();
-                wts.clear();
-                row(i, &mut idx, &mut wts, &mut scratch);
-                let s = start(i) - base;
-                for (k, (&x, &w)) in idx.iter().zip(&wts).enumerate() {
-                    io[s + k] = x;
-                    wo[s + k] = w;
-                }
+                kind.row(i, &mut scratch, &mut |x, w| {
+                    io[k] = x;
+                    wo[k] = w;
+                    k += 1;
+                });
             }
         });
     StencilTable {
@@ -173,6 +163,34 @@ where
         indices,
         weights,
         num_inputs,
+    }
+}
+
+/// One of the three tables of a step, as rows to build.
+#[derive(Debug, Clone, Copy)]
+enum RowKind<'a> {
+    Face(LevelRows<'a>),
+    Vertex(LevelRows<'a>),
+    Edge(LevelRows<'a>),
+}
+
+impl RowKind<'_> {
+    #[inline]
+    fn len(&self, i: usize) -> Option<usize> {
+        match self {
+            RowKind::Face(r) => Some(r.parent().face_size(i)),
+            RowKind::Vertex(r) => r.vertex_len(i),
+            RowKind::Edge(r) => r.edge_len(i),
+        }
+    }
+
+    #[inline]
+    fn row(&self, i: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
+        match self {
+            RowKind::Face(r) => r.face(i, add),
+            RowKind::Vertex(r) => r.vertex(i, s, add),
+            RowKind::Edge(r) => r.edge(i, add),
+        }
     }
 }
 
@@ -291,32 +309,9 @@ pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelS
     let inputs = nv + nf;
     LevelStencils {
         num_parent_vertices: nv,
-        face: build_direct(
-            nf,
-            nv,
-            |f| Some(p.face_size(f)),
-            |f, i, w, _| rows.face(f, &mut push(i, w)),
-        ),
-        vertex: build_direct(
-            nv,
-            inputs,
-            |v| rows.vertex_len(v),
-            |v, i, w, s| rows.vertex(v, s, &mut push(i, w)),
-        ),
-        edge: build_direct(
-            ne,
-            inputs,
-            |e| rows.edge_len(e),
-            |e, i, w, _| rows.edge(e, &mut push(i, w)),
-        ),
-    }
-}
-
-/// A row sink appending entries to `idx` / `wts`.
-fn push<'b>(idx: &'b mut Vec<u32>, wts: &'b mut Vec<f32>) -> impl FnMut(u32, f32) + 'b {
-    move |i, w| {
-        idx.push(i);
-        wts.push(w);
+        face: build_direct(nf, nv, RowKind::Face(rows)),
+        vertex: build_direct(nv, inputs, RowKind::Vertex(rows)),
+        edge: build_direct(ne, inputs, RowKind::Edge(rows)),
     }
 }
 
