@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! cargo run --release -p osd-ref --example side_by_side -- [MESH.obj] [LEVELS] [RUNS]
-//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf [--lean]
+//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf|once [--lean]
 //! ```
 //!
 //! Two tables, like against like: "full", where both build the last level's full topology
@@ -125,6 +125,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let p = r.interpolate(&mesh.positions)?;
             println!(
                 "OpenSubdiv level {level}: {} vertices, peak RSS {:.1} MiB",
+                p.len(),
+                peak_rss_mib()
+            );
+        } else if side == "once" {
+            let options = if lean {
+                RefineOptions::lean()
+            } else {
+                RefineOptions::default()
+            };
+            let (_, p) = one
+                .install(|| refine_once(Topology::new(&mesh)?, level, &mesh.positions, options))?;
+            println!(
+                "subsurf refine_once level {level}: {} vertices, peak RSS {:.1} MiB",
                 p.len(),
                 peak_rss_mib()
             );
