@@ -21,7 +21,9 @@
 //!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
 //!
 //! subsurf runs single-threaded (a one-thread rayon pool) and on all cores. `--memory` runs one
-//! side only and prints the process's peak resident memory. `--cpu` times the single-threaded
+//! side once (subsurf single-threaded) in this fresh process and prints its time and the
+//! process's peak resident memory: run alternately from a shell, it times cold one-shot
+//! refinements, whose pages are all new, free of the allocator state one side leaves the other. `--cpu` times the single-threaded
 //! runs (OpenSubdiv and subsurf 1T) in CPU time of the running thread, so that time spent
 //! waiting for a core on a loaded machine is left out; multi-threaded runs stay wall-clock.
 
@@ -118,38 +120,48 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         vec![false, true]
     };
     if let Some(side) = memory {
+        // One refinement in a fresh process: every page it touches is new, as in a CLI run.
         let level = levels[0];
         let lean = modes[0];
-        if side == "osd" {
-            let r = OsdRefiner::with_last_level(&osd_mesh, level, !lean)?;
-            let p = r.interpolate(&mesh.positions)?;
-            println!(
-                "OpenSubdiv level {level}: {} vertices, peak RSS {:.1} MiB",
-                p.len(),
-                peak_rss_mib()
-            );
-        } else if side == "once" {
-            let options = if lean {
-                RefineOptions::lean()
-            } else {
-                RefineOptions::default()
-            };
-            let (_, p) = one
-                .install(|| refine_once(Topology::new(&mesh)?, level, &mesh.positions, options))?;
-            println!(
-                "subsurf refine_once level {level}: {} vertices, peak RSS {:.1} MiB",
-                p.len(),
-                peak_rss_mib()
-            );
+        let options = if lean {
+            RefineOptions::lean()
         } else {
-            let r = one.install(|| refiner(&mesh, level, lean))?;
-            let p = one.install(|| r.refine_positions(&mesh.positions));
-            println!(
-                "subsurf level {level}: {} vertices, peak RSS {:.1} MiB",
-                p.len(),
-                peak_rss_mib()
-            );
-        }
+            RefineOptions::default()
+        };
+        let (what, (t, n)) = match side.as_str() {
+            "osd" => (
+                "OpenSubdiv",
+                ms(|| {
+                    let r = OsdRefiner::with_last_level(&osd_mesh, level, !lean).unwrap();
+                    r.interpolate(&mesh.positions).unwrap().len()
+                }),
+            ),
+            "once" => (
+                "subsurf refine_once",
+                one.install(|| {
+                    ms(|| {
+                        let t = Topology::new(&mesh).unwrap();
+                        refine_once(t, level, &mesh.positions, options)
+                            .unwrap()
+                            .1
+                            .len()
+                    })
+                }),
+            ),
+            _ => (
+                "subsurf",
+                one.install(|| {
+                    ms(|| {
+                        let r = refiner(&mesh, level, lean).unwrap();
+                        r.refine_positions(&mesh.positions).len()
+                    })
+                }),
+            ),
+        };
+        println!(
+            "{what} level {level}: {n} vertices, {t:.2} ms, peak RSS {:.1} MiB",
+            peak_rss_mib()
+        );
         return Ok(());
     }
 

@@ -44,7 +44,11 @@ pub fn refine_once<const N: usize>(
         let mut dst = vec![[0.0f32; N]; cur.num_vertices() + cur.num_faces() + cur.num_edges()];
         let child = if k + 1 == level && !options.full_topology_in_last_level {
             let sharpness = ChildSharpnessBuf::new(&cur);
-            apply_rows(LevelRows::new(&cur, sharpness.view()), &values, &mut dst);
+            apply_rows(
+                LevelRows::new(&cur, sharpness.view(&cur)),
+                &values,
+                &mut dst,
+            );
             refine_face_lists(&cur)
         } else {
             let child = refine_topology(&cur);

@@ -5,52 +5,136 @@
 //! stencils of the last step need only the sharpness and rules of the children of the parent's
 //! vertices and edges ([`ChildSharpness`]). Both are derived here straight from the parent, so
 //! the child's edges, rings, tags and offsets into them are never built — about six sevenths
-//! of the bytes of a full level.
+//! of the bytes of a full level. Under the uniform crease method the child sharpness is not
+//! even stored: each value is the parent's, decremented, when a stencil row asks for it
+//! (Chaikin's rule averages over neighbours, so it is computed once and stored).
 
 use super::level::{
-    child_edge_sharpness, child_end_at_vertex, edge_point_tags, iota, vertex_child_tags,
+    child_edge_sharpness, child_end_at_vertex, edge_point_tags, iota, sharp_tag, vertex_child_tags,
 };
 use super::par;
+use crate::options::CreaseMethod;
 use crate::rules::crease;
-use crate::topology::tags::rule;
+use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
 use rayon::prelude::*;
 
 /// What the stencils of one step read about the child level: the sharpness of the children
 /// of the parent's vertices and edges, and the rule of every child vertex.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct ChildSharpness<'a> {
-    /// Two per parent edge: child edge `2e + end` of parent edge `e` touches its end `end`.
-    pub edge: &'a [f32],
-    /// One per parent vertex: the sharpness of its child.
-    pub vertex: &'a [f32],
-    /// One per child vertex, child numbering.
-    pub rule: &'a [u8],
+pub(crate) enum ChildSharpness<'a> {
+    /// Stored values.
+    Stored {
+        /// Two per parent edge: child edge `2e + end` of parent edge `e` touches its end `end`.
+        edge: &'a [f32],
+        /// One per parent vertex: the sharpness of its child.
+        vertex: &'a [f32],
+        /// One per child vertex, child numbering.
+        rule: &'a [u8],
+    },
+    /// Derived from the parent on demand, where sharpness decays uniformly (the uniform crease
+    /// method, or nothing semi-sharp): both children of an edge of sharpness `s` have
+    /// `decrement(s)`, a child vertex `decrement` of its parent's, and rules follow by counting
+    /// as [`super::refine_topology`] counts.
+    Derived(&'a Topology),
 }
 
 impl<'a> ChildSharpness<'a> {
     /// The sharpness held by a full child level `c` of `p` (its child edges `nc + 2e + end`).
     pub(crate) fn of_child(p: &Topology, c: &'a Topology) -> Self {
-        ChildSharpness {
+        ChildSharpness::Stored {
             edge: &c.edge_sharpness[p.num_corners()..],
             vertex: &c.vert_sharpness[..p.num_vertices()],
             rule: &c.vert_rule,
         }
     }
+
+    /// Sharpness of child edge `2e + end` of parent edge `e`.
+    #[inline]
+    pub(crate) fn edge(&self, i: usize) -> f32 {
+        match self {
+            ChildSharpness::Stored { edge, .. } => edge[i],
+            ChildSharpness::Derived(p) => child_of_edge(p.edge_sharpness[i / 2]),
+        }
+    }
+
+    /// Sharpness of the child of parent vertex `v`.
+    #[inline]
+    pub(crate) fn vertex(&self, v: usize) -> f32 {
+        match self {
+            ChildSharpness::Stored { vertex, .. } => vertex[v],
+            ChildSharpness::Derived(p) => crease::decrement(p.vert_sharpness[v]),
+        }
+    }
+
+    /// Rule of child vertex `i` (child numbering; face points are smooth).
+    #[inline]
+    pub(crate) fn rule(&self, i: usize) -> u8 {
+        match self {
+            ChildSharpness::Stored { rule, .. } => rule[i],
+            ChildSharpness::Derived(p) => {
+                let (nv, nf) = (p.num_vertices(), p.num_faces());
+                if i < nv {
+                    let s = crease::decrement(p.vert_sharpness[i]);
+                    let pt = p.vert_tags[i];
+                    if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
+                        let (mut inf, mut semi) = (0, 0);
+                        for &e in p.vertex_edges(i) {
+                            let t = sharp_tag(child_of_edge(p.edge_sharpness[e as usize]));
+                            inf += (t & tags::E_INF_SHARP != 0) as usize;
+                            semi += (t & tags::E_SEMI_SHARP != 0) as usize;
+                        }
+                        vertex_child_tags(p, i, s, inf, semi).1
+                    } else {
+                        p.vert_rule[i]
+                    }
+                } else if i < nv + nf {
+                    rule::SMOOTH
+                } else {
+                    let e = i - nv - nf;
+                    let t = sharp_tag(child_of_edge(p.edge_sharpness[e]));
+                    edge_point_tags(p.edge_tags[e], t, t).1
+                }
+            }
+        }
+    }
 }
 
-/// Owned [`ChildSharpness`], derived from the parent alone.
+/// Sharpness of either child of an edge of sharpness `s` under uniform decay (as
+/// [`super::refine_topology`] sets it).
+#[inline]
+fn child_of_edge(s: f32) -> f32 {
+    if crease::is_infinite(s) {
+        crate::SHARPNESS_INFINITE
+    } else if crease::is_semi_sharp(s) {
+        crease::decrement(s)
+    } else {
+        0.0
+    }
+}
+
+/// Whether child sharpness can be derived edge by edge: the uniform crease method, or no
+/// semi-sharp edge at all (Chaikin's rule then has nothing to average).
+fn derivable(p: &Topology) -> bool {
+    p.options.crease_method == CreaseMethod::Uniform
+        || p.edge_sharpness
+            .par_iter()
+            .all(|&s| !crease::is_semi_sharp(s))
+}
+
+/// [`ChildSharpness`] derived from the parent alone: nothing stored where nothing decays.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ChildSharpnessBuf {
-    edge: Vec<f32>,
-    vertex: Vec<f32>,
-    rule: Vec<u8>,
+    stored: Option<(Vec<f32>, Vec<f32>, Vec<u8>)>,
 }
 
 impl ChildSharpnessBuf {
     /// The sharpness and rules of the children of `p`, the same values as
     /// [`super::refine_topology`] stores in the child level.
     pub(crate) fn new(p: &Topology) -> Self {
+        if derivable(p) {
+            return ChildSharpnessBuf { stored: None };
+        }
         let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
         let mut edge = vec![0.0f32; 2 * ne];
         let mut edge_tags = vec![0u8; 2 * ne];
@@ -71,8 +155,8 @@ impl ChildSharpnessBuf {
                 let (mut inf, mut semi) = (0usize, 0usize);
                 for (i, &e) in pe.iter().enumerate() {
                     let t = edge_tags[2 * e as usize + child_end_at_vertex(p, pe, i, v) as usize];
-                    inf += (t & crate::topology::tags::E_INF_SHARP != 0) as usize;
-                    semi += (t & crate::topology::tags::E_SEMI_SHARP != 0) as usize;
+                    inf += (t & tags::E_INF_SHARP != 0) as usize;
+                    semi += (t & tags::E_SEMI_SHARP != 0) as usize;
                 }
                 *out = vertex_child_tags(p, v, vertex[v], inf, semi).1;
             });
@@ -83,18 +167,15 @@ impl ChildSharpnessBuf {
                 *out = edge_point_tags(p.edge_tags[e], edge_tags[2 * e], edge_tags[2 * e + 1]).1;
             });
         ChildSharpnessBuf {
-            edge,
-            vertex,
-            rule: rules,
+            stored: Some((edge, vertex, rules)),
         }
     }
 
-    /// Borrowed view.
-    pub(crate) fn view(&self) -> ChildSharpness<'_> {
-        ChildSharpness {
-            edge: &self.edge,
-            vertex: &self.vertex,
-            rule: &self.rule,
+    /// Borrowed view; `p` is the parent the buffer was built from.
+    pub(crate) fn view<'a>(&'a self, p: &'a Topology) -> ChildSharpness<'a> {
+        match &self.stored {
+            Some((edge, vertex, rule)) => ChildSharpness::Stored { edge, vertex, rule },
+            None => ChildSharpness::Derived(p),
         }
     }
 }

@@ -567,7 +567,7 @@ fn sharp_vertex_tags(s: f32, inf: usize, semi: usize) -> u16 {
     vt
 }
 
-fn sharp_tag(s: f32) -> u8 {
+pub(super) fn sharp_tag(s: f32) -> u8 {
     if crease::is_infinite(s) {
         tags::E_INF_SHARP
     } else if s > 0.0 {

@@ -88,16 +88,16 @@ impl Scratch {
         self.ce.clear();
         self.ce.extend(
             (0..pe.len())
-                .map(|i| c.edge[2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]),
+                .map(|i| c.edge(2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize)),
         );
         let h = VertexNeighbourhood {
             num_faces: p.vertex_faces(v).len(),
             parent_sharpness: p.vert_sharpness[v],
-            child_sharpness: c.vertex[v],
+            child_sharpness: c.vertex(v),
             parent_edges: &self.pe,
             child_edges: &self.ce,
             parent_rule: p.vert_rule[v],
-            child_rule: c.rule[v],
+            child_rule: c.rule(v),
         };
         vertex_mask(
             &h,
@@ -438,7 +438,7 @@ impl<'a> LevelRows<'a> {
         let (nv, nf) = (p.num_vertices(), p.num_faces());
         let m = edge_mask(
             p.edge_sharpness[e],
-            self.c.rule[nv + nf + e],
+            self.c.rule(nv + nf + e),
             faces.len(),
             tri,
             p.options.triangle_subdivision,

@@ -7,6 +7,11 @@
 //! the composed base-to-last-level table of [`Refiner::stencil_table`]) are what a GPU backend
 //! uploads.
 //!
+//! Two ways to store fewer bytes, which is much of a refinement's time (the kernel
+//! zero-fills every fresh page): [`RefineOptions::lean`] leaves the last level with its face
+//! lists only (OpenSubdiv's `fullTopologyInLastLevel = false`), and [`refine_once`] refines
+//! vertex data once without keeping any stencil table, evaluating each row as it is formed.
+//!
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
 //!
@@ -74,7 +79,9 @@ impl RefineOptions {
 pub struct Refiner {
     /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps. Under
     /// [`RefineOptions::lean`] the last level (if refined at all) has only `face_offsets`,
-    /// `face_verts`, `face_is_hole` and `num_vertices`; its other tables are empty.
+    /// `face_verts`, `face_is_hole` and `num_vertices`; its other tables are empty, so its
+    /// relation accessors (`vertex_faces`, `edge_faces`, ...) must not be called — check
+    /// [`Refiner::is_full`] first.
     pub levels: Vec<Topology>,
     /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
     pub stencils: Vec<LevelStencils>,
@@ -162,7 +169,7 @@ impl Refiner {
                 .ok_or_else(|| Error::Internal("no base level".into()))?;
             if k + 1 == level && !options.full_topology_in_last_level {
                 let sharpness = ChildSharpnessBuf::new(parent);
-                stencils.push(level_stencils_with(parent, sharpness.view()));
+                stencils.push(level_stencils_with(parent, sharpness.view(parent)));
                 levels.push(refine_face_lists(parent));
             } else {
                 let child = refine_topology(parent);
