@@ -3,16 +3,27 @@
 //!
 //! ```text
 //! cargo run --release -p osd-ref --example side_by_side -- [MESH.obj] [LEVELS] [RUNS]
-//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf
+//! cargo run --release -p osd-ref --example side_by_side -- MESH.obj 5 5 --memory osd|subsurf|once [--lean]
 //! ```
 //!
+//! Two tables, like against like: "full", where both build the last level's full topology
+//! (OpenSubdiv `fullTopologyInLastLevel = true`, subsurf `Refiner::new`), and "lean", where
+//! both build only what interpolation and output need there (OpenSubdiv's default
+//! `fullTopologyInLastLevel = false`, subsurf `RefineOptions::lean`). `--full` or `--lean`
+//! prints one of them only.
+//!
 //! (a) topology + positions: OpenSubdiv `TopologyRefinerFactory::Create` + `RefineUniform` +
-//!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`.
+//!     `PrimvarRefiner::Interpolate` on every level, versus `Refiner::new` + `refine_positions`
+//!     (which also builds and keeps every step's stencil tables, for (b)), and versus
+//!     `refine::refine_once` ("once": the same rows evaluated as they are formed, no table
+//!     kept — how `PrimvarRefiner` interpolates).
 //! (b) positions only, tables prebuilt: `PrimvarRefiner::Interpolate` (and `StencilTable::
 //!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
 //!
 //! subsurf runs single-threaded (a one-thread rayon pool) and on all cores. `--memory` runs one
-//! side only and prints the process's peak resident memory. `--cpu` times the single-threaded
+//! side once (subsurf single-threaded) in this fresh process and prints its time and the
+//! process's peak resident memory: run alternately from a shell, it times cold one-shot
+//! refinements, whose pages are all new, free of the allocator state one side leaves the other. `--cpu` times the single-threaded
 //! runs (OpenSubdiv and subsurf 1T) in CPU time of the running thread, so that time spent
 //! waiting for a core on a loaded machine is left out; multi-threaded runs stay wall-clock.
 
@@ -24,7 +35,8 @@ use osd_ref::{OsdMesh, OsdRefiner, OsdStencils};
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 use std::time::Instant;
-use subsurf::{Refiner, Topology};
+use subsurf::refine::refine_once;
+use subsurf::{Mesh, RefineOptions, Refiner, Topology};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
@@ -100,41 +112,123 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let osd_mesh = OsdMesh::from(&mesh);
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
 
+    let modes: Vec<bool> = if args.iter().any(|a| a == "--lean") {
+        vec![true]
+    } else if args.iter().any(|a| a == "--full") {
+        vec![false]
+    } else {
+        vec![false, true]
+    };
     if let Some(side) = memory {
+        // One refinement in a fresh process: every page it touches is new, as in a CLI run.
         let level = levels[0];
-        if side == "osd" {
-            let r = OsdRefiner::new(&osd_mesh, level)?;
-            let p = r.interpolate(&mesh.positions)?;
-            println!(
-                "OpenSubdiv level {level}: {} vertices, peak RSS {:.1} MiB",
-                p.len(),
-                peak_rss_mib()
-            );
+        let lean = modes[0];
+        let options = if lean {
+            RefineOptions::lean()
         } else {
-            let r = one.install(|| Refiner::new(Topology::new(&mesh).unwrap(), level))?;
-            let p = one.install(|| r.refine_positions(&mesh.positions));
-            println!(
-                "subsurf level {level}: {} vertices, peak RSS {:.1} MiB",
-                p.len(),
-                peak_rss_mib()
-            );
-        }
+            RefineOptions::default()
+        };
+        let (what, (t, n)) = match side.as_str() {
+            "osd" => (
+                "OpenSubdiv",
+                ms(|| {
+                    let r = OsdRefiner::with_last_level(&osd_mesh, level, !lean).unwrap();
+                    r.interpolate(&mesh.positions).unwrap().len()
+                }),
+            ),
+            "once" => (
+                "subsurf refine_once",
+                one.install(|| {
+                    ms(|| {
+                        let t = Topology::new(&mesh).unwrap();
+                        refine_once(t, level, &mesh.positions, options)
+                            .unwrap()
+                            .1
+                            .len()
+                    })
+                }),
+            ),
+            _ => (
+                "subsurf",
+                one.install(|| {
+                    ms(|| {
+                        let r = refiner(&mesh, level, lean).unwrap();
+                        r.refine_positions(&mesh.positions).len()
+                    })
+                }),
+            ),
+        };
+        println!(
+            "{what} level {level}: {n} vertices, {t:.2} ms, peak RSS {:.1} MiB",
+            peak_rss_mib()
+        );
         return Ok(());
     }
 
     println!(
-        "{path}: {} faces; medians of {runs} alternating runs; subsurf on 1 thread unless noted\n",
+        "{path}: {} faces; medians of {runs} alternating runs; subsurf on 1 thread unless noted",
         mesh.num_faces()
     );
-    println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |",
-        rayon::current_num_threads(), rayon::current_num_threads());
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for &level in &levels {
+    for lean in modes {
+        table(&mesh, &osd_mesh, &levels, runs, lean, &one)?;
+    }
+    Ok(())
+}
+
+/// subsurf's refiner of `mesh` to `level`, with a lean or a full last level.
+fn refiner(mesh: &Mesh, level: usize, lean: bool) -> subsurf::Result<Refiner> {
+    let options = if lean {
+        RefineOptions::lean()
+    } else {
+        RefineOptions::default()
+    };
+    Refiner::with_options(Topology::new(mesh)?, level, options)
+}
+
+/// One table: every level, (a) and (b), with a full or a lean last level on both sides.
+fn table(
+    mesh: &Mesh,
+    osd_mesh: &OsdMesh,
+    levels: &[usize],
+    runs: usize,
+    lean: bool,
+    one: &rayon::ThreadPool,
+) -> Result<(), Box<dyn std::error::Error>> {
+    println!(
+        "\n{} last level ({})\n",
+        if lean { "Lean" } else { "Full" },
+        if lean {
+            "OpenSubdiv fullTopologyInLastLevel = false, subsurf RefineOptions::lean()"
+        } else {
+            "OpenSubdiv fullTopologyInLastLevel = true, subsurf Refiner::new"
+        }
+    );
+    let n = rayon::current_num_threads();
+    println!("| level | vertices | OSD topo+pos (ms) | subsurf 1T (ms) | ratio | subsurf {n}T (ms) | ratio | subsurf once 1T (ms) | ratio | subsurf once {n}T (ms) | ratio | OSD pos (ms) | subsurf pos 1T (ms) | ratio | subsurf pos {n}T (ms) | OSD stencils (ms) | subsurf composed 1T (ms) |");
+    println!(
+        "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    let options = if lean {
+        RefineOptions::lean()
+    } else {
+        RefineOptions::default()
+    };
+    for &level in levels {
+        let once = || {
+            refine_once(
+                Topology::new(mesh).unwrap(),
+                level,
+                &mesh.positions,
+                options,
+            )
+            .unwrap()
+        };
         let (mut oa, mut sa, mut pa) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut sc, mut pc) = (Vec::new(), Vec::new());
         let mut nverts = 0;
         for _ in 0..runs {
             let (t, p) = ms(|| {
-                let r = OsdRefiner::new(&osd_mesh, level).unwrap();
+                let r = OsdRefiner::with_last_level(osd_mesh, level, !lean).unwrap();
                 r.interpolate(&mesh.positions).unwrap()
             });
             oa.push(t);
@@ -142,20 +236,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             drop(p);
             let (t, _) = one.install(|| {
                 ms(|| {
-                    let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                    let r = refiner(mesh, level, lean).unwrap();
                     r.refine_positions(&mesh.positions)
                 })
             });
             sa.push(t);
             let (t, _) = wall(|| {
-                let r = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+                let r = refiner(mesh, level, lean).unwrap();
                 r.refine_positions(&mesh.positions)
             });
             pa.push(t);
+            sc.push(one.install(|| ms(once).0));
+            pc.push(wall(once).0);
         }
-        let osd = OsdRefiner::new(&osd_mesh, level)?;
+        let (sc, pc) = (median(sc), median(pc));
+        let osd = OsdRefiner::with_last_level(osd_mesh, level, !lean)?;
         let osd_st = OsdStencils::new(&osd)?;
-        let ours = Refiner::new(Topology::new(&mesh)?, level)?;
+        let ours = refiner(mesh, level, lean)?;
         let table = ours.stencil_table();
         let (mut ob, mut sb, mut pb, mut os, mut ss) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
@@ -178,8 +275,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             median(ss),
         );
         println!(
-            "| {level} | {nverts} | {oa:.1} | {sa:.1} | {:.2}x | {pa:.1} | {:.2}x | {ob:.2} | {sb:.2} | {:.2}x | {pb:.2} | {os:.2} | {ss:.2} |",
-            oa / sa, oa / pa, ob / sb
+            "| {level} | {nverts} | {oa:.1} | {sa:.1} | {:.2}x | {pa:.1} | {:.2}x | {sc:.1} | {:.2}x | {pc:.1} | {:.2}x | {ob:.2} | {sb:.2} | {:.2}x | {pb:.2} | {os:.2} | {ss:.2} |",
+            oa / sa, oa / pa, oa / sc, oa / pc, ob / sb
         );
     }
     Ok(())

@@ -145,13 +145,15 @@ size_t osd_last_error(char *buf, size_t len) {
     return g_error.size();
 }
 
-osd_uniform *osd_uniform_new(const osd_mesh_desc *mesh, int level) {
+// `full_last`: build the last level's full topology (`fullTopologyInLastLevel`), needed by
+// `osd_uniform_level_topology` and `osd_uniform_limit` on that level.
+osd_uniform *osd_uniform_new(const osd_mesh_desc *mesh, int level, int full_last) {
     install_callbacks();
     try {
         std::unique_ptr<Far::TopologyRefiner> r(create_refiner(*mesh));
         if (!r) return nullptr;
         Far::TopologyRefiner::UniformOptions opts(level);
-        opts.fullTopologyInLastLevel = true;
+        opts.fullTopologyInLastLevel = full_last != 0;
         r->RefineUniform(opts);
         osd_uniform *u = new osd_uniform;
         u->refiner = std::move(r);

@@ -53,7 +53,7 @@ size_t osd_last_error(char *buf, size_t len);
 /* ---- uniform refinement ------------------------------------------------ */
 typedef struct osd_uniform osd_uniform;
 
-osd_uniform *osd_uniform_new(const osd_mesh_desc *mesh, int level);
+osd_uniform *osd_uniform_new(const osd_mesh_desc *mesh, int level, int full_last);
 void osd_uniform_free(osd_uniform *u);
 /* sizes[5] = vertices, faces, edges, face-vertex indices, fvar values (-1 if none) */
 int osd_uniform_level_sizes(const osd_uniform *u, int level, int *sizes);

@@ -56,7 +56,11 @@ pub(crate) struct Adaptive {
 extern "C" {
     pub(crate) fn osd_last_error(buf: *mut c_char, len: usize) -> usize;
 
-    pub(crate) fn osd_uniform_new(mesh: *const MeshDesc, level: c_int) -> *mut Uniform;
+    pub(crate) fn osd_uniform_new(
+        mesh: *const MeshDesc,
+        level: c_int,
+        full_last: c_int,
+    ) -> *mut Uniform;
     pub(crate) fn osd_uniform_free(u: *mut Uniform);
     pub(crate) fn osd_uniform_level_sizes(
         u: *const Uniform,
@@ -141,7 +145,7 @@ mod stubs {
     pub(crate) unsafe fn osd_last_error(_: *mut c_char, _: usize) -> usize {
         0
     }
-    pub(crate) unsafe fn osd_uniform_new(_: *const MeshDesc, _: c_int) -> *mut Uniform {
+    pub(crate) unsafe fn osd_uniform_new(_: *const MeshDesc, _: c_int, _: c_int) -> *mut Uniform {
         null_mut()
     }
     pub(crate) unsafe fn osd_uniform_free(_: *mut Uniform) {}

@@ -28,7 +28,8 @@ pub struct OsdLevel {
     pub uvs: Option<(Vec<[f32; 2]>, Vec<u32>)>,
 }
 
-/// A `Far::TopologyRefiner` refined uniformly (full topology in the last level).
+/// A `Far::TopologyRefiner` refined uniformly (full topology in the last level, unless built
+/// with [`OsdRefiner::with_last_level`]).
 ///
 /// Building it is the "topology" cost of a refinement; [`OsdRefiner::interpolate`] is the
 /// "positions" cost. The handle is neither `Send` nor `Sync` (it keeps scratch memory).
@@ -38,11 +39,24 @@ pub struct OsdRefiner {
     max_level: usize,
     num_vertices: Vec<usize>,
     num_fvar: Option<Vec<usize>>,
+    full_last: bool,
 }
 
 impl OsdRefiner {
-    /// Builds the refiner from `mesh` and refines it uniformly `level` times.
+    /// Builds the refiner from `mesh` and refines it uniformly `level` times, the last level
+    /// with its full topology.
     pub fn new(mesh: &OsdMesh, level: usize) -> Result<Self> {
+        Self::with_last_level(mesh, level, true)
+    }
+
+    /// As [`OsdRefiner::new`]; `full_topology_in_last_level = false` (OpenSubdiv's default)
+    /// builds only what interpolation needs in the last level, and [`OsdRefiner::limit`] is
+    /// then refused.
+    pub fn with_last_level(
+        mesh: &OsdMesh,
+        level: usize,
+        full_topology_in_last_level: bool,
+    ) -> Result<Self> {
         if level > MAX_LEVEL {
             return Err(Error::Invalid(format!("level {level} > {MAX_LEVEL}")));
         }
@@ -50,13 +64,16 @@ impl OsdRefiner {
         let raw_desc = desc.raw();
         // SAFETY: `raw_desc` points into `mesh` and `desc`, both alive for the call, and
         // every index was validated.
-        let ptr = unsafe { ffi::osd_uniform_new(&raw_desc, level as i32) };
+        let ptr = unsafe {
+            ffi::osd_uniform_new(&raw_desc, level as i32, full_topology_in_last_level as i32)
+        };
         let raw = NonNull::new(ptr).ok_or_else(unavailable_or_osd)?;
         let mut r = OsdRefiner {
             raw,
             max_level: level,
             num_vertices: Vec::new(),
             num_fvar: None,
+            full_last: full_topology_in_last_level || level == 0,
         };
         let mut fvar = Vec::new();
         for l in 0..=level {
@@ -144,6 +161,11 @@ impl OsdRefiner {
     pub fn limit(&self, points: &[[f32; 3]]) -> Result<Vec<[f32; 3]>> {
         if points.len() != self.num_vertices(self.max_level) {
             return Err(Error::Invalid("limit needs the last level's points".into()));
+        }
+        if !self.full_last {
+            return Err(Error::Invalid(
+                "limit needs the last level's full topology".into(),
+            ));
         }
         let mut out = vec![[0.0f32; 3]; points.len()];
         // SAFETY: both buffers hold the last level's vertex count.

@@ -208,3 +208,38 @@ fn option_variants_match_opensubdiv() {
         }
     }
 }
+
+/// A lean last level on both sides (OpenSubdiv `fullTopologyInLastLevel = false`, subsurf
+/// `RefineOptions::lean`): the same last-level positions.
+#[test]
+fn lean_last_level_matches_opensubdiv_lean() {
+    require_osd!();
+    for name in [
+        "catmark_car",
+        "catmark_chaikin1",
+        "catmark_cube_creases1",
+        "catmark_hole_test2",
+        "catmark_nonman_verts",
+        "catmark_pole64",
+        "bilinear_nonquads1",
+    ] {
+        let mesh =
+            subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();
+        for level in 1..=3 {
+            let osd = osd_ref::OsdRefiner::with_last_level(&osd_mesh(&mesh), level, false)
+                .unwrap_or_else(|e| panic!("{name}: OpenSubdiv: {e}"));
+            let theirs = osd.interpolate(&mesh.positions).unwrap();
+            assert!(osd.limit(&theirs).is_err(), "{name}: lean OpenSubdiv limit");
+            let options = subsurf::RefineOptions::lean();
+            let refiner =
+                Refiner::with_options(Topology::new(&mesh).unwrap(), level, options).unwrap();
+            let ours = refiner.refine_positions(&mesh.positions);
+            let diag = diagonal(&mesh.positions);
+            assert_eq!(ours.len(), theirs.len(), "{name} level {level}");
+            for (i, (a, b)) in ours.iter().zip(&theirs).enumerate() {
+                let d = common::dist(*a, *b) / diag;
+                assert!(d <= 1e-5, "{name} level {level} vertex {i}: {a:?} vs {b:?}");
+            }
+        }
+    }
+}

@@ -3,7 +3,8 @@
 use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::{FVarLinearInterpolation, FaceVarying, Refiner, Topology};
+use subsurf::refine::{level_mesh, refine_once};
+use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
@@ -62,11 +63,22 @@ impl From<UvInterp> for FVarLinearInterpolation {
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     let mesh = a.scheme.read(&a.input)?;
     let topo = Topology::new(&mesh)?;
-    let refiner = Refiner::new(topo, a.level)?;
+    // The last level's full topology is only read by the limit and face-varying refinement.
+    let options = RefineOptions {
+        full_topology_in_last_level: a.limit || mesh.uvs.is_some(),
+    };
     let ctx = match a.backend {
         Backend::Cpu => None,
         Backend::Gpu => Some(gpu_context()?),
     };
+    if ctx.is_none() && !options.full_topology_in_last_level {
+        // Positions only, once: no stencil table kept, each parent level dropped as soon as
+        // its child exists (bit-identical to the stencil path, about half its peak memory).
+        let (last, positions) = refine_once(topo, a.level, &mesh.positions, options)?;
+        let out = level_mesh(&last, positions);
+        return finish(a, &mesh, out);
+    }
+    let refiner = Refiner::with_options(topo, a.level, options)?;
     let mut positions = match &ctx {
         None => refiner.refine_positions(&mesh.positions),
         Some(ctx) => subsurf_gpu::GpuRefiner::new(ctx, &refiner)
@@ -109,6 +121,11 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         let indices = (0..values.len() as u32).collect();
         out.uvs = Some(FaceVarying { values, indices });
     }
+    finish(a, &mesh, out)
+}
+
+/// Writes the refined mesh and reports what was made.
+fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, mut out: subsurf::Mesh) -> anyhow::Result<()> {
     out.creases.clear();
     out.corners.clear();
     write_mesh(&a.output, &out, None)?;

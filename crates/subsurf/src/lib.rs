@@ -34,7 +34,7 @@ pub use options::{
     TriangleSubdivision,
 };
 pub use real::Real;
-pub use refine::{Refiner, StencilTable};
+pub use refine::{RefineOptions, Refiner, StencilTable};
 pub use topology::Topology;
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).

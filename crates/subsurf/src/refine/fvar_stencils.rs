@@ -323,9 +323,9 @@ impl Refiner {
         )?];
         let mut stencils = Vec::with_capacity(self.max_level());
         for k in 0..self.max_level() {
-            let (p, c) = (&self.levels[k], &self.levels[k + 1]);
-            let child = levels[k].refine(p, c);
-            stencils.push(fvar_level_stencils(p, c, &levels[k], &child));
+            let (p, c) = (&self.levels[k], self.full_level(k + 1));
+            let child = levels[k].refine(p, &c);
+            stencils.push(fvar_level_stencils(p, &c, &levels[k], &child));
             levels.push(child);
         }
         Ok(FVarRefinement { levels, stencils })

@@ -180,43 +180,9 @@ pub fn refine_topology(p: &Topology) -> Topology {
     }
 
     // Edge sharpness and tags (children of faces are smooth).
-    let method = p.options.crease_method;
     let mut edge_sharpness = vec![0.0f32; ce];
     let mut edge_tags = vec![0u8; ce];
-    er.clone()
-        .into_par_iter()
-        .zip(par::split(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
-        .zip(par::split(&mut edge_tags[nc..], &eb, |e| 2 * e))
-        .for_each(|((r, es), et_out)| {
-            let base = 2 * r.start;
-            let mut around: Vec<f32> = Vec::new();
-            for e in r {
-                let s = p.edge_sharpness[e];
-                let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
-                for end in 0..2 {
-                    let cs = if crease::is_infinite(s) {
-                        SHARPNESS_INFINITE
-                    } else if crease::is_semi_sharp(s) {
-                        if method == CreaseMethod::Uniform {
-                            crease::decrement(s)
-                        } else {
-                            let v = p.edge_verts[e][end] as usize;
-                            around.clear();
-                            around.extend(
-                                p.vertex_edges(v)
-                                    .iter()
-                                    .map(|&x| p.edge_sharpness[x as usize]),
-                            );
-                            crease::subdivide_edge_sharpness_at_vertex(method, s, &around)
-                        }
-                    } else {
-                        0.0
-                    };
-                    es[2 * e - base + end] = cs;
-                    et_out[2 * e - base + end] = et | sharp_tag(cs);
-                }
-            }
-        });
+    child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
 
     let vert_sharpness = {
         let mut s = vec![0.0f32; cv];
@@ -279,32 +245,15 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 let pe = p.vertex_edges(v);
                 let (mut inf, mut semi) = (0usize, 0usize);
                 for (i, &e) in pe.iter().enumerate() {
-                    let ev = p.edge_verts[e as usize];
-                    let end = if ev[0] != ev[1] {
-                        (ev[0] != v as u32) as u32
-                    } else {
-                        (i > 0 && pe[i - 1] == e) as u32
-                    };
-                    let ce = (nc + 2 * e as usize) as u32 + end;
+                    let ce = (nc + 2 * e as usize) as u32 + child_end_at_vertex(p, pe, i, v);
                     ve[pveo(v) + i - ebase] = ce;
                     let et = edge_tags[ce as usize];
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
                 }
-                let s = vert_sharpness[v];
-                let pt = p.vert_tags[v];
-                vt[v - vbase] = (pt
-                    & !(tags::V_SEMI_SHARP
-                        | tags::V_INF_SHARP
-                        | tags::V_SEMI_SHARP_EDGES
-                        | tags::V_INF_SHARP_EDGES))
-                    | sharp_vertex_tags(s, inf, semi);
-                vru[v - vbase] =
-                    if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
-                        rule::determine(0.0, inf + semi)
-                    } else {
-                        p.vert_rule[v]
-                    };
+                let (t, rl) = vertex_child_tags(p, v, vert_sharpness[v], inf, semi);
+                vt[v - vbase] = t;
+                vru[v - vbase] = rl;
             }
         });
 
@@ -395,7 +344,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
 }
 
 /// `(0..len).map(f)`, filled in parallel.
-fn iota(len: usize, f: impl Fn(usize) -> u32 + Sync) -> Vec<u32> {
+pub(super) fn iota(len: usize, f: impl Fn(usize) -> u32 + Sync) -> Vec<u32> {
     let mut out = vec![0u32; len];
     out.par_chunks_mut(1 << 14).enumerate().for_each(|(c, o)| {
         for (i, x) in o.iter_mut().enumerate() {
@@ -500,14 +449,98 @@ fn edge_point_ring(
     if et & tags::E_NON_MANIFOLD != 0 {
         vt |= tags::V_NON_MANIFOLD;
     }
-    let (inf, semi) = [c0, c1].iter().fold((0, 0), |(i, s), &c| {
-        let t = child_edge_tags[c as usize];
-        (
-            i + (t & tags::E_INF_SHARP != 0) as usize,
-            s + (t & tags::E_SEMI_SHARP != 0) as usize,
-        )
-    });
-    vt |= sharp_vertex_tags(0.0, inf, semi);
+    let (t, rl) = edge_point_tags(
+        et,
+        child_edge_tags[c0 as usize],
+        child_edge_tags[c1 as usize],
+    );
+    (vt | t, rl)
+}
+
+/// Sharpness and tags of the two children of every parent edge (`es`, `et`: two entries per
+/// parent edge, child `2e + end` touching end `end`), decayed by the crease method.
+pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) {
+    let method = p.options.crease_method;
+    let eb = par::bounds(p.num_edges());
+    par::ranges(&eb)
+        .into_par_iter()
+        .zip(par::split(es, &eb, |e| 2 * e))
+        .zip(par::split(et, &eb, |e| 2 * e))
+        .for_each(|((r, es), et_out)| {
+            let base = 2 * r.start;
+            let mut around: Vec<f32> = Vec::new();
+            for e in r {
+                let s = p.edge_sharpness[e];
+                let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+                for end in 0..2 {
+                    let cs = if crease::is_infinite(s) {
+                        SHARPNESS_INFINITE
+                    } else if crease::is_semi_sharp(s) {
+                        if method == CreaseMethod::Uniform {
+                            crease::decrement(s)
+                        } else {
+                            let v = p.edge_verts[e][end] as usize;
+                            around.clear();
+                            around.extend(
+                                p.vertex_edges(v)
+                                    .iter()
+                                    .map(|&x| p.edge_sharpness[x as usize]),
+                            );
+                            crease::subdivide_edge_sharpness_at_vertex(method, s, &around)
+                        }
+                    } else {
+                        0.0
+                    };
+                    es[2 * e - base + end] = cs;
+                    et_out[2 * e - base + end] = et | sharp_tag(cs);
+                }
+            }
+        });
+}
+
+/// Which child (0 or 1) of `pe[i]`, the `i`-th edge of parent vertex `v`, touches the child
+/// of `v` (a degenerate edge (v, v) is met twice in a row: first by its end 0, then end 1).
+#[inline]
+pub(super) fn child_end_at_vertex(p: &Topology, pe: &[u32], i: usize, v: usize) -> u32 {
+    let e = pe[i];
+    let ev = p.edge_verts[e as usize];
+    if ev[0] != ev[1] {
+        (ev[0] != v as u32) as u32
+    } else {
+        (i > 0 && pe[i - 1] == e) as u32
+    }
+}
+
+/// Tags and rule of the child of parent vertex `v`, of sharpness `s`, with `inf` infinitely
+/// sharp and `semi` semi-sharp child edges: inherited, recounted where semi-sharp features
+/// decayed.
+pub(super) fn vertex_child_tags(
+    p: &Topology,
+    v: usize,
+    s: f32,
+    inf: usize,
+    semi: usize,
+) -> (u16, u8) {
+    let pt = p.vert_tags[v];
+    let t = (pt
+        & !(tags::V_SEMI_SHARP
+            | tags::V_INF_SHARP
+            | tags::V_SEMI_SHARP_EDGES
+            | tags::V_INF_SHARP_EDGES))
+        | sharp_vertex_tags(s, inf, semi);
+    let rl = if pt & (tags::V_SEMI_SHARP | tags::V_SEMI_SHARP_EDGES) != 0 && s <= 0.0 {
+        rule::determine(0.0, inf + semi)
+    } else {
+        p.vert_rule[v]
+    };
+    (t, rl)
+}
+
+/// Sharpness tags and rule of the edge point of a parent edge with tags `et`, whose two child
+/// edges have tags `t0` and `t1`.
+pub(super) fn edge_point_tags(et: u8, t0: u8, t1: u8) -> (u16, u8) {
+    let inf = (t0 & tags::E_INF_SHARP != 0) as usize + (t1 & tags::E_INF_SHARP != 0) as usize;
+    let semi = (t0 & tags::E_SEMI_SHARP != 0) as usize + (t1 & tags::E_SEMI_SHARP != 0) as usize;
     let rl = if et & tags::E_SEMI_SHARP != 0 {
         rule::determine(0.0, semi)
     } else if et & tags::E_INF_SHARP != 0 {
@@ -515,7 +548,7 @@ fn edge_point_ring(
     } else {
         rule::SMOOTH
     };
-    (vt, rl)
+    (sharp_vertex_tags(0.0, inf, semi), rl)
 }
 
 fn sharp_vertex_tags(s: f32, inf: usize, semi: usize) -> u16 {
@@ -534,7 +567,7 @@ fn sharp_vertex_tags(s: f32, inf: usize, semi: usize) -> u16 {
     vt
 }
 
-fn sharp_tag(s: f32) -> u8 {
+pub(super) fn sharp_tag(s: f32) -> u8 {
     if crease::is_infinite(s) {
         tags::E_INF_SHARP
     } else if s > 0.0 {

@@ -4,6 +4,8 @@
 //! face's vertices), so each row refers to parent vertices only and one sparse table maps a
 //! level's vertex data to the next level's.
 
+use super::last_level::ChildSharpness;
+use super::level::child_end_at_vertex;
 use super::par;
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::Scheme;
@@ -69,26 +71,33 @@ impl Scratch {
     /// The vertex-point mask of parent vertex `v` (edges in ring order), from the sharpness and
     /// rules of the parent level `p` and the child level `c`.
     pub(crate) fn vertex_mask_at(&mut self, p: &Topology, c: &Topology, v: usize) -> &VertexMask {
+        self.vertex_mask_with(p, ChildSharpness::of_child(p, c), v)
+    }
+
+    /// [`Scratch::vertex_mask_at`] with the child's sharpness given as [`ChildSharpness`].
+    pub(crate) fn vertex_mask_with(
+        &mut self,
+        p: &Topology,
+        c: ChildSharpness<'_>,
+        v: usize,
+    ) -> &VertexMask {
+        let pe = p.vertex_edges(v);
         self.pe.clear();
-        self.pe.extend(
-            p.vertex_edges(v)
-                .iter()
-                .map(|&e| p.edge_sharpness[e as usize]),
-        );
+        self.pe
+            .extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
         self.ce.clear();
         self.ce.extend(
-            c.vertex_edges(v)
-                .iter()
-                .map(|&e| c.edge_sharpness[e as usize]),
+            (0..pe.len())
+                .map(|i| c.edge(2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize)),
         );
         let h = VertexNeighbourhood {
             num_faces: p.vertex_faces(v).len(),
             parent_sharpness: p.vert_sharpness[v],
-            child_sharpness: c.vert_sharpness[v],
+            child_sharpness: c.vertex(v),
             parent_edges: &self.pe,
             child_edges: &self.ce,
             parent_rule: p.vert_rule[v],
-            child_rule: c.vert_rule[v],
+            child_rule: c.rule(v),
         };
         vertex_mask(
             &h,
@@ -102,14 +111,10 @@ impl Scratch {
 
 /// Builds a table whose rows are written directly (no merging of repeated inputs).
 ///
-/// Rows are sized first (`len(r)` where the size is known without building the row, else the
-/// row is built once to count it), then written in parallel into disjoint slices of tables
-/// allocated once at their exact size.
-pub(crate) fn build_direct<L, F>(rows: usize, num_inputs: usize, len: L, row: F) -> StencilTable
-where
-    L: Fn(usize) -> Option<usize> + Sync,
-    F: Fn(usize, &mut Vec<u32>, &mut Vec<f32>, &mut Scratch) + Sync,
-{
+/// Rows are sized first (`rows.len(r)` where the size is known without forming the row, else
+/// the row is formed once to count it), then written in parallel, entry by entry, into
+/// disjoint slices of tables allocated once at their exact size.
+fn build_direct(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable {
     let b = par::bounds(rows);
     let mut offsets = vec![0u32; rows + 1];
     par::ranges(&b)
@@ -117,16 +122,14 @@ where
         .zip(par::split(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
             let mut scratch = Scratch::default();
-            let (mut idx, mut wts) = (Vec::new(), Vec::new());
             let base = r.start;
             for i in r {
-                out[i - base] = match len(i) {
+                out[i - base] = match kind.len(i) {
                     Some(n) => n as u32,
                     None => {
-                        idx.clear();
-                        wts.clear();
-                        row(i, &mut idx, &mut wts, &mut scratch);
-                        idx.len() as u32
+                        let mut n = 0u32;
+                        kind.row(i, &mut scratch, &mut |_, _| n += 1);
+                        n
                     }
                 };
             }
@@ -146,17 +149,13 @@ where
         .zip(par::split(&mut weights, &b, start))
         .for_each(|((r, io), wo)| {
             let mut scratch = Scratch::default();
-            let (mut idx, mut wts) = (Vec::with_capacity(64), Vec::with_capacity(64));
-            let base = start(r.start);
+            let mut k = 0;
             for i in r {
-                idx.clear();
-                wts.clear();
-                row(i, &mut idx, &mut wts, &mut scratch);
-                let s = start(i) - base;
-                for (k, (&x, &w)) in idx.iter().zip(&wts).enumerate() {
-                    io[s + k] = x;
-                    wo[s + k] = w;
-                }
+                kind.row(i, &mut scratch, &mut |x, w| {
+                    io[k] = x;
+                    wo[k] = w;
+                    k += 1;
+                });
             }
         });
     StencilTable {
@@ -164,6 +163,34 @@ where
         indices,
         weights,
         num_inputs,
+    }
+}
+
+/// One of the three tables of a step, as rows to build.
+#[derive(Debug, Clone, Copy)]
+enum RowKind<'a> {
+    Face(LevelRows<'a>),
+    Vertex(LevelRows<'a>),
+    Edge(LevelRows<'a>),
+}
+
+impl RowKind<'_> {
+    #[inline]
+    fn len(&self, i: usize) -> Option<usize> {
+        match self {
+            RowKind::Face(r) => Some(r.parent().face_size(i)),
+            RowKind::Vertex(r) => r.vertex_len(i),
+            RowKind::Edge(r) => r.edge_len(i),
+        }
+    }
+
+    #[inline]
+    fn row(&self, i: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
+        match self {
+            RowKind::Face(r) => r.face(i, add),
+            RowKind::Vertex(r) => r.vertex(i, s, add),
+            RowKind::Edge(r) => r.edge(i, add),
+        }
     }
 }
 
@@ -227,30 +254,15 @@ impl LevelStencils {
         }
         let fd: &[[f32; N]] = fd;
         let p = self.num_parent_vertices;
+        let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
         let run = |t: &StencilTable, out: &mut [[f32; N]]| {
-            let eval = |i: usize| {
-                let (s, e) = (t.offsets[i] as usize, t.offsets[i + 1] as usize);
-                let mut acc = [0.0f32; N];
-                for (&k, &w) in t.indices[s..e].iter().zip(&t.weights[s..e]) {
-                    let k = k as usize;
-                    let v = if k < p { &src[k] } else { &fd[k - p] };
-                    for c in 0..N {
-                        acc[c] += w * v[c];
-                    }
-                }
-                acc
-            };
             if parallel {
                 const CHUNK: usize = 4096;
-                out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
-                    for (i, x) in o.iter_mut().enumerate() {
-                        *x = eval(c * CHUNK + i);
-                    }
-                });
+                out.par_chunks_mut(CHUNK)
+                    .enumerate()
+                    .for_each(|(c, o)| t.eval_rows(c * CHUNK, o, x));
             } else {
-                for (i, x) in out.iter_mut().enumerate() {
-                    *x = eval(i);
-                }
+                t.eval_rows(0, out, x);
             }
         };
         run(&self.vertex, vd);
@@ -287,36 +299,83 @@ impl LevelStencils {
 
 /// The stencils mapping parent vertex data to child vertex data (see [`LevelStencils`]).
 pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    level_stencils_with(p, ChildSharpness::of_child(p, c))
+}
+
+/// [`level_stencils`] with only the child's sharpness and rules, not its topology.
+pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
+    let rows = LevelRows::new(p, c);
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    let opts = p.options;
-    let bilinear = opts.scheme == Scheme::Bilinear;
-    let face = build_direct(
-        nf,
-        nv,
-        |f| Some(p.face_size(f)),
-        |f, idx, wts, _| {
-            let fv = p.face_vertices(f);
-            let w = 1.0 / fv.len() as f32;
-            idx.extend_from_slice(fv);
-            wts.extend(std::iter::repeat_n(w, fv.len()));
-        },
-    );
     let inputs = nv + nf;
-    let fp = |f: u32| nv as u32 + f;
-    let smooth_len = |v: usize| {
+    LevelStencils {
+        num_parent_vertices: nv,
+        face: build_direct(nf, nv, RowKind::Face(rows)),
+        vertex: build_direct(nv, inputs, RowKind::Vertex(rows)),
+        edge: build_direct(ne, inputs, RowKind::Edge(rows)),
+    }
+}
+
+/// The rows of one refinement step's stencils (see [`LevelStencils`]), formed one at a time
+/// from the parent's topology and the child's sharpness: what [`level_stencils_with`] stores,
+/// and what [`super::refine_once`] evaluates as it forms them. Each row is handed entry by
+/// entry, in table order, to a sink `add(input, weight)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LevelRows<'a> {
+    p: &'a Topology,
+    c: ChildSharpness<'a>,
+    bilinear: bool,
+}
+
+impl<'a> LevelRows<'a> {
+    pub(crate) fn new(p: &'a Topology, c: ChildSharpness<'a>) -> Self {
+        LevelRows {
+            p,
+            c,
+            bilinear: p.options.scheme == Scheme::Bilinear,
+        }
+    }
+
+    /// The parent level.
+    pub(crate) fn parent(&self) -> &'a Topology {
+        self.p
+    }
+
+    /// Input index of the face point of parent face `f`.
+    #[inline]
+    fn fp(&self, f: u32) -> u32 {
+        self.p.num_vertices() as u32 + f
+    }
+
+    /// Face point of face `f`: the average of its vertices.
+    #[inline]
+    pub(crate) fn face(&self, f: usize, add: &mut impl FnMut(u32, f32)) {
+        let fv = self.p.face_vertices(f);
+        let w = 1.0 / fv.len() as f32;
+        for &v in fv {
+            add(v, w);
+        }
+    }
+
+    /// Length of the row of vertex `v` where it is known without forming it.
+    #[inline]
+    pub(crate) fn vertex_len(&self, v: usize) -> Option<usize> {
+        let p = self.p;
         let (pr, nfc, nec) = (p.vert_rule[v], p.vertex_faces(v).len(), p.valence(v));
-        if bilinear {
+        if self.bilinear {
             Some(1)
         } else if (pr == rule::SMOOTH || pr == rule::DART) && nfc == nec {
             Some(2 * nfc + 1)
         } else {
             None
         }
-    };
-    let vertex = build_direct(nv, inputs, smooth_len, |v, idx, wts, s| {
-        if bilinear {
-            idx.push(v as u32);
-            wts.push(1.0);
+    }
+
+    /// The row of the child of vertex `v`.
+    #[inline]
+    pub(crate) fn vertex(&self, v: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
+        let p = self.p;
+        if self.bilinear {
+            add(v as u32, 1.0);
             return;
         }
         let pe = p.vertex_edges(v);
@@ -326,43 +385,49 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
             let n = faces.len();
             let w = 1.0 / (n * n) as f32;
-            idx.extend(faces.iter().map(|&f| fp(f)));
-            idx.extend(pe.iter().map(|&e| p.other_vertex(e as usize, v as u32)));
-            wts.extend(std::iter::repeat_n(w, 2 * n));
-            idx.push(v as u32);
-            wts.push((n as f32 - 2.0) / n as f32);
+            for &f in faces {
+                add(self.fp(f), w);
+            }
+            for &e in pe {
+                add(p.other_vertex(e as usize, v as u32), w);
+            }
+            add(v as u32, (n as f32 - 2.0) / n as f32);
             return;
         }
-        let mask = s.vertex_mask_at(p, c, v);
+        let mask = s.vertex_mask_with(p, self.c, v);
         for (&f, &w) in faces.iter().zip(&mask.faces) {
             if w != 0.0 {
-                idx.push(fp(f));
-                wts.push(w);
+                add(self.fp(f), w);
             }
         }
         for (&e, &w) in pe.iter().zip(&mask.edges) {
             if w != 0.0 {
-                idx.push(p.other_vertex(e as usize, v as u32));
-                wts.push(w);
+                add(p.other_vertex(e as usize, v as u32), w);
             }
         }
-        idx.push(v as u32);
-        wts.push(mask.vertex);
-    });
-    let edge_len = |e: usize| {
-        if bilinear {
+        add(v as u32, mask.vertex);
+    }
+
+    /// Length of the row of edge `e` where it is known without forming it.
+    #[inline]
+    pub(crate) fn edge_len(&self, e: usize) -> Option<usize> {
+        if self.bilinear {
             Some(2)
-        } else if p.edge_sharpness[e] <= 0.0 {
-            Some(p.edge_faces(e).len() + 2)
+        } else if self.p.edge_sharpness[e] <= 0.0 {
+            Some(self.p.edge_faces(e).len() + 2)
         } else {
             None
         }
-    };
-    let edge = build_direct(ne, inputs, edge_len, |e, idx, wts, _| {
+    }
+
+    /// The row of the edge point of edge `e`.
+    #[inline]
+    pub(crate) fn edge(&self, e: usize, add: &mut impl FnMut(u32, f32)) {
+        let p = self.p;
         let ev = p.edge_verts[e];
-        if bilinear {
-            idx.extend_from_slice(&ev);
-            wts.extend_from_slice(&[0.5, 0.5]);
+        if self.bilinear {
+            add(ev[0], 0.5);
+            add(ev[1], 0.5);
             return;
         }
         let faces = p.edge_faces(e);
@@ -370,27 +435,21 @@ pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
             faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
             faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
         ];
+        let (nv, nf) = (p.num_vertices(), p.num_faces());
         let m = edge_mask(
             p.edge_sharpness[e],
-            c.vert_rule[nv + nf + e],
+            self.c.rule(nv + nf + e),
             faces.len(),
             tri,
-            opts.triangle_subdivision,
+            p.options.triangle_subdivision,
         );
         if m.face != 0.0 {
             for &f in faces {
-                idx.push(fp(f));
-                wts.push(m.face);
+                add(self.fp(f), m.face);
             }
         }
-        idx.extend_from_slice(&ev);
-        wts.extend_from_slice(&[m.vertex, m.vertex]);
-    });
-    LevelStencils {
-        num_parent_vertices: nv,
-        face,
-        vertex,
-        edge,
+        add(ev[0], m.vertex);
+        add(ev[1], m.vertex);
     }
 }
 

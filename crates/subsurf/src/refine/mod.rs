@@ -7,6 +7,11 @@
 //! the composed base-to-last-level table of [`Refiner::stencil_table`]) are what a GPU backend
 //! uploads.
 //!
+//! Two ways to store fewer bytes, which is much of a refinement's time (the kernel
+//! zero-fills every fresh page): [`RefineOptions::lean`] leaves the last level with its face
+//! lists only (OpenSubdiv's `fullTopologyInLastLevel = false`), and [`refine_once`] refines
+//! vertex data once without keeping any stencil table, evaluating each row as it is formed.
+//!
 //! Vertex order at each level (OpenSubdiv's): children of the parent vertices first (same
 //! indices), then one face point per parent face, then one edge point per parent edge.
 //!
@@ -17,6 +22,8 @@
 mod fvar_propagate;
 mod fvar_stencils;
 mod fvar_topology;
+mod interpolate;
+mod last_level;
 mod level;
 mod masks;
 pub(crate) mod par;
@@ -25,7 +32,10 @@ mod uv;
 
 pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
 pub use fvar_topology::FVarTopology;
+pub use interpolate::refine_once;
+use last_level::{refine_face_lists, ChildSharpnessBuf};
 pub use level::refine_topology;
+use masks::level_stencils_with;
 pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
@@ -35,15 +45,49 @@ use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::topology::Topology;
 
+/// Options of [`Refiner::with_options`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RefineOptions {
+    /// Build the last level's full topology: edges, rings, sharpness, tags (the default, and
+    /// what [`Refiner::new`] does). With `false` the last level holds only its face lists, hole
+    /// flags and vertex count — all that positions and output meshes need — as OpenSubdiv's
+    /// `UniformOptions::fullTopologyInLastLevel = false` (OpenSubdiv's default) leaves it.
+    /// [`Refiner::limit`] and the face-varying methods then rebuild that level in full when
+    /// they are called.
+    pub full_topology_in_last_level: bool,
+}
+
+impl Default for RefineOptions {
+    fn default() -> Self {
+        RefineOptions {
+            full_topology_in_last_level: true,
+        }
+    }
+}
+
+impl RefineOptions {
+    /// Options for output only: the last level keeps face lists, holes and vertex count.
+    pub fn lean() -> Self {
+        RefineOptions {
+            full_topology_in_last_level: false,
+        }
+    }
+}
+
 /// Refined topology of every level and the stencils between consecutive levels.
 #[derive(Debug, Clone)]
 pub struct Refiner {
-    /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps.
+    /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps. Under
+    /// [`RefineOptions::lean`] the last level (if refined at all) has only `face_offsets`,
+    /// `face_verts`, `face_is_hole` and `num_vertices`; its other tables are empty, so its
+    /// relation accessors (`vertex_faces`, `edge_faces`, ...) must not be called — check
+    /// [`Refiner::is_full`] first.
     pub levels: Vec<Topology>,
     /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
     pub stencils: Vec<LevelStencils>,
     /// Limit stencils of the last level, built on first use of [`Refiner::limit`].
     limit_table: std::sync::OnceLock<StencilTable>,
+    options: RefineOptions,
 }
 
 /// Rough number of bytes the refiner needs for `level` steps of `base` (topology of all levels,
@@ -79,46 +123,86 @@ fn human(bytes: u64) -> String {
     format!("{v:.1} {}", units[u])
 }
 
+/// Refuses the Loop scheme, and up front, with the estimated size, a level whose tables would
+/// not fit in memory or overflow 32-bit indices.
+fn check_size(base: &Topology, level: usize) -> Result<()> {
+    if base.options.scheme == Scheme::Loop {
+        return Err(Error::Unsupported(
+            "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
+        ));
+    }
+    let bytes = estimate_bytes(base, level);
+    let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
+    let limit = available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX);
+    if bytes > limit || corners > (u32::MAX as u128) / 2 {
+        return Err(MeshError::TooLarge {
+            what: format!("refining {} faces to level {level}", base.num_faces()),
+            bytes,
+            human: human(bytes),
+            limit_human: if corners > (u32::MAX as u128) / 2 {
+                "2^31 face corners (32-bit indices)".into()
+            } else {
+                format!("{} (80% of available memory)", human(limit))
+            },
+        }
+        .into());
+    }
+    Ok(())
+}
+
 impl Refiner {
-    /// Refines `base` uniformly `level` times. Refuses up front, with the estimated size, a
-    /// level whose tables would not fit in memory or overflow 32-bit indices.
+    /// Refines `base` uniformly `level` times, every level with its full topology. Refuses up
+    /// front, with the estimated size, a level whose tables would not fit in memory or
+    /// overflow 32-bit indices.
     pub fn new(base: Topology, level: usize) -> Result<Refiner> {
-        if base.options.scheme == Scheme::Loop {
-            return Err(Error::Unsupported(
-                "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
-            ));
-        }
-        let bytes = estimate_bytes(&base, level);
-        let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
-        let limit = available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX);
-        if bytes > limit || corners > (u32::MAX as u128) / 2 {
-            return Err(MeshError::TooLarge {
-                what: format!("refining {} faces to level {level}", base.num_faces()),
-                bytes,
-                human: human(bytes),
-                limit_human: if corners > (u32::MAX as u128) / 2 {
-                    "2^31 face corners (32-bit indices)".into()
-                } else {
-                    format!("{} (80% of available memory)", human(limit))
-                },
-            }
-            .into());
-        }
+        Self::with_options(base, level, RefineOptions::default())
+    }
+
+    /// As [`Refiner::new`], under `options`.
+    pub fn with_options(base: Topology, level: usize, options: RefineOptions) -> Result<Refiner> {
+        check_size(&base, level)?;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
-        for _ in 0..level {
+        for k in 0..level {
             let parent = levels
                 .last()
                 .ok_or_else(|| Error::Internal("no base level".into()))?;
-            let child = refine_topology(parent);
-            stencils.push(level_stencils(parent, &child));
-            levels.push(child);
+            if k + 1 == level && !options.full_topology_in_last_level {
+                let sharpness = ChildSharpnessBuf::new(parent);
+                stencils.push(level_stencils_with(parent, sharpness.view(parent)));
+                levels.push(refine_face_lists(parent));
+            } else {
+                let child = refine_topology(parent);
+                stencils.push(level_stencils(parent, &child));
+                levels.push(child);
+            }
         }
         Ok(Refiner {
             levels,
             stencils,
             limit_table: std::sync::OnceLock::new(),
+            options,
         })
+    }
+
+    /// The options the refiner was built with.
+    pub fn options(&self) -> RefineOptions {
+        self.options
+    }
+
+    /// Whether level `k` carries its full topology (every level does but a lean last one).
+    pub fn is_full(&self, k: usize) -> bool {
+        k == 0 || k < self.max_level() || self.options.full_topology_in_last_level
+    }
+
+    /// Level `k` with its full topology: borrowed, or rebuilt from level `k - 1` where the
+    /// refiner keeps it lean.
+    pub(crate) fn full_level(&self, k: usize) -> std::borrow::Cow<'_, Topology> {
+        if self.is_full(k) {
+            std::borrow::Cow::Borrowed(&self.levels[k])
+        } else {
+            std::borrow::Cow::Owned(refine_topology(&self.levels[k - 1]))
+        }
     }
 
     /// Number of refinement steps.
@@ -172,7 +256,9 @@ impl Refiner {
     /// Moves last-level vertex data to the limit surface.
     pub fn limit<const N: usize>(&self, last: &[[f32; N]]) -> Vec<[f32; N]> {
         // Built once: an animated mesh calls this every frame.
-        let t = self.limit_table.get_or_init(|| limit_stencils(self.last()));
+        let t = self
+            .limit_table
+            .get_or_init(|| limit_stencils(&self.full_level(self.max_level())));
         let mut out = vec![[0.0; N]; t.num_rows()];
         t.apply(last, &mut out);
         out
@@ -180,21 +266,26 @@ impl Refiner {
 
     /// The faces of `level` that are not holes, as a [`Mesh`] with the given positions.
     pub fn to_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Mesh {
-        let t = &self.levels[level];
-        let mut m = Mesh {
-            positions,
-            options: t.options,
-            ..Default::default()
-        };
-        for f in 0..t.num_faces() {
-            if !t.face_is_hole[f] {
-                let fv = t.face_vertices(f);
-                m.face_counts.push(fv.len() as u32);
-                m.face_indices.extend_from_slice(fv);
-            }
-        }
-        m
+        level_mesh(&self.levels[level], positions)
     }
+}
+
+/// The faces of a refined level (full or lean) that are not holes, as a [`Mesh`] with the given
+/// positions: what [`refine_once`] returns, ready to write.
+pub fn level_mesh(t: &Topology, positions: Vec<[f32; 3]>) -> Mesh {
+    let mut m = Mesh {
+        positions,
+        options: t.options,
+        ..Default::default()
+    };
+    for f in 0..t.num_faces() {
+        if !t.face_is_hole[f] {
+            let fv = t.face_vertices(f);
+            m.face_counts.push(fv.len() as u32);
+            m.face_indices.extend_from_slice(fv);
+        }
+    }
+    m
 }
 
 #[cfg(test)]

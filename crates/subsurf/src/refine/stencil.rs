@@ -42,32 +42,51 @@ impl StencilTable {
         assert!(src.len() >= self.num_inputs, "source length");
         const CHUNK: usize = 4096;
         dst.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            let base = c * CHUNK;
-            for (i, o) in out.iter_mut().enumerate() {
-                *o = self.row_value(base + i, src);
-            }
+            self.eval_rows(c * CHUNK, out, |k| &src[k]);
         });
     }
 
     /// Applies the table on the calling thread only.
     pub fn apply_serial<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
         assert_eq!(dst.len(), self.num_rows(), "destination length");
-        for (i, o) in dst.iter_mut().enumerate() {
-            *o = self.row_value(i, src);
-        }
+        self.eval_rows(0, dst, |k| &src[k]);
     }
 
+    /// Rows `first..first + out.len()` into `out`, input `k` read as `x(k)`: each row is
+    /// `Σ w · x(k)` accumulated in `f32` in entry order. The rows' entries are contiguous, so
+    /// they are walked once; rows of 4 and 9 entries (a smooth edge point, a smooth valence-4
+    /// vertex) are unrolled, in the same order.
     #[inline(always)]
-    fn row_value<const N: usize>(&self, i: usize, src: &[[f32; N]]) -> [f32; N] {
-        let (s, e) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-        let mut acc = [0.0f32; N];
-        for (&k, &w) in self.indices[s..e].iter().zip(&self.weights[s..e]) {
-            let p = &src[k as usize];
-            for c in 0..N {
-                acc[c] += w * p[c];
+    pub(crate) fn eval_rows<'s, const N: usize>(
+        &self,
+        first: usize,
+        out: &mut [[f32; N]],
+        x: impl Fn(usize) -> &'s [f32; N],
+    ) {
+        let offs = &self.offsets[first..=first + out.len()];
+        let (lo, hi) = (offs[0] as usize, offs[out.len()] as usize);
+        let (idx, wts) = (&self.indices[lo..hi], &self.weights[lo..hi]);
+        let mut j = 0;
+        let row = |ri: &[u32], rw: &[f32]| {
+            let mut acc = [0.0f32; N];
+            for (&k, &w) in ri.iter().zip(rw) {
+                let v = x(k as usize);
+                for c in 0..N {
+                    acc[c] += w * v[c];
+                }
             }
+            acc
+        };
+        for (o, w2) in out.iter_mut().zip(offs.windows(2)) {
+            let n = (w2[1] - w2[0]) as usize;
+            let (ri, rw) = (&idx[j..j + n], &wts[j..j + n]);
+            j += n;
+            *o = match n {
+                4 => row(&ri[..4], &rw[..4]),
+                9 => row(&ri[..9], &rw[..9]),
+                _ => row(ri, rw),
+            };
         }
-        acc
     }
 
     /// Composes two tables: `(other ∘ self)`, i.e. first `self` then `other`.
