@@ -52,7 +52,7 @@ fn refine_writes_obj_and_ply_with_the_expected_counts() {
         assert_eq!(mesh.num_vertices(), 25357);
         if ext == "ply" {
             // The one-shot path the CLI takes equals the library's stencil path, bit for bit.
-            let base = subsurf::io::read_path(&example("car.obj")).unwrap();
+            let base = subsurf::io::read_path(example("car.obj")).unwrap();
             let r = subsurf::Refiner::new(subsurf::Topology::new(&base).unwrap(), 2).unwrap();
             let want = r.to_mesh(2, r.refine_positions(&base.positions));
             assert_eq!(mesh.face_indices, want.face_indices);
