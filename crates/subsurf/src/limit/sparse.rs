@@ -53,6 +53,7 @@
 //! rebuilt from face lists), so the rings of complete vertices are the level's own, ordering
 //! and non-manifold edge instances included.
 
+use super::budget::Budget;
 use super::features::{face_has_features, level_tags, FeatureMask, VTag};
 use crate::error::{Error, MeshError, Result};
 use crate::options::CreaseMethod;
@@ -123,24 +124,36 @@ impl Level {
     }
 }
 
+/// What is made of a level's leaf faces: `(level, d, offset, faces)`, see [`build`].
+pub type LeafFn<'a, T> = dyn Fn(&Level, usize, u32, &[u32]) -> Result<T> + Sync + 'a;
+
 /// Builds the levels of `base` up to `max_level`, refining the faces the walk of
-/// [`super::table`] would descend into (`visited` base faces: all of them).
-pub fn build(
+/// [`super::table`] descends into (at level 0: every base face), within `budget`.
+///
+/// `leaves(level, d, offset, faces)` is given each level's leaf faces (walked, not holes, not
+/// refined further) and the offset of its vertices in the flat point array; its results are
+/// returned per level. It runs while the next level is refined (in parallel where rayon has
+/// threads), on the level whose tables were just read by the selection.
+pub fn build<T: Send>(
     base: &Topology,
     max_level: usize,
     mask: &FeatureMask,
     selection: Selection,
-) -> Result<Hierarchy> {
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+) -> Result<(Hierarchy, Vec<T>)> {
     let mut h = Hierarchy {
         levels: vec![Level::new(base.clone(), true)],
         stencils: Vec::new(),
         inputs: Vec::new(),
     };
+    let mut out = Vec::new();
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
     let mut total_vertices = base.num_vertices() as u64;
-    for d in 0..max_level {
+    let mut offset = 0u32;
+    for d in 0..=max_level {
         let cur = h.levels.last_mut().expect("base level");
-        let mut chosen = Vec::new();
+        let (mut chosen, mut leaf_faces) = (Vec::new(), Vec::with_capacity(visited.len()));
         for &f in &visited {
             let f = f as usize;
             if cur.topo.face_is_hole[f] {
@@ -152,12 +165,15 @@ pub fn build(
                     "sparse refinement: corner {v} of face {f} at level {d} is not exact"
                 )));
             }
-            if face_has_features(t, &cur.tags, f, d, mask) {
+            if d < max_level && face_has_features(t, &cur.tags, f, d, mask) {
                 cur.refine[f] = true;
                 chosen.push(f as u32);
+            } else {
+                leaf_faces.push(f as u32);
             }
         }
         if chosen.is_empty() {
+            out.push(leaves(cur, d, offset, &leaf_faces)?);
             break;
         }
         let keep = match selection {
@@ -181,14 +197,30 @@ pub fn build(
             }
             .into());
         }
+        budget.refine(&step.sub, || {
+            format!(
+                "isolating features to level {max_level} (level {} from {} faces)",
+                d + 1,
+                step.faces.len()
+            )
+        })?;
         for (m, &f) in step.faces.iter().enumerate() {
             cur.child[f as usize] = step.sub.face_offsets[m];
         }
-        let child_topo = refine_topology(&step.sub);
-        let stencils = level_stencils(&step.sub, &child_topo);
-        total_vertices += child_topo.num_vertices() as u64;
-        let mut next = Level::new(child_topo, false);
-        step.propagate(&mut next);
+        let cur: &Level = cur;
+        let (patches, (next, stencils)) = rayon::join(
+            || leaves(cur, d, offset, &leaf_faces),
+            || {
+                let child_topo = refine_topology(&step.sub);
+                let stencils = level_stencils(&step.sub, &child_topo);
+                let mut next = Level::new(child_topo, false);
+                step.propagate(&mut next);
+                (next, stencils)
+            },
+        );
+        out.push(patches?);
+        offset += cur.topo.num_vertices() as u32;
+        total_vertices += next.topo.num_vertices() as u64;
         visited = chosen
             .iter()
             .flat_map(|&f| {
@@ -200,7 +232,7 @@ pub fn build(
         h.stencils.push(stencils);
         h.levels.push(next);
     }
-    Ok(h)
+    Ok((h, out))
 }
 
 /// The faces within `n` rings of `faces`.

@@ -48,11 +48,11 @@
 //! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
-use super::endcap::gregory_points;
-use super::features::{boundary_mask, is_patch_regular, single_crease, FeatureMask};
-use super::gather::regular_points;
+use super::budget::Budget;
+use super::features::FeatureMask;
+use super::leaves::{level_patches, LeafOptions, LevelPatches};
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
-use super::sparse::{self, Hierarchy, Selection};
+use super::sparse::{self, Hierarchy, Selection, NONE};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
@@ -168,10 +168,7 @@ pub struct PatchCounts {
 
 struct Builder<'a> {
     h: &'a Hierarchy,
-    single_crease: bool,
-    cap: bool,
-    max_level: usize,
-    level_offsets: &'a [u32],
+    patches: &'a [LevelPatches],
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
     cvs: Vec<u32>,
@@ -247,12 +244,6 @@ impl Joined {
     }
 }
 
-fn not_exact(what: &str, d: usize, f: usize) -> Error {
-    Error::Internal(format!(
-        "sparse refinement: {what} of face {f} at level {d} is not exact"
-    ))
-}
-
 impl Builder<'_> {
     fn visit(
         &mut self,
@@ -280,6 +271,7 @@ impl Builder<'_> {
         self.emit(d, f, ptex, u, v, nonquad)
     }
 
+    /// Places the patch of leaf face `f` of level `d` ([`super::leaves`]).
     fn emit(
         &mut self,
         d: usize,
@@ -289,71 +281,49 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let lv = &self.h.levels[d];
-        let (t, tags) = (&lv.topo, &lv.tags);
-        if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
-            return Err(not_exact("a corner", d, f));
-        }
-        let off = self.level_offsets[d];
-        let patch = self.kinds.len() as u32;
-        let regular = is_patch_regular(t, tags, f);
-        let (kind, boundary, sharp) = if regular {
-            let bmask = boundary_mask(t, f);
-            let crease = if self.single_crease && bmask == 0 && (d < self.max_level || !self.cap) {
-                single_crease(t, tags, f)
-            } else {
-                None
-            };
-            let pts = regular_points(t, f);
-            if pts.iter().any(|&p| !lv.exact[p as usize]) {
-                return Err(not_exact("a control point", d, f));
-            }
-            self.cvs.extend(pts.iter().map(|&p| off + p));
-            match crease {
-                Some((k, s)) => (
-                    PatchType::SingleCrease,
-                    1u8 << k,
-                    if self.cap {
-                        s.min((self.max_level - d) as f32)
-                    } else {
-                        s
-                    },
-                ),
-                None => (PatchType::Regular, bmask, 0.0),
-            }
-        } else {
-            if t.face_size(f) != 4 {
+        let lp = &self.patches[d];
+        let leaf = match lp.slot.get(f) {
+            Some(&i) if i != NONE => lp.leaves[i as usize],
+            _ => {
                 return Err(Error::Internal(format!(
-                    "irregular non-quad face {f} at level {d} cannot take an end cap"
-                )));
+                    "face {f} at level {d} is walked but has no patch"
+                )))
             }
-            let first_local = self.local.num_rows() as u32;
-            for (i, row) in gregory_points(t, f).into_iter().enumerate() {
-                for (x, w) in row {
-                    if !lv.exact[x as usize] {
-                        return Err(not_exact("an end-cap input", d, f));
-                    }
-                    self.local.indices.push(x + off);
-                    self.local.weights.push(w as f32);
-                }
-                self.local.offsets.push(self.local.indices.len() as u32);
-                // Local points are numbered after all level vertices; fixed up in `build`.
-                self.cvs.push(LEAF | (first_local + i as u32));
-            }
-            (PatchType::Gregory, 0, 0.0)
         };
-        self.kinds.push(kind as u8);
+        let patch = self.kinds.len() as u32;
+        let first = leaf.first as usize;
+        if leaf.kind == PatchType::Gregory {
+            let first_local = self.local.num_rows() as u32;
+            let rows = &lp.local_offsets[first..first + 21];
+            let (a, b) = (rows[0] as usize, rows[20] as usize);
+            let (from, to) = (rows[0], self.local.indices.len() as u32);
+            self.local
+                .indices
+                .extend_from_slice(&lp.local_indices[a..b]);
+            self.local
+                .weights
+                .extend_from_slice(&lp.local_weights[a..b]);
+            self.local
+                .offsets
+                .extend(rows[1..].iter().map(|&o| o - from + to));
+            // Local points are numbered after all level vertices; fixed up in `build`.
+            self.cvs
+                .extend((0..20).map(|i| LEAF | (first_local + i as u32)));
+        } else {
+            self.cvs.extend_from_slice(&lp.cvs[first..first + 16]);
+        }
+        self.kinds.push(leaf.kind as u8);
         self.cv_offsets.push(self.cvs.len() as u32);
-        self.sharpness.push(sharp);
+        self.sharpness.push(leaf.sharpness);
         self.params.push(PatchParam::new(PatchParamFields {
             face_id: ptex,
             u: u as u16,
             v: v as u16,
             depth: d as u8,
             non_quad_root: nonquad,
-            boundary,
+            boundary: leaf.boundary,
             transition: 0,
-            regular,
+            regular: leaf.regular,
         })?);
         Ok(LEAF | patch)
     }
@@ -361,7 +331,9 @@ impl Builder<'_> {
 
 impl PatchTable {
     /// Builds the patch table of `base` (Catmull-Clark only) by sparse feature-adaptive
-    /// refinement ([`super::sparse`]).
+    /// refinement ([`super::sparse`]). Refuses with [`crate::error::MeshError::TooLarge`],
+    /// giving the estimate, a construction whose levels would not fit in 80% of the
+    /// available memory ([`super::budget`]).
     pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
         Self::build_with(base, options, Selection::Sparse)
     }
@@ -372,6 +344,16 @@ impl PatchTable {
         base: &Topology,
         options: &PatchOptions,
         selection: Selection,
+    ) -> Result<PatchTable> {
+        Self::build_within(base, options, selection, Budget::of_available_memory())
+    }
+
+    /// [`PatchTable::build_with`] within a memory `budget`.
+    pub(crate) fn build_within(
+        base: &Topology,
+        options: &PatchOptions,
+        selection: Selection,
+        mut budget: Budget,
     ) -> Result<PatchTable> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
@@ -388,11 +370,18 @@ impl PatchTable {
         if !base.is_all_quads() {
             level = level.max(1);
         }
-        let h = sparse::build(
+        let leaf_options = LeafOptions {
+            single_crease: options.single_crease,
+            cap: options.cap_crease_sharpness,
+            max_level: level,
+        };
+        let (h, patches) = sparse::build(
             base,
             level,
             &FeatureMask::new(options.single_crease),
             selection,
+            &mut budget,
+            &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
         )?;
         let mut level_offsets = vec![0u32];
         for lv in &h.levels {
@@ -418,10 +407,7 @@ impl PatchTable {
             .map(|c| {
                 let mut b = Builder {
                     h: &h,
-                    max_level: level,
-                    single_crease: options.single_crease,
-                    cap: options.cap_crease_sharpness,
-                    level_offsets: &level_offsets,
+                    patches: &patches,
                     kinds: Vec::new(),
                     cv_offsets: vec![0],
                     cvs: Vec::new(),
