@@ -16,7 +16,8 @@
 
 use super::endcap::gregory_points;
 use super::features::{boundary_mask, is_patch_regular, single_crease};
-use super::sparse::{Level, NONE};
+use super::patch_map::{EMPTY, LEAF};
+use super::sparse::Level;
 use super::table::PatchType;
 use crate::error::{Error, Result};
 
@@ -50,7 +51,9 @@ pub struct Leaf {
 /// The patches of the leaves of one level.
 #[derive(Debug, Clone, Default)]
 pub struct LevelPatches {
-    /// Per face of the level: its leaf, or [`NONE`].
+    /// Per face of the level, what the walk finds there: `LEAF | leaf` for a leaf, its first
+    /// child face for a refined face, [`EMPTY`] for a hole and [`UNWALKED`] for a face the
+    /// walk does not reach (one array, so that the walk reads one word per face and level).
     pub slot: Vec<u32>,
     /// The leaves.
     pub leaves: Vec<Leaf>,
@@ -63,6 +66,10 @@ pub struct LevelPatches {
     /// Weight of each end-cap row entry.
     pub local_weights: Vec<f32>,
 }
+
+/// [`LevelPatches::slot`] of a face the walk does not reach (above every child index, which
+/// [`super::sparse`] keeps below `2^31 − 1`).
+pub const UNWALKED: u32 = LEAF - 1;
 
 fn not_exact(what: &str, d: usize, f: usize) -> Error {
     Error::Internal(format!(
@@ -81,7 +88,17 @@ pub fn level_patches(
 ) -> Result<LevelPatches> {
     let (t, tags) = (&lv.topo, &lv.tags);
     let mut out = LevelPatches {
-        slot: vec![NONE; t.num_faces()],
+        slot: (0..t.num_faces())
+            .map(|f| {
+                if t.face_is_hole[f] {
+                    EMPTY
+                } else if lv.refine[f] {
+                    lv.child[f]
+                } else {
+                    UNWALKED
+                }
+            })
+            .collect(),
         leaves: Vec::with_capacity(faces.len()),
         cvs: Vec::with_capacity(16 * faces.len()),
         local_offsets: vec![0],
@@ -92,7 +109,7 @@ pub fn level_patches(
         if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
             return Err(not_exact("a corner", d, f));
         }
-        out.slot[f] = out.leaves.len() as u32;
+        out.slot[f] = LEAF | out.leaves.len() as u32;
         let regular = is_patch_regular(t, tags, f);
         let leaf = if regular {
             let bmask = boundary_mask(t, f);

@@ -50,9 +50,9 @@
 
 use super::budget::Budget;
 use super::features::FeatureMask;
-use super::leaves::{level_patches, LeafOptions, LevelPatches};
+use super::leaves::{level_patches, LeafOptions, LevelPatches, UNWALKED};
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
-use super::sparse::{self, Hierarchy, Selection, NONE};
+use super::sparse::{self, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
@@ -167,7 +167,6 @@ pub struct PatchCounts {
 }
 
 struct Builder<'a> {
-    h: &'a Hierarchy,
     patches: &'a [LevelPatches],
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
@@ -254,12 +253,17 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let lv = &self.h.levels[d];
-        if lv.topo.face_is_hole[f] {
+        let slot = self.patches[d].slot[f];
+        if slot == EMPTY {
             return Ok(EMPTY);
         }
-        if lv.refine[f] {
-            let first = lv.child[f] as usize;
+        if slot == UNWALKED {
+            return Err(Error::Internal(format!(
+                "face {f} at level {d} is walked but was not selected"
+            )));
+        }
+        if slot & LEAF == 0 {
+            let first = slot as usize;
             let node = self.nodes.len();
             self.nodes.push([EMPTY; 4]);
             for (j, &(du, dv)) in QUADRANT.iter().enumerate() {
@@ -268,28 +272,21 @@ impl Builder<'_> {
             }
             return Ok(node as u32);
         }
-        self.emit(d, f, ptex, u, v, nonquad)
+        self.emit(d, (slot & !LEAF) as usize, ptex, u, v, nonquad)
     }
 
-    /// Places the patch of leaf face `f` of level `d` ([`super::leaves`]).
+    /// Places the patch of leaf `i` of level `d` ([`super::leaves`]).
     fn emit(
         &mut self,
         d: usize,
-        f: usize,
+        i: usize,
         ptex: u32,
         u: u32,
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
         let lp = &self.patches[d];
-        let leaf = match lp.slot.get(f) {
-            Some(&i) if i != NONE => lp.leaves[i as usize],
-            _ => {
-                return Err(Error::Internal(format!(
-                    "face {f} at level {d} is walked but has no patch"
-                )))
-            }
-        };
+        let leaf = lp.leaves[i];
         let patch = self.kinds.len() as u32;
         let first = leaf.first as usize;
         if leaf.kind == PatchType::Gregory {
@@ -406,7 +403,6 @@ impl PatchTable {
             .into_par_iter()
             .map(|c| {
                 let mut b = Builder {
-                    h: &h,
                     patches: &patches,
                     kinds: Vec::new(),
                     cv_offsets: vec![0],
