@@ -20,6 +20,7 @@ use super::patch_map::{EMPTY, LEAF};
 use super::sparse::Level;
 use super::table::PatchType;
 use crate::error::{Error, Result};
+use rayon::prelude::*;
 
 /// How leaves become patches.
 #[derive(Debug, Clone, Copy)]
@@ -43,8 +44,8 @@ pub struct Leaf {
     pub regular: bool,
     /// Crease sharpness (0 unless single-crease).
     pub sharpness: f32,
-    /// First of its 16 points in [`LevelPatches::cvs`] (regular) or its 20 rows in
-    /// [`LevelPatches::local_offsets`] (end cap).
+    /// First of its 16 points in [`Part::cvs`] (regular) or its 20 rows in
+    /// [`Part::local_offsets`] (end cap).
     pub first: u32,
 }
 
@@ -55,6 +56,21 @@ pub struct LevelPatches {
     /// child face for a refined face, [`EMPTY`] for a hole and [`UNWALKED`] for a face the
     /// walk does not reach (one array, so that the walk reads one word per face and level).
     pub slot: Vec<u32>,
+    /// The leaves in chunks of [`CHUNK`] (the last one shorter), as they were computed.
+    pub parts: Vec<Part>,
+}
+
+impl LevelPatches {
+    /// Leaf `i` and the part holding its points.
+    pub fn leaf(&self, i: u32) -> (&Part, &Leaf) {
+        let p = &self.parts[i as usize / CHUNK];
+        (p, &p.leaves[i as usize % CHUNK])
+    }
+}
+
+/// The patches of a chunk of leaves.
+#[derive(Debug, Clone, Default)]
+pub struct Part {
     /// The leaves.
     pub leaves: Vec<Leaf>,
     /// 16 flat point indices per regular leaf.
@@ -77,8 +93,11 @@ fn not_exact(what: &str, d: usize, f: usize) -> Error {
     ))
 }
 
+/// Leaves per parallel task.
+const CHUNK: usize = 512;
+
 /// The patches of the leaf faces `faces` of level `d` (`lv`), whose vertices start at `off`
-/// in the flat point array.
+/// in the flat point array; chunks of faces in parallel, joined in order.
 pub fn level_patches(
     lv: &Level,
     d: usize,
@@ -86,9 +105,9 @@ pub fn level_patches(
     faces: &[u32],
     o: &LeafOptions,
 ) -> Result<LevelPatches> {
-    let (t, tags) = (&lv.topo, &lv.tags);
-    let mut out = LevelPatches {
-        slot: (0..t.num_faces())
+    let t = &lv.topo;
+    let slot = || -> Vec<u32> {
+        (0..t.num_faces())
             .map(|f| {
                 if t.face_is_hole[f] {
                     EMPTY
@@ -98,7 +117,27 @@ pub fn level_patches(
                     UNWALKED
                 }
             })
-            .collect(),
+            .collect()
+    };
+    let (mut slot, parts) = rayon::join(slot, || {
+        faces
+            .par_chunks(CHUNK)
+            .map(|c| chunk_patches(lv, d, off, c, o))
+            .collect::<Result<Vec<Part>>>()
+    });
+    for (i, &f) in faces.iter().enumerate() {
+        slot[f as usize] = LEAF | i as u32;
+    }
+    Ok(LevelPatches {
+        slot,
+        parts: parts?,
+    })
+}
+
+/// The patches of a chunk of leaf faces.
+fn chunk_patches(lv: &Level, d: usize, off: u32, faces: &[u32], o: &LeafOptions) -> Result<Part> {
+    let (t, tags) = (&lv.topo, &lv.tags);
+    let mut out = Part {
         leaves: Vec::with_capacity(faces.len()),
         cvs: Vec::with_capacity(16 * faces.len()),
         local_offsets: vec![0],
@@ -109,7 +148,6 @@ pub fn level_patches(
         if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
             return Err(not_exact("a corner", d, f));
         }
-        out.slot[f] = LEAF | out.leaves.len() as u32;
         let regular = is_patch_regular(t, tags, f);
         let leaf = if regular {
             let bmask = boundary_mask(t, f);

@@ -166,15 +166,15 @@ pub struct PatchCounts {
     pub gregory: usize,
 }
 
+/// The walk of a chunk of base faces: its patches' types, parameters and quadtree, and
+/// which leaf each patch is (its points are copied once, when the chunks are joined).
 struct Builder<'a> {
     patches: &'a [LevelPatches],
     kinds: Vec<u8>,
-    cv_offsets: Vec<u32>,
-    cvs: Vec<u32>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
-    /// End-cap points: a stencil table whose inputs are flat level-vertex indices.
-    local: StencilTable,
+    /// `(level, leaf)` of each patch.
+    leaves: Vec<(u32, u32)>,
     nodes: Vec<[u32; 4]>,
     roots: Vec<u32>,
 }
@@ -193,27 +193,26 @@ struct Joined {
 }
 
 impl Joined {
-    /// Reserves room for every chunk.
-    fn reserve(&mut self, parts: &[Builder]) {
+    /// Reserves room for every chunk (`rows`, `entries`: end-cap rows and their entries).
+    fn reserve(&mut self, parts: &[Builder], rows: usize, entries: usize) {
         let sum = |f: &dyn Fn(&Builder) -> usize| parts.iter().map(f).sum::<usize>();
         let patches = sum(&|b| b.kinds.len());
         self.kinds.reserve(patches);
         self.cv_offsets.reserve(patches);
         self.params.reserve(patches);
         self.sharpness.reserve(patches);
-        self.cvs.reserve(sum(&|b| b.cvs.len()));
+        self.cvs.reserve(16 * patches + rows / 5);
         self.nodes.reserve(sum(&|b| b.nodes.len()));
         self.roots.reserve(sum(&|b| b.roots.len()));
-        self.local.offsets.reserve(sum(&|b| b.local.num_rows()));
-        self.local.indices.reserve(sum(&|b| b.local.indices.len()));
-        self.local.weights.reserve(sum(&|b| b.local.weights.len()));
+        self.local.offsets.reserve(rows);
+        self.local.indices.reserve(entries);
+        self.local.weights.reserve(entries);
     }
 
-    /// Appends one chunk's arrays, renumbering its patches, nodes and local points, and
-    /// placing local points after the `num_level_points` level vertices.
+    /// Appends one chunk's arrays, renumbering its patches and nodes, and copies its
+    /// patches' points, placing local points after the `num_level_points` level vertices.
     fn append(&mut self, b: Builder, num_level_points: u32) {
         let (p0, n0) = (self.kinds.len() as u32, self.nodes.len() as u32);
-        let (l0, c0) = (self.local.num_rows() as u32, self.cvs.len() as u32);
         let handle = |h: u32| match h {
             EMPTY => EMPTY,
             h if h & LEAF != 0 => LEAF | ((h & !LEAF) + p0),
@@ -222,24 +221,32 @@ impl Joined {
         self.roots.extend(b.roots.iter().map(|&h| handle(h)));
         self.nodes
             .extend(b.nodes.iter().map(|n| [0, 1, 2, 3].map(|q| handle(n[q]))));
-        self.cvs.extend(b.cvs.iter().map(|&c| {
-            if c & LEAF != 0 {
-                num_level_points + l0 + (c & !LEAF)
-            } else {
-                c
-            }
-        }));
-        self.cv_offsets
-            .extend(b.cv_offsets[1..].iter().map(|&o| o + c0));
         self.kinds.extend_from_slice(&b.kinds);
         self.params.extend_from_slice(&b.params);
         self.sharpness.extend_from_slice(&b.sharpness);
-        let e0 = self.local.indices.len() as u32;
-        self.local.indices.extend_from_slice(&b.local.indices);
-        self.local.weights.extend_from_slice(&b.local.weights);
-        self.local
-            .offsets
-            .extend(b.local.offsets[1..].iter().map(|&o| o + e0));
+        for &(d, i) in &b.leaves {
+            let (part, leaf) = b.patches[d as usize].leaf(i);
+            let first = leaf.first as usize;
+            if leaf.kind == PatchType::Gregory {
+                let l0 = num_level_points + self.local.num_rows() as u32;
+                let rows = &part.local_offsets[first..first + 21];
+                let (a, z) = (rows[0] as usize, rows[20] as usize);
+                let (from, to) = (rows[0], self.local.indices.len() as u32);
+                self.local
+                    .indices
+                    .extend_from_slice(&part.local_indices[a..z]);
+                self.local
+                    .weights
+                    .extend_from_slice(&part.local_weights[a..z]);
+                self.local
+                    .offsets
+                    .extend(rows[1..].iter().map(|&o| o - from + to));
+                self.cvs.extend(l0..l0 + 20);
+            } else {
+                self.cvs.extend_from_slice(&part.cvs[first..first + 16]);
+            }
+            self.cv_offsets.push(self.cvs.len() as u32);
+        }
     }
 }
 
@@ -285,32 +292,9 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let lp = &self.patches[d];
-        let leaf = lp.leaves[i];
+        let (_, leaf) = self.patches[d].leaf(i as u32);
         let patch = self.kinds.len() as u32;
-        let first = leaf.first as usize;
-        if leaf.kind == PatchType::Gregory {
-            let first_local = self.local.num_rows() as u32;
-            let rows = &lp.local_offsets[first..first + 21];
-            let (a, b) = (rows[0] as usize, rows[20] as usize);
-            let (from, to) = (rows[0], self.local.indices.len() as u32);
-            self.local
-                .indices
-                .extend_from_slice(&lp.local_indices[a..b]);
-            self.local
-                .weights
-                .extend_from_slice(&lp.local_weights[a..b]);
-            self.local
-                .offsets
-                .extend(rows[1..].iter().map(|&o| o - from + to));
-            // Local points are numbered after all level vertices; fixed up in `build`.
-            self.cvs
-                .extend((0..20).map(|i| LEAF | (first_local + i as u32)));
-        } else {
-            self.cvs.extend_from_slice(&lp.cvs[first..first + 16]);
-        }
         self.kinds.push(leaf.kind as u8);
-        self.cv_offsets.push(self.cvs.len() as u32);
         self.sharpness.push(leaf.sharpness);
         self.params.push(PatchParam::new(PatchParamFields {
             face_id: ptex,
@@ -322,6 +306,7 @@ impl Builder<'_> {
             transition: 0,
             regular: leaf.regular,
         })?);
+        self.leaves.push((d as u32, i as u32));
         Ok(LEAF | patch)
     }
 }
@@ -405,15 +390,9 @@ impl PatchTable {
                 let mut b = Builder {
                     patches: &patches,
                     kinds: Vec::new(),
-                    cv_offsets: vec![0],
-                    cvs: Vec::new(),
                     params: Vec::new(),
                     sharpness: Vec::new(),
-                    local: StencilTable {
-                        offsets: vec![0],
-                        num_inputs: num_level_points as usize,
-                        ..Default::default()
-                    },
+                    leaves: Vec::new(),
                     nodes: Vec::new(),
                     roots: Vec::new(),
                 };
@@ -444,7 +423,13 @@ impl PatchTable {
             cv_offsets: vec![0],
             ..Default::default()
         };
-        all.reserve(&parts);
+        let (rows, entries) = patches
+            .iter()
+            .flat_map(|p| &p.parts)
+            .fold((0, 0), |(r, e), p| {
+                (r + p.local_offsets.len() - 1, e + p.local_indices.len())
+            });
+        all.reserve(&parts, rows, entries);
         for b in parts {
             all.append(b, num_level_points);
         }
