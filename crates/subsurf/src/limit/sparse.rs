@@ -84,7 +84,8 @@ pub enum Selection {
 pub struct Level {
     /// Its topology.
     pub topo: Topology,
-    /// Feature tags of its vertices.
+    /// Feature tags of its vertices: every vertex of the base, the corners of the faces the
+    /// walk reaches in a refined level (the only ones read), default elsewhere.
     pub tags: Vec<VTag>,
     /// Per vertex: its value is exact.
     pub exact: Vec<bool>,
@@ -113,7 +114,11 @@ impl Level {
     fn new(topo: Topology, base: bool) -> Level {
         let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         Level {
-            tags: level_tags(&topo, base),
+            tags: if base {
+                level_tags(&topo, base)
+            } else {
+                vec![VTag::default(); nv]
+            },
             exact: vec![true; nv],
             sound: vec![true; nv],
             edge_ok: vec![true; ne],
@@ -153,6 +158,9 @@ pub fn build<T: Send>(
     let mut offset = 0u32;
     for d in 0..=max_level {
         let cur = h.levels.last_mut().expect("base level");
+        if d > 0 {
+            tag_corners(cur, &visited);
+        }
         let (mut chosen, mut leaf_faces) = (Vec::new(), Vec::with_capacity(visited.len()));
         for &f in &visited {
             let f = f as usize;
@@ -233,6 +241,20 @@ pub fn build<T: Send>(
         h.levels.push(next);
     }
     Ok((h, out))
+}
+
+/// Tags the corners of the faces `faces` of a refined level.
+fn tag_corners(lv: &mut Level, faces: &[u32]) {
+    let t = &lv.topo;
+    let mut done = vec![false; t.num_vertices()];
+    for &f in faces {
+        for &v in t.face_vertices(f as usize) {
+            if !done[v as usize] {
+                done[v as usize] = true;
+                lv.tags[v as usize] = VTag::of(t, v as usize, false);
+            }
+        }
+    }
 }
 
 /// The faces within `n` rings of `faces`.
