@@ -156,6 +156,7 @@ pub fn build<T: Send>(
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
     let mut total_vertices = base.num_vertices() as u64;
     let mut offset = 0u32;
+    let mut prev_sub: Option<Topology> = None;
     for d in 0..=max_level {
         let cur = h.levels.last_mut().expect("base level");
         if d > 0 {
@@ -181,7 +182,13 @@ pub fn build<T: Send>(
             }
         }
         if chosen.is_empty() {
-            out.push(leaves(cur, d, offset, &leaf_faces)?);
+            let cur: &Level = cur;
+            let (patches, stencils) = rayon::join(
+                || leaves(cur, d, offset, &leaf_faces),
+                || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+            );
+            out.push(patches?);
+            h.stencils.extend(stencils);
             break;
         }
         let keep = match selection {
@@ -216,17 +223,23 @@ pub fn build<T: Send>(
             cur.child[f as usize] = step.sub.face_offsets[m];
         }
         let cur: &Level = cur;
-        let (patches, (next, stencils)) = rayon::join(
-            || leaves(cur, d, offset, &leaf_faces),
+        // The stencils of the step that made this level are computed with its leaves, while
+        // the next level's topology is refined.
+        let ((patches, stencils), next) = rayon::join(
             || {
-                let child_topo = refine_topology(&step.sub);
-                let stencils = level_stencils(&step.sub, &child_topo);
-                let mut next = Level::new(child_topo, false);
+                rayon::join(
+                    || leaves(cur, d, offset, &leaf_faces),
+                    || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+                )
+            },
+            || {
+                let mut next = Level::new(refine_topology(&step.sub), false);
                 step.propagate(&mut next);
-                (next, stencils)
+                next
             },
         );
         out.push(patches?);
+        h.stencils.extend(stencils);
         offset += cur.topo.num_vertices() as u32;
         total_vertices += next.topo.num_vertices() as u64;
         visited = chosen
@@ -237,7 +250,7 @@ pub fn build<T: Send>(
             })
             .collect();
         h.inputs.push(step.verts);
-        h.stencils.push(stencils);
+        prev_sub = Some(step.sub);
         h.levels.push(next);
     }
     Ok((h, out))
