@@ -39,7 +39,12 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// A sparse combination of level vertices.
 pub type Row = Vec<(u32, f64)>;
 
+/// `dst += s · src`. Every row holds each vertex once, so into an empty row this is a copy.
 fn add(dst: &mut Row, src: &Row, s: f64) {
+    if dst.is_empty() {
+        dst.extend(src.iter().map(|&(i, w)| (i, w * s)));
+        return;
+    }
     extend(dst, src.iter().map(|&(i, w)| (i, w * s)));
 }
 
