@@ -99,11 +99,13 @@ pub struct Level {
     pub child: Vec<u32>,
 }
 
-/// The levels, and the stencils from each to the next.
+/// The sizes of the levels, and the stencils from each to the next (a level itself is
+/// released once its leaves and the stencils that make it are computed, so that the next
+/// levels reuse its memory).
 #[derive(Debug, Clone)]
 pub struct Hierarchy {
-    /// `levels[0]` is the base.
-    pub levels: Vec<Level>,
+    /// Number of vertices of each level; `num_vertices[0]` is the base's.
+    pub num_vertices: Vec<usize>,
     /// `stencils[d]`: level `d + 1` from the vertices of the sub-mesh of level `d`.
     pub stencils: Vec<LevelStencils>,
     /// `inputs[d][i]`: the level-`d` vertex that is vertex `i` of its sub-mesh.
@@ -148,17 +150,18 @@ pub fn build<T: Send>(
     leaves: &LeafFn<'_, T>,
 ) -> Result<(Hierarchy, Vec<T>)> {
     let mut h = Hierarchy {
-        levels: vec![Level::new(base.clone(), true)],
+        num_vertices: vec![base.num_vertices()],
         stencils: Vec::new(),
         inputs: Vec::new(),
     };
+    let mut level = Level::new(base.clone(), true);
     let mut out = Vec::new();
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
     let mut total_vertices = base.num_vertices() as u64;
     let mut offset = 0u32;
     let mut prev_sub: Option<Topology> = None;
     for d in 0..=max_level {
-        let cur = h.levels.last_mut().expect("base level");
+        let cur = &mut level;
         if d > 0 {
             tag_corners(cur, &visited);
         }
@@ -250,8 +253,9 @@ pub fn build<T: Send>(
             })
             .collect();
         h.inputs.push(step.verts);
+        h.num_vertices.push(next.topo.num_vertices());
         prev_sub = Some(step.sub);
-        h.levels.push(next);
+        level = next;
     }
     Ok((h, out))
 }

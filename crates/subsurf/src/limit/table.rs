@@ -366,9 +366,9 @@ impl PatchTable {
             &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
         )?;
         let mut level_offsets = vec![0u32];
-        for lv in &h.levels {
+        for &nv in &h.num_vertices {
             let last = *level_offsets.last().unwrap_or(&0);
-            let n = u32::try_from(lv.topo.num_vertices())
+            let n = u32::try_from(nv)
                 .ok()
                 .and_then(|n| last.checked_add(n))
                 .ok_or_else(|| Error::Internal("more than 2^32 refined vertices".into()))?;
@@ -404,7 +404,8 @@ impl PatchTable {
                     } else if base.face_is_hole[f] {
                         b.roots.extend(std::iter::repeat_n(EMPTY, n));
                     } else {
-                        let first = h.levels[0].child[f] as usize;
+                        // A non-quad face is refined: its slot is its first child.
+                        let first = patches[0].slot[f] as usize;
                         for j in 0..n {
                             let r = b.visit(1, first + j, ptex + j as u32, 0, 0, true)?;
                             b.roots.push(r);
