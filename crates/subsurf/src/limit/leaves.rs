@@ -5,7 +5,7 @@
 //!
 //! A leaf becomes:
 //! - a regular bicubic B-spline patch when [`is_patch_regular`]: its 16 points
-//!   ([`regular_points`]) and boundary mask ([`boundary_mask`]);
+//!   ([`super::gather::regular_points`]) and boundary mask ([`boundary_mask`]);
 //! - a single-crease patch when, in addition, it is interior and [`single_crease`]: the
 //!   crease edge `k` as the boundary bit `1 << k`, and the level's sharpness (with
 //!   `cap_crease_sharpness`, OpenSubdiv's `min(s, L − d)`, and none at level `L`);
@@ -56,7 +56,7 @@ pub struct LevelPatches {
     /// child face for a refined face, [`EMPTY`] for a hole and [`UNWALKED`] for a face the
     /// walk does not reach (one array, so that the walk reads one word per face and level).
     pub slot: Vec<u32>,
-    /// The leaves in chunks of [`CHUNK`] (the last one shorter), as they were computed.
+    /// The leaves in chunks of 512 (the last one shorter), as they were computed.
     pub parts: Vec<Part>,
 }
 
@@ -93,7 +93,7 @@ fn not_exact(what: &str, d: usize, f: usize) -> Error {
     ))
 }
 
-/// Leaves per parallel task.
+/// Leaves per parallel task and per [`Part`].
 const CHUNK: usize = 512;
 
 /// The patches of the leaf faces `faces` of level `d` (`lv`), whose vertices start at `off`

@@ -9,8 +9,10 @@
 //! builds those levels sparsely, as OpenSubdiv's `RefineAdaptive` does: level `d + 1` refines
 //! only the faces selected at level `d` ([`super::features::face_has_features`]) and one ring
 //! of faces around them, so the cost grows linearly with `L` around each feature (not as
-//! `4^L`). The walk then descends each base face's quadtree through the selected faces. The
-//! patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
+//! `4^L`). The patches of each level's leaf faces are made while the next level is refined
+//! ([`super::leaves`]); the walk then descends each base face's quadtree through the selected
+//! faces and places them in quadtree order. A construction whose levels would not fit in
+//! memory is refused up front, level by level ([`super::budget`]). The patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
 //! `Far::PatchTable`; every control point is checked to be the one uniform refinement gives.
 //!
 //! Leaf faces become:
