@@ -280,7 +280,22 @@ fn rings(t: &Topology, faces: &[u32], n: usize) -> Vec<bool> {
     for &f in faces {
         m[f as usize] = true;
     }
-    (0..n).fold(m, |m, _| ring(t, &m))
+    if n == 0 {
+        return m;
+    }
+    // The first ring from the faces themselves, further rings from the whole selection.
+    let mut vmark = vec![false; t.num_vertices()];
+    for &f in faces {
+        for &v in t.face_vertices(f as usize) {
+            if !vmark[v as usize] {
+                vmark[v as usize] = true;
+                for &g in t.vertex_faces(v as usize) {
+                    m[g as usize] = true;
+                }
+            }
+        }
+    }
+    (1..n).fold(m, |m, _| ring(t, &m))
 }
 
 /// The faces sharing a vertex with a face of `sel`.
