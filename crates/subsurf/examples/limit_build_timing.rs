@@ -72,12 +72,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let table = build();
         let osd_build = osd_ref::patch_table_only(&osd_mesh, &oo);
-        // The three measurements alternate run by run, so that they share the machine's load.
+        // The three measurements alternate run by run, so that they share the machine's load;
+        // each starts after a pause in which the idle rayon workers of the previous one stop
+        // spinning (they would otherwise take a core from the next measurement).
+        let settle = || std::thread::sleep(std::time::Duration::from_millis(5));
         let (mut ours, mut ours1, mut theirs) = (Vec::new(), Vec::new(), Vec::new());
         for _ in 0..runs {
+            settle();
             ours.push(time_ms(build));
+            settle();
             ours1.push(serial.install(|| time_ms(build)));
             if osd_build.is_ok() {
+                settle();
                 theirs.push(time_ms(|| osd_ref::patch_table_only(&osd_mesh, &oo)));
             }
         }

@@ -39,7 +39,12 @@ use std::hash::{BuildHasherDefault, Hasher};
 /// A sparse combination of level vertices.
 pub type Row = Vec<(u32, f64)>;
 
+/// `dst += s · src`. Every row holds each vertex once, so into an empty row this is a copy.
 fn add(dst: &mut Row, src: &Row, s: f64) {
+    if dst.is_empty() {
+        dst.extend(src.iter().map(|&(i, w)| (i, w * s)));
+        return;
+    }
     extend(dst, src.iter().map(|&(i, w)| (i, w * s)));
 }
 
@@ -95,7 +100,7 @@ fn extend(dst: &mut Row, items: impl ExactSizeIterator<Item = (u32, f64)>) {
 }
 
 fn row(entries: &[(u32, f64)]) -> Row {
-    let mut r = Row::new();
+    let mut r = Row::with_capacity(entries.len());
     for &(i, w) in entries {
         push(&mut r, i, w);
     }
@@ -229,7 +234,7 @@ fn boundary_weights(nf: usize, r: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
 fn corner_topology(t: &Topology, f: usize, k: usize) -> Corner {
     let v = t.face_vertices(f)[k] as usize;
     let vt = t.vert_tags[v];
-    let mut ring = Vec::new();
+    let mut ring = Vec::with_capacity(2 * t.vertex_faces(t.face_vertices(f)[k] as usize).len() + 1);
     let (boundary, sharp, nf, r);
     if vt & tags::V_NON_MANIFOLD != 0 {
         // The manifold span around the corner stands for the vertex's ring.
@@ -437,7 +442,8 @@ fn edge_points(c: &Corner, v: u32, next: u32, prev: u32) -> (Row, Row, Row) {
     } else if !c.boundary {
         let (pw, epw, emw) = interior_weights(c.valence, c.face_in_ring);
         let conv = |w: &[f64]| {
-            let mut r = row(&[(v, w[0])]);
+            let mut r = Row::with_capacity(w.len());
+            r.push((v, w[0]));
             extend(&mut r, (1..w.len()).map(|i| (g(i - 1), w[i])));
             r
         };
@@ -472,7 +478,7 @@ fn face_point(
     e_far: &Row,
     sign: f64,
 ) -> Row {
-    let mut f = Row::new();
+    let mut f = Row::with_capacity(p.len() + e_near.len() + e_far.len() + 4);
     add(&mut f, p, far.cos / 3.0);
     add(&mut f, e_near, (3.0 - 2.0 * near.cos - far.cos) / 3.0);
     add(&mut f, e_far, 2.0 * near.cos / 3.0);

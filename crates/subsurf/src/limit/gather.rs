@@ -66,7 +66,12 @@ pub fn regular_points(t: &Topology, f: usize) -> [u32; 16] {
         let interior = edges.len() == faces.len();
         let idx = |i: usize, n: usize| -> Option<usize> {
             if interior {
-                Some(i % n)
+                // `i < r + 4 ≤ n + 3`: a subtraction or two instead of a division.
+                let mut i = i;
+                while i >= n {
+                    i -= n;
+                }
+                Some(i)
             } else if i < n {
                 Some(i)
             } else if i >= 4 && i - 4 < n {

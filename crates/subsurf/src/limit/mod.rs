@@ -8,7 +8,9 @@
 //!
 //! - [`table`]: which faces become regular B-spline, single-crease or Gregory end-cap
 //!   patches, and the flat arrays that hold them;
-//! - [`sparse`]: the sparsely refined levels the patches are taken from;
+//! - [`sparse`]: the sparsely refined levels the patches are taken from, within the memory
+//!   [`budget`];
+//! - [`leaves`]: the patch of each leaf face of a level;
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
@@ -24,10 +26,12 @@
 //! `k−1 → k` — the vertex order of the child faces made by [`crate::refine`]. Ptex faces are
 //! numbered in base face order (OpenSubdiv `Far::PtexIndices`), holes included.
 
+pub mod budget;
 pub mod endcap;
 pub mod eval;
 pub mod features;
 pub mod gather;
+pub mod leaves;
 pub mod patch_map;
 pub mod span;
 pub mod sparse;

@@ -53,6 +53,7 @@
 //! rebuilt from face lists), so the rings of complete vertices are the level's own, ordering
 //! and non-manifold edge instances included.
 
+use super::budget::Budget;
 use super::features::{face_has_features, level_tags, FeatureMask, VTag};
 use crate::error::{Error, MeshError, Result};
 use crate::options::CreaseMethod;
@@ -83,7 +84,8 @@ pub enum Selection {
 pub struct Level {
     /// Its topology.
     pub topo: Topology,
-    /// Feature tags of its vertices.
+    /// Feature tags of its vertices: every vertex of the base, the corners of the faces the
+    /// walk reaches in a refined level (the only ones read), default elsewhere.
     pub tags: Vec<VTag>,
     /// Per vertex: its value is exact.
     pub exact: Vec<bool>,
@@ -97,11 +99,13 @@ pub struct Level {
     pub child: Vec<u32>,
 }
 
-/// The levels, and the stencils from each to the next.
+/// The sizes of the levels, and the stencils from each to the next (a level itself is
+/// released once its leaves and the stencils that make it are computed, so that the next
+/// levels reuse its memory).
 #[derive(Debug, Clone)]
 pub struct Hierarchy {
-    /// `levels[0]` is the base.
-    pub levels: Vec<Level>,
+    /// Number of vertices of each level; `num_vertices[0]` is the base's.
+    pub num_vertices: Vec<usize>,
     /// `stencils[d]`: level `d + 1` from the vertices of the sub-mesh of level `d`.
     pub stencils: Vec<LevelStencils>,
     /// `inputs[d][i]`: the level-`d` vertex that is vertex `i` of its sub-mesh.
@@ -112,7 +116,11 @@ impl Level {
     fn new(topo: Topology, base: bool) -> Level {
         let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         Level {
-            tags: level_tags(&topo, base),
+            tags: if base {
+                level_tags(&topo, base)
+            } else {
+                vec![VTag::default(); nv]
+            },
             exact: vec![true; nv],
             sound: vec![true; nv],
             edge_ok: vec![true; ne],
@@ -123,24 +131,41 @@ impl Level {
     }
 }
 
+/// What is made of a level's leaf faces: `(level, d, offset, faces)`, see [`build`].
+pub type LeafFn<'a, T> = dyn Fn(&Level, usize, u32, &[u32]) -> Result<T> + Sync + 'a;
+
 /// Builds the levels of `base` up to `max_level`, refining the faces the walk of
-/// [`super::table`] would descend into (`visited` base faces: all of them).
-pub fn build(
+/// [`super::table`] descends into (at level 0: every base face), within `budget`.
+///
+/// `leaves(level, d, offset, faces)` is given each level's leaf faces (walked, not holes, not
+/// refined further) and the offset of its vertices in the flat point array; its results are
+/// returned per level. It runs while the next level is refined (in parallel where rayon has
+/// threads), on the level whose tables were just read by the selection.
+pub fn build<T: Send>(
     base: &Topology,
     max_level: usize,
     mask: &FeatureMask,
     selection: Selection,
-) -> Result<Hierarchy> {
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+) -> Result<(Hierarchy, Vec<T>)> {
     let mut h = Hierarchy {
-        levels: vec![Level::new(base.clone(), true)],
+        num_vertices: vec![base.num_vertices()],
         stencils: Vec::new(),
         inputs: Vec::new(),
     };
+    let mut level = Level::new(base.clone(), true);
+    let mut out = Vec::new();
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
     let mut total_vertices = base.num_vertices() as u64;
-    for d in 0..max_level {
-        let cur = h.levels.last_mut().expect("base level");
-        let mut chosen = Vec::new();
+    let mut offset = 0u32;
+    let mut prev_sub: Option<Topology> = None;
+    for d in 0..=max_level {
+        let cur = &mut level;
+        if d > 0 {
+            tag_corners(cur, &visited);
+        }
+        let (mut chosen, mut leaf_faces) = (Vec::new(), Vec::with_capacity(visited.len()));
         for &f in &visited {
             let f = f as usize;
             if cur.topo.face_is_hole[f] {
@@ -152,12 +177,21 @@ pub fn build(
                     "sparse refinement: corner {v} of face {f} at level {d} is not exact"
                 )));
             }
-            if face_has_features(t, &cur.tags, f, d, mask) {
+            if d < max_level && face_has_features(t, &cur.tags, f, d, mask) {
                 cur.refine[f] = true;
                 chosen.push(f as u32);
+            } else {
+                leaf_faces.push(f as u32);
             }
         }
         if chosen.is_empty() {
+            let cur: &Level = cur;
+            let (patches, stencils) = rayon::join(
+                || leaves(cur, d, offset, &leaf_faces),
+                || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+            );
+            out.push(patches?);
+            h.stencils.extend(stencils);
             break;
         }
         let keep = match selection {
@@ -181,14 +215,36 @@ pub fn build(
             }
             .into());
         }
+        budget.refine(&step.sub, || {
+            format!(
+                "isolating features to level {max_level} (level {} from {} faces)",
+                d + 1,
+                step.faces.len()
+            )
+        })?;
         for (m, &f) in step.faces.iter().enumerate() {
             cur.child[f as usize] = step.sub.face_offsets[m];
         }
-        let child_topo = refine_topology(&step.sub);
-        let stencils = level_stencils(&step.sub, &child_topo);
-        total_vertices += child_topo.num_vertices() as u64;
-        let mut next = Level::new(child_topo, false);
-        step.propagate(&mut next);
+        let cur: &Level = cur;
+        // The stencils of the step that made this level are computed with its leaves, while
+        // the next level's topology is refined.
+        let ((patches, stencils), next) = rayon::join(
+            || {
+                rayon::join(
+                    || leaves(cur, d, offset, &leaf_faces),
+                    || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+                )
+            },
+            || {
+                let mut next = Level::new(refine_topology(&step.sub), false);
+                step.propagate(&mut next);
+                next
+            },
+        );
+        out.push(patches?);
+        h.stencils.extend(stencils);
+        offset += cur.topo.num_vertices() as u32;
+        total_vertices += next.topo.num_vertices() as u64;
         visited = chosen
             .iter()
             .flat_map(|&f| {
@@ -197,10 +253,25 @@ pub fn build(
             })
             .collect();
         h.inputs.push(step.verts);
-        h.stencils.push(stencils);
-        h.levels.push(next);
+        h.num_vertices.push(next.topo.num_vertices());
+        prev_sub = Some(step.sub);
+        level = next;
     }
-    Ok(h)
+    Ok((h, out))
+}
+
+/// Tags the corners of the faces `faces` of a refined level.
+fn tag_corners(lv: &mut Level, faces: &[u32]) {
+    let t = &lv.topo;
+    let mut done = vec![false; t.num_vertices()];
+    for &f in faces {
+        for &v in t.face_vertices(f as usize) {
+            if !done[v as usize] {
+                done[v as usize] = true;
+                lv.tags[v as usize] = VTag::of(t, v as usize, false);
+            }
+        }
+    }
 }
 
 /// The faces within `n` rings of `faces`.
@@ -209,7 +280,22 @@ fn rings(t: &Topology, faces: &[u32], n: usize) -> Vec<bool> {
     for &f in faces {
         m[f as usize] = true;
     }
-    (0..n).fold(m, |m, _| ring(t, &m))
+    if n == 0 {
+        return m;
+    }
+    // The first ring from the faces themselves, further rings from the whole selection.
+    let mut vmark = vec![false; t.num_vertices()];
+    for &f in faces {
+        for &v in t.face_vertices(f as usize) {
+            if !vmark[v as usize] {
+                vmark[v as usize] = true;
+                for &g in t.vertex_faces(v as usize) {
+                    m[g as usize] = true;
+                }
+            }
+        }
+    }
+    (1..n).fold(m, |m, _| ring(t, &m))
 }
 
 /// The faces sharing a vertex with a face of `sel`.

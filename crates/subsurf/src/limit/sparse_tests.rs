@@ -1,13 +1,28 @@
 //! The sparse construction against uniform refinement, its cost per level, and its
 //! exactness check.
 
+use super::budget::Budget;
 use super::features::FeatureMask;
 use super::sparse::{build, Selection};
 use super::table::{PatchOptions, PatchTable};
-use crate::error::Error;
+use crate::error::{Error, MeshError};
 use crate::options::CreaseMethod;
 use crate::topology::Topology;
 use crate::Mesh;
+
+/// The levels alone, within no memory limit.
+fn build_levels(
+    t: &Topology,
+    max_level: usize,
+    mask: &FeatureMask,
+    selection: Selection,
+) -> crate::error::Result<super::sparse::Hierarchy> {
+    let mut budget = Budget::with_limit(u64::MAX);
+    build(t, max_level, mask, selection, &mut budget, &|_, _, _, _| {
+        Ok(())
+    })
+    .map(|(h, _)| h)
+}
 
 fn shapes_dir() -> std::path::PathBuf {
     std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes")
@@ -185,15 +200,15 @@ fn sub_meshes_without_a_ring_are_detected_as_inexact() {
     let mask = FeatureMask::new(true);
     for name in ["catmark_cube", "catmark_car", "catmark_chaikin0"] {
         let t = Topology::new(&shape(name)).unwrap();
-        match build(&t, 4, &mask, Selection::Rings(0)) {
+        match build_levels(&t, 4, &mask, Selection::Rings(0)) {
             Err(Error::Internal(msg)) => assert!(msg.contains("not exact"), "{name}: {msg}"),
             other => panic!(
                 "{name}: sub-meshes without a ring accepted ({:?} levels)",
-                other.map(|h| h.levels.len())
+                other.map(|h| h.num_vertices.len())
             ),
         }
-        let h = build(&t, 4, &mask, Selection::Rings(1)).unwrap();
-        assert_eq!(h.levels.len(), 5, "{name}");
+        let h = build_levels(&t, 4, &mask, Selection::Rings(1)).unwrap();
+        assert_eq!(h.num_vertices.len(), 5, "{name}");
     }
 }
 
@@ -253,5 +268,45 @@ fn a_big_mesh_isolates_one_spot_to_level_ten_in_linear_size() {
     assert!(step > 0);
     for w in patches.windows(2) {
         assert_eq!(w[1] - w[0], step, "{patches:?}");
+    }
+}
+
+#[test]
+fn a_construction_over_its_memory_budget_is_refused_with_the_estimate() {
+    let t = Topology::new(&shape("catmark_car")).unwrap();
+    let o = PatchOptions {
+        isolation_level: 6,
+        ..Default::default()
+    };
+    let mask = FeatureMask::new(o.single_crease);
+    // The running total of the levels' estimates, without a limit.
+    let mut free = Budget::with_limit(u64::MAX);
+    build(&t, 6, &mask, Selection::Sparse, &mut free, &|_, _, _, _| {
+        Ok(())
+    })
+    .unwrap();
+    let table = PatchTable::build(&t, &o).unwrap();
+    // The estimate covers at least the refinement stencils the table keeps, and is of
+    // their order.
+    let kept = table.stencil_bytes() as u64;
+    assert!(
+        free.used >= kept && free.used < 30 * kept,
+        "{} vs {kept}",
+        free.used
+    );
+    // Exactly that total fits; one byte less is refused before the last level is made.
+    let fits = PatchTable::build_within(&t, &o, Selection::Sparse, Budget::with_limit(free.used));
+    assert_eq!(fits.unwrap().num_patches(), table.num_patches());
+    for limit in [free.used - 1, 1 << 20, 0] {
+        match PatchTable::build_within(&t, &o, Selection::Sparse, Budget::with_limit(limit)) {
+            Err(Error::Mesh(MeshError::TooLarge {
+                what, bytes, human, ..
+            })) => {
+                assert!(bytes > limit && bytes <= free.used, "{bytes} vs {limit}");
+                assert!(what.contains("isolating features"), "{what}");
+                assert!(human.ends_with("iB") || human.ends_with(" B"), "{human}");
+            }
+            other => panic!("limit {limit}: {:?}", other.map(|p| p.num_patches())),
+        }
     }
 }

@@ -9,8 +9,10 @@
 //! builds those levels sparsely, as OpenSubdiv's `RefineAdaptive` does: level `d + 1` refines
 //! only the faces selected at level `d` ([`super::features::face_has_features`]) and one ring
 //! of faces around them, so the cost grows linearly with `L` around each feature (not as
-//! `4^L`). The walk then descends each base face's quadtree through the selected faces. The
-//! patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
+//! `4^L`). The patches of each level's leaf faces are made while the next level is refined
+//! ([`super::leaves`]); the walk then descends each base face's quadtree through the selected
+//! faces and places them in quadtree order. A construction whose levels would not fit in
+//! memory is refused up front, level by level ([`super::budget`]). The patches, their levels and parameters are those of OpenSubdiv's feature-adaptive
 //! `Far::PatchTable`; every control point is checked to be the one uniform refinement gives.
 //!
 //! Leaf faces become:
@@ -48,11 +50,11 @@
 //! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
-use super::endcap::gregory_points;
-use super::features::{boundary_mask, is_patch_regular, single_crease, FeatureMask};
-use super::gather::regular_points;
+use super::budget::Budget;
+use super::features::FeatureMask;
+use super::leaves::{level_patches, LeafOptions, LevelPatches, UNWALKED};
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
-use super::sparse::{self, Hierarchy, Selection};
+use super::sparse::{self, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
@@ -166,19 +168,15 @@ pub struct PatchCounts {
     pub gregory: usize,
 }
 
+/// The walk of a chunk of base faces: its patches' types, parameters and quadtree, and
+/// which leaf each patch is (its points are copied once, when the chunks are joined).
 struct Builder<'a> {
-    h: &'a Hierarchy,
-    single_crease: bool,
-    cap: bool,
-    max_level: usize,
-    level_offsets: &'a [u32],
+    patches: &'a [LevelPatches],
     kinds: Vec<u8>,
-    cv_offsets: Vec<u32>,
-    cvs: Vec<u32>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
-    /// End-cap points: a stencil table whose inputs are flat level-vertex indices.
-    local: StencilTable,
+    /// `(level, leaf)` of each patch.
+    leaves: Vec<(u32, u32)>,
     nodes: Vec<[u32; 4]>,
     roots: Vec<u32>,
 }
@@ -197,27 +195,26 @@ struct Joined {
 }
 
 impl Joined {
-    /// Reserves room for every chunk.
-    fn reserve(&mut self, parts: &[Builder]) {
+    /// Reserves room for every chunk (`rows`, `entries`: end-cap rows and their entries).
+    fn reserve(&mut self, parts: &[Builder], rows: usize, entries: usize) {
         let sum = |f: &dyn Fn(&Builder) -> usize| parts.iter().map(f).sum::<usize>();
         let patches = sum(&|b| b.kinds.len());
         self.kinds.reserve(patches);
         self.cv_offsets.reserve(patches);
         self.params.reserve(patches);
         self.sharpness.reserve(patches);
-        self.cvs.reserve(sum(&|b| b.cvs.len()));
+        self.cvs.reserve(16 * patches + rows / 5);
         self.nodes.reserve(sum(&|b| b.nodes.len()));
         self.roots.reserve(sum(&|b| b.roots.len()));
-        self.local.offsets.reserve(sum(&|b| b.local.num_rows()));
-        self.local.indices.reserve(sum(&|b| b.local.indices.len()));
-        self.local.weights.reserve(sum(&|b| b.local.weights.len()));
+        self.local.offsets.reserve(rows);
+        self.local.indices.reserve(entries);
+        self.local.weights.reserve(entries);
     }
 
-    /// Appends one chunk's arrays, renumbering its patches, nodes and local points, and
-    /// placing local points after the `num_level_points` level vertices.
+    /// Appends one chunk's arrays, renumbering its patches and nodes, and copies its
+    /// patches' points, placing local points after the `num_level_points` level vertices.
     fn append(&mut self, b: Builder, num_level_points: u32) {
         let (p0, n0) = (self.kinds.len() as u32, self.nodes.len() as u32);
-        let (l0, c0) = (self.local.num_rows() as u32, self.cvs.len() as u32);
         let handle = |h: u32| match h {
             EMPTY => EMPTY,
             h if h & LEAF != 0 => LEAF | ((h & !LEAF) + p0),
@@ -226,31 +223,33 @@ impl Joined {
         self.roots.extend(b.roots.iter().map(|&h| handle(h)));
         self.nodes
             .extend(b.nodes.iter().map(|n| [0, 1, 2, 3].map(|q| handle(n[q]))));
-        self.cvs.extend(b.cvs.iter().map(|&c| {
-            if c & LEAF != 0 {
-                num_level_points + l0 + (c & !LEAF)
-            } else {
-                c
-            }
-        }));
-        self.cv_offsets
-            .extend(b.cv_offsets[1..].iter().map(|&o| o + c0));
         self.kinds.extend_from_slice(&b.kinds);
         self.params.extend_from_slice(&b.params);
         self.sharpness.extend_from_slice(&b.sharpness);
-        let e0 = self.local.indices.len() as u32;
-        self.local.indices.extend_from_slice(&b.local.indices);
-        self.local.weights.extend_from_slice(&b.local.weights);
-        self.local
-            .offsets
-            .extend(b.local.offsets[1..].iter().map(|&o| o + e0));
+        for &(d, i) in &b.leaves {
+            let (part, leaf) = b.patches[d as usize].leaf(i);
+            let first = leaf.first as usize;
+            if leaf.kind == PatchType::Gregory {
+                let l0 = num_level_points + self.local.num_rows() as u32;
+                let rows = &part.local_offsets[first..first + 21];
+                let (a, z) = (rows[0] as usize, rows[20] as usize);
+                let (from, to) = (rows[0], self.local.indices.len() as u32);
+                self.local
+                    .indices
+                    .extend_from_slice(&part.local_indices[a..z]);
+                self.local
+                    .weights
+                    .extend_from_slice(&part.local_weights[a..z]);
+                self.local
+                    .offsets
+                    .extend(rows[1..].iter().map(|&o| o - from + to));
+                self.cvs.extend(l0..l0 + 20);
+            } else {
+                self.cvs.extend_from_slice(&part.cvs[first..first + 16]);
+            }
+            self.cv_offsets.push(self.cvs.len() as u32);
+        }
     }
-}
-
-fn not_exact(what: &str, d: usize, f: usize) -> Error {
-    Error::Internal(format!(
-        "sparse refinement: {what} of face {f} at level {d} is not exact"
-    ))
 }
 
 impl Builder<'_> {
@@ -263,12 +262,17 @@ impl Builder<'_> {
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let lv = &self.h.levels[d];
-        if lv.topo.face_is_hole[f] {
+        let slot = self.patches[d].slot[f];
+        if slot == EMPTY {
             return Ok(EMPTY);
         }
-        if lv.refine[f] {
-            let first = lv.child[f] as usize;
+        if slot == UNWALKED {
+            return Err(Error::Internal(format!(
+                "face {f} at level {d} is walked but was not selected"
+            )));
+        }
+        if slot & LEAF == 0 {
+            let first = slot as usize;
             let node = self.nodes.len();
             self.nodes.push([EMPTY; 4]);
             for (j, &(du, dv)) in QUADRANT.iter().enumerate() {
@@ -277,91 +281,43 @@ impl Builder<'_> {
             }
             return Ok(node as u32);
         }
-        self.emit(d, f, ptex, u, v, nonquad)
+        self.emit(d, (slot & !LEAF) as usize, ptex, u, v, nonquad)
     }
 
+    /// Places the patch of leaf `i` of level `d` ([`super::leaves`]).
     fn emit(
         &mut self,
         d: usize,
-        f: usize,
+        i: usize,
         ptex: u32,
         u: u32,
         v: u32,
         nonquad: bool,
     ) -> Result<u32> {
-        let lv = &self.h.levels[d];
-        let (t, tags) = (&lv.topo, &lv.tags);
-        if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
-            return Err(not_exact("a corner", d, f));
-        }
-        let off = self.level_offsets[d];
+        let (_, leaf) = self.patches[d].leaf(i as u32);
         let patch = self.kinds.len() as u32;
-        let regular = is_patch_regular(t, tags, f);
-        let (kind, boundary, sharp) = if regular {
-            let bmask = boundary_mask(t, f);
-            let crease = if self.single_crease && bmask == 0 && (d < self.max_level || !self.cap) {
-                single_crease(t, tags, f)
-            } else {
-                None
-            };
-            let pts = regular_points(t, f);
-            if pts.iter().any(|&p| !lv.exact[p as usize]) {
-                return Err(not_exact("a control point", d, f));
-            }
-            self.cvs.extend(pts.iter().map(|&p| off + p));
-            match crease {
-                Some((k, s)) => (
-                    PatchType::SingleCrease,
-                    1u8 << k,
-                    if self.cap {
-                        s.min((self.max_level - d) as f32)
-                    } else {
-                        s
-                    },
-                ),
-                None => (PatchType::Regular, bmask, 0.0),
-            }
-        } else {
-            if t.face_size(f) != 4 {
-                return Err(Error::Internal(format!(
-                    "irregular non-quad face {f} at level {d} cannot take an end cap"
-                )));
-            }
-            let first_local = self.local.num_rows() as u32;
-            for (i, row) in gregory_points(t, f).into_iter().enumerate() {
-                for (x, w) in row {
-                    if !lv.exact[x as usize] {
-                        return Err(not_exact("an end-cap input", d, f));
-                    }
-                    self.local.indices.push(x + off);
-                    self.local.weights.push(w as f32);
-                }
-                self.local.offsets.push(self.local.indices.len() as u32);
-                // Local points are numbered after all level vertices; fixed up in `build`.
-                self.cvs.push(LEAF | (first_local + i as u32));
-            }
-            (PatchType::Gregory, 0, 0.0)
-        };
-        self.kinds.push(kind as u8);
-        self.cv_offsets.push(self.cvs.len() as u32);
-        self.sharpness.push(sharp);
+        self.kinds.push(leaf.kind as u8);
+        self.sharpness.push(leaf.sharpness);
         self.params.push(PatchParam::new(PatchParamFields {
             face_id: ptex,
             u: u as u16,
             v: v as u16,
             depth: d as u8,
             non_quad_root: nonquad,
-            boundary,
+            boundary: leaf.boundary,
             transition: 0,
-            regular,
+            regular: leaf.regular,
         })?);
+        self.leaves.push((d as u32, i as u32));
         Ok(LEAF | patch)
     }
 }
 
 impl PatchTable {
     /// Builds the patch table of `base` (Catmull-Clark only) by sparse feature-adaptive
-    /// refinement ([`super::sparse`]).
+    /// refinement ([`super::sparse`]). Refuses with [`crate::error::MeshError::TooLarge`],
+    /// giving the estimate, a construction whose levels would not fit in 80% of the
+    /// available memory ([`super::budget`]).
     pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
         Self::build_with(base, options, Selection::Sparse)
     }
@@ -372,6 +328,16 @@ impl PatchTable {
         base: &Topology,
         options: &PatchOptions,
         selection: Selection,
+    ) -> Result<PatchTable> {
+        Self::build_within(base, options, selection, Budget::of_available_memory())
+    }
+
+    /// [`PatchTable::build_with`] within a memory `budget`.
+    pub(crate) fn build_within(
+        base: &Topology,
+        options: &PatchOptions,
+        selection: Selection,
+        mut budget: Budget,
     ) -> Result<PatchTable> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
@@ -388,16 +354,23 @@ impl PatchTable {
         if !base.is_all_quads() {
             level = level.max(1);
         }
-        let h = sparse::build(
+        let leaf_options = LeafOptions {
+            single_crease: options.single_crease,
+            cap: options.cap_crease_sharpness,
+            max_level: level,
+        };
+        let (h, patches) = sparse::build(
             base,
             level,
             &FeatureMask::new(options.single_crease),
             selection,
+            &mut budget,
+            &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
         )?;
         let mut level_offsets = vec![0u32];
-        for lv in &h.levels {
+        for &nv in &h.num_vertices {
             let last = *level_offsets.last().unwrap_or(&0);
-            let n = u32::try_from(lv.topo.num_vertices())
+            let n = u32::try_from(nv)
                 .ok()
                 .and_then(|n| last.checked_add(n))
                 .ok_or_else(|| Error::Internal("more than 2^32 refined vertices".into()))?;
@@ -417,21 +390,11 @@ impl PatchTable {
             .into_par_iter()
             .map(|c| {
                 let mut b = Builder {
-                    h: &h,
-                    max_level: level,
-                    single_crease: options.single_crease,
-                    cap: options.cap_crease_sharpness,
-                    level_offsets: &level_offsets,
+                    patches: &patches,
                     kinds: Vec::new(),
-                    cv_offsets: vec![0],
-                    cvs: Vec::new(),
                     params: Vec::new(),
                     sharpness: Vec::new(),
-                    local: StencilTable {
-                        offsets: vec![0],
-                        num_inputs: num_level_points as usize,
-                        ..Default::default()
-                    },
+                    leaves: Vec::new(),
                     nodes: Vec::new(),
                     roots: Vec::new(),
                 };
@@ -443,7 +406,8 @@ impl PatchTable {
                     } else if base.face_is_hole[f] {
                         b.roots.extend(std::iter::repeat_n(EMPTY, n));
                     } else {
-                        let first = h.levels[0].child[f] as usize;
+                        // A non-quad face is refined: its slot is its first child.
+                        let first = patches[0].slot[f] as usize;
                         for j in 0..n {
                             let r = b.visit(1, first + j, ptex + j as u32, 0, 0, true)?;
                             b.roots.push(r);
@@ -462,7 +426,13 @@ impl PatchTable {
             cv_offsets: vec![0],
             ..Default::default()
         };
-        all.reserve(&parts);
+        let (rows, entries) = patches
+            .iter()
+            .flat_map(|p| &p.parts)
+            .fold((0, 0), |(r, e), p| {
+                (r + p.local_offsets.len() - 1, e + p.local_indices.len())
+            });
+        all.reserve(&parts, rows, entries);
         for b in parts {
             all.append(b, num_level_points);
         }
