@@ -21,6 +21,7 @@ pub mod cpu;
 pub mod error;
 pub mod kernels;
 pub mod limit;
+pub mod limit_chunks;
 pub mod prep;
 pub mod refine;
 pub mod shared;

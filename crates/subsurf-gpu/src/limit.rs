@@ -21,8 +21,13 @@
 //!
 //! Samples are dispatched in chunks whose query and output bindings start at aligned offsets,
 //! so no binding exceeds `max_storage_buffer_binding_size` and no dispatch exceeds
-//! `max_compute_workgroups_per_dimension`. The point array and the patch tables are bound
-//! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
+//! `max_compute_workgroups_per_dimension`. When the patch tables and the point array each
+//! fit one binding they are bound whole; otherwise every chunk of samples reads compacted
+//! copies holding only what it samples (its ptex faces' patch sub-trees, their control
+//! indices renumbered, its points gathered each frame into a scratch buffer by a unit-weight
+//! [`StencilKernel`]; see [`crate::limit_chunks`]), with results bit for bit those of the
+//! whole tables. The refinement of `update` still reads the flat point array as one binding:
+//! a point array over the adapter's binding limit is refused with [`GpuError::TooLarge`].
 //!
 //! # Figures
 //!
@@ -55,6 +60,7 @@ use crate::cpu::limit_eval::{
 use crate::error::{GpuError, Result};
 use crate::kernels::grid_2d;
 use crate::kernels::stencil::{ChunkLimits, StencilKernel};
+use crate::limit_chunks;
 use crate::refine::{auto_pipeline, uniform_init, GpuRefiner};
 use crate::shaders;
 use crate::shared::LimitConfig;
@@ -72,13 +78,26 @@ pub struct GpuLimit {
     num_base: usize,
     points: VertexBuffer,
     local: Option<(StencilKernel, VertexBuffer)>,
-    patch_map: wgpu::Buffer,
-    patch_info: wgpu::Buffer,
-    cvs: wgpu::Buffer,
+    tables: Tables,
     num_roots: u32,
     limits: ChunkLimits,
     row_align: usize,
     pipeline: wgpu::ComputePipeline,
+}
+
+/// The patch tables of `limit_eval`: bound whole when they and the point array fit one
+/// binding, else kept on the host and compacted per chunk of samples ([`limit_chunks`]).
+#[derive(Debug)]
+enum Tables {
+    Whole {
+        patch_map: wgpu::Buffer,
+        patch_info: wgpu::Buffer,
+        cvs: wgpu::Buffer,
+    },
+    Chunked {
+        tables: LimitTables,
+        cv_offsets: Vec<u32>,
+    },
 }
 
 /// A set of samples on the GPU: queries uploaded once, an output buffer of `stride` floats
@@ -93,8 +112,10 @@ pub struct GpuSamples {
     /// The output buffer (also usable as a vertex buffer).
     pub output: wgpu::Buffer,
     chunks: Vec<(wgpu::BindGroup, (u32, u32))>,
-    _queries: wgpu::Buffer,
-    _configs: Vec<wgpu::Buffer>,
+    /// Per chunk with compacted inputs: the gather of its points into its scratch buffer.
+    gathers: Vec<(StencilKernel, VertexBuffer)>,
+    _buffers: Vec<wgpu::Buffer>,
+    _spare: Vec<VertexBuffer>,
 }
 
 /// A watertight tessellation on the GPU: the samples of a [`TessellationPlan`] (6 floats per
@@ -118,6 +139,12 @@ impl GpuSamples {
     /// Number of dispatches evaluating the set (more than one when chunked).
     pub fn num_dispatches(&self) -> usize {
         self.chunks.len()
+    }
+
+    /// Whether the chunks read compacted copies of the patch tables and points (tables or
+    /// point array larger than one binding) rather than the whole tables.
+    pub fn inputs_compacted(&self) -> bool {
+        !self.gathers.is_empty()
     }
 
     /// Reads the output back (`stride` floats per sample; waits for the submitted work).
@@ -159,20 +186,9 @@ impl GpuTessellation {
     }
 }
 
-fn bound_whole(
-    ctx: &GpuContext,
-    limits: &ChunkLimits,
-    what: &'static str,
-    words: &[u32],
-) -> Result<wgpu::Buffer> {
-    let bytes = words.len() as u64 * WORD;
-    if bytes > limits.max_binding_bytes {
-        return Err(GpuError::TooLarge {
-            what,
-            needed: bytes,
-            limit: limits.max_binding_bytes,
-        });
-    }
+fn upload_words(ctx: &GpuContext, what: &'static str, words: &[u32]) -> Result<wgpu::Buffer> {
+    let zero = [0u32];
+    let words = if words.is_empty() { &zero[..] } else { words };
     storage_buffer_init(ctx, what, bytemuck::cast_slice(words))
 }
 
@@ -305,9 +321,28 @@ impl GpuLimit {
             None
         };
         let t = LimitTables::new(table);
-        let patch_map = bound_whole(ctx, &limits, "limit patch map", &t.patch_map)?;
-        let patch_info = bound_whole(ctx, &limits, "limit patch data", &t.patch_info)?;
-        let cvs = bound_whole(ctx, &limits, "limit control indices", &t.cvs)?;
+        let num_roots = t.num_roots;
+        let fits = |words: usize| words as u64 * WORD <= limits.max_binding_bytes;
+        let tables = if [
+            t.patch_map.len(),
+            t.patch_info.len(),
+            t.cvs.len(),
+            3 * num_points,
+        ]
+        .into_iter()
+        .all(fits)
+        {
+            Tables::Whole {
+                patch_map: upload_words(ctx, "limit patch map", &t.patch_map)?,
+                patch_info: upload_words(ctx, "limit patch data", &t.patch_info)?,
+                cvs: upload_words(ctx, "limit control indices", &t.cvs)?,
+            }
+        } else {
+            Tables::Chunked {
+                tables: t,
+                cv_offsets: table.cv_offsets.clone(),
+            }
+        };
         let pipeline = ctx.scoped(|| {
             Ok(auto_pipeline(
                 ctx,
@@ -324,10 +359,8 @@ impl GpuLimit {
             num_base: table.level_offsets[1] as usize,
             points,
             local,
-            patch_map,
-            patch_info,
-            cvs,
-            num_roots: t.num_roots,
+            tables,
+            num_roots,
             limits,
             row_align,
             pipeline,
@@ -411,7 +444,6 @@ impl GpuLimit {
             )));
         }
         let words = pack_queries(queries);
-        let queries_buf = storage_buffer_init(ctx, "limit queries", bytemuck::cast_slice(&words))?;
         let out_bytes = (count * stride) as u64 * WORD;
         let output = ctx.scoped(|| {
             Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -422,6 +454,40 @@ impl GpuLimit {
             }))
         })?;
         let layout = self.pipeline.get_bind_group_layout(0);
+        let (patch_map, patch_info, cvs) = match &self.tables {
+            Tables::Whole {
+                patch_map,
+                patch_info,
+                cvs,
+            } => (patch_map, patch_info, cvs),
+            Tables::Chunked { tables, cv_offsets } => {
+                let max_dispatch = u64::from(self.limits.max_workgroups_per_dimension).pow(2)
+                    * u64::from(WORKGROUP_SIZE);
+                let plan = limit_chunks::plan(
+                    tables,
+                    cv_offsets,
+                    self.num_points(),
+                    &words,
+                    stride,
+                    limit_chunks::PlanLimits {
+                        max_words: (self.limits.max_binding_bytes / WORD) as usize,
+                        max_samples: max_dispatch.min(u64::from(u32::MAX)) as usize,
+                        align: self.row_align,
+                    },
+                )?;
+                let set = limit_chunks::upload(ctx, &layout, self.limits, &plan, stride, &output)?;
+                return Ok(GpuSamples {
+                    count,
+                    stride,
+                    output,
+                    chunks: set.dispatches,
+                    gathers: set.gathers,
+                    _buffers: set.buffers,
+                    _spare: set.spare,
+                });
+            }
+        };
+        let queries_buf = storage_buffer_init(ctx, "limit queries", bytemuck::cast_slice(&words))?;
         let mut chunks = Vec::new();
         let mut configs = Vec::new();
         for (start, end) in self.sample_chunks(count, stride)? {
@@ -441,9 +507,9 @@ impl GpuLimit {
                     entries: &[
                         entry(0, config_buf.as_entire_binding()),
                         entry(1, part(&queries_buf, start, n, QUERY_WORDS)),
-                        entry(2, self.patch_map.as_entire_binding()),
-                        entry(3, self.patch_info.as_entire_binding()),
-                        entry(4, self.cvs.as_entire_binding()),
+                        entry(2, patch_map.as_entire_binding()),
+                        entry(3, patch_info.as_entire_binding()),
+                        entry(4, cvs.as_entire_binding()),
                         entry(5, self.points.raw().as_entire_binding()),
                         entry(6, part(&output, start, n, stride)),
                     ],
@@ -452,13 +518,15 @@ impl GpuLimit {
             chunks.push((bind_group, (gx, gy)));
             configs.push(config_buf);
         }
+        configs.push(queries_buf);
         Ok(GpuSamples {
             count,
             stride,
             output,
             chunks,
-            _queries: queries_buf,
-            _configs: configs,
+            gathers: Vec::new(),
+            _buffers: configs,
+            _spare: Vec::new(),
         })
     }
 
@@ -528,6 +596,9 @@ impl GpuLimit {
     /// Submits the evaluation of `samples` from the current point array (the result stays on
     /// the GPU until downloaded).
     pub fn eval(&self, ctx: &GpuContext, samples: &GpuSamples) -> Result<()> {
+        for (gather, scratch) in &samples.gathers {
+            gather.apply(ctx, &self.points, &mut scratch.alias())?;
+        }
         ctx.scoped(|| {
             let mut encoder = ctx
                 .device
