@@ -384,8 +384,8 @@ impl GpuLimit {
     }
 
     /// Writes new base positions and rebuilds the point array on the GPU: refinement, copies
-    /// of each level into place, end-cap local points. Sample sets keep their bindings; call
-    /// [`Self::eval`] to re-evaluate them.
+    /// of each level into place, end-cap local points, all recorded into one submission.
+    /// Sample sets keep their bindings; call [`Self::eval`] to re-evaluate them.
     pub fn update(&mut self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
         if positions.len() != self.num_base {
             return Err(GpuError::BufferMismatch(format!(
@@ -398,23 +398,35 @@ impl GpuLimit {
             ctx.queue
                 .write_buffer(self.points.raw(), 0, bytemuck::cast_slice(positions));
         }
-        for (d, (gather, refiner)) in self.levels.iter_mut().enumerate() {
-            gather.apply(ctx, &self.points, refiner.input_mut())?;
-            refiner.dispatch(ctx)?;
-            let out = refiner.output();
-            let bytes = out.len_floats() as u64 * WORD;
-            if bytes > 0 {
-                let at = u64::from(self.level_offsets[d + 1]) * 3 * WORD;
-                copy(ctx, out.raw(), self.points.raw(), at, bytes)?;
+        let points = &self.points;
+        let level_offsets = &self.level_offsets;
+        let levels = &mut self.levels;
+        let local = &mut self.local;
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("limit update"),
+                });
+            for (d, (gather, refiner)) in levels.iter_mut().enumerate() {
+                gather.encode(ctx, &mut encoder, points, refiner.input_mut())?;
+                refiner.encode(&mut encoder);
+                let out = refiner.output();
+                let bytes = out.len_floats() as u64 * WORD;
+                if bytes > 0 {
+                    let at = u64::from(level_offsets[d + 1]) * 3 * WORD;
+                    encoder.copy_buffer_to_buffer(out.raw(), 0, points.raw(), at, bytes);
+                }
             }
-        }
-        if let Some((kernel, local)) = &mut self.local {
-            kernel.apply(ctx, &self.points, local)?;
-            let first = u64::from(*self.level_offsets.last().unwrap_or(&0)) * 3 * WORD;
-            let bytes = local.len_floats() as u64 * WORD;
-            copy(ctx, local.raw(), self.points.raw(), first, bytes)?;
-        }
-        Ok(())
+            if let Some((kernel, local)) = local {
+                kernel.encode(ctx, &mut encoder, points, local)?;
+                let first = u64::from(*level_offsets.last().unwrap_or(&0)) * 3 * WORD;
+                let bytes = local.len_floats() as u64 * WORD;
+                encoder.copy_buffer_to_buffer(local.raw(), 0, points.raw(), first, bytes);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
     }
 
     /// Uploads a sample set of `(ptex face, u, v)` queries; `derivatives` selects 12 floats per
@@ -596,15 +608,15 @@ impl GpuLimit {
     /// Submits the evaluation of `samples` from the current point array (the result stays on
     /// the GPU until downloaded).
     pub fn eval(&self, ctx: &GpuContext, samples: &GpuSamples) -> Result<()> {
-        for (gather, scratch) in &samples.gathers {
-            gather.apply(ctx, &self.points, &mut scratch.alias())?;
-        }
         ctx.scoped(|| {
             let mut encoder = ctx
                 .device
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("limit_eval"),
                 });
+            for (gather, scratch) in &samples.gathers {
+                gather.encode(ctx, &mut encoder, &self.points, &mut scratch.alias())?;
+            }
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("limit_eval"),
@@ -620,26 +632,6 @@ impl GpuLimit {
             Ok(())
         })
     }
-}
-
-/// Submits a copy of the first `bytes` of `src` to `dst` at byte offset `at`.
-fn copy(
-    ctx: &GpuContext,
-    src: &wgpu::Buffer,
-    dst: &wgpu::Buffer,
-    at: u64,
-    bytes: u64,
-) -> Result<()> {
-    ctx.scoped(|| {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("limit points copy"),
-            });
-        encoder.copy_buffer_to_buffer(src, 0, dst, at, bytes);
-        ctx.queue.submit([encoder.finish()]);
-        Ok(())
-    })
 }
 
 /// Samples `start .. start + n` of a buffer of `words_per` words per sample.
