@@ -112,10 +112,10 @@ pub struct GpuSamples {
     /// The output buffer (also usable as a vertex buffer).
     pub output: wgpu::Buffer,
     chunks: Vec<(wgpu::BindGroup, (u32, u32))>,
-    /// Per chunk with compacted inputs: the gather of its points into its scratch buffer.
-    gathers: Vec<(StencilKernel, VertexBuffer)>,
+    /// With compacted inputs: the gather of every chunk's points into a scratch buffer.
+    gather: Option<(StencilKernel, VertexBuffer)>,
+    compacted: bool,
     _buffers: Vec<wgpu::Buffer>,
-    _spare: Vec<VertexBuffer>,
 }
 
 /// A watertight tessellation on the GPU: the samples of a [`TessellationPlan`] (6 floats per
@@ -144,7 +144,7 @@ impl GpuSamples {
     /// Whether the chunks read compacted copies of the patch tables and points (tables or
     /// point array larger than one binding) rather than the whole tables.
     pub fn inputs_compacted(&self) -> bool {
-        !self.gathers.is_empty()
+        self.compacted
     }
 
     /// Reads the output back (`stride` floats per sample; waits for the submitted work).
@@ -487,15 +487,23 @@ impl GpuLimit {
                         align: self.row_align,
                     },
                 )?;
-                let set = limit_chunks::upload(ctx, &layout, self.limits, &plan, stride, &output)?;
+                let set = limit_chunks::upload(
+                    ctx,
+                    &layout,
+                    self.limits,
+                    &plan,
+                    stride,
+                    self.row_align,
+                    &output,
+                )?;
                 return Ok(GpuSamples {
                     count,
                     stride,
                     output,
                     chunks: set.dispatches,
-                    gathers: set.gathers,
+                    gather: set.gather,
+                    compacted: true,
                     _buffers: set.buffers,
-                    _spare: set.spare,
                 });
             }
         };
@@ -536,9 +544,9 @@ impl GpuLimit {
             stride,
             output,
             chunks,
-            gathers: Vec::new(),
+            gather: None,
+            compacted: false,
             _buffers: configs,
-            _spare: Vec::new(),
         })
     }
 
@@ -614,7 +622,7 @@ impl GpuLimit {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("limit_eval"),
                 });
-            for (gather, scratch) in &samples.gathers {
+            if let Some((gather, scratch)) = &samples.gather {
                 gather.encode(ctx, &mut encoder, &self.points, &mut scratch.alias())?;
             }
             {

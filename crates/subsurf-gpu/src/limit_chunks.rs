@@ -304,31 +304,62 @@ fn take(b: &mut Builder<'_>, start: usize, end: usize) -> ChunkInputs {
 }
 
 /// The GPU side of one chunked sample set: per chunk a bind group and grid, the buffers they
-/// bind, and the gather of the chunk's points into its scratch buffer.
+/// bind, and one gather of every chunk's points into a scratch buffer (chunk `c`'s points
+/// from an aligned row, bound there).
 pub(crate) struct ChunkedSet {
     pub(crate) dispatches: Vec<(wgpu::BindGroup, (u32, u32))>,
     pub(crate) buffers: Vec<wgpu::Buffer>,
-    pub(crate) gathers: Vec<(StencilKernel, VertexBuffer)>,
-    pub(crate) spare: Vec<VertexBuffer>,
+    pub(crate) gather: Option<(StencilKernel, VertexBuffer)>,
 }
 
 /// Uploads the chunks of `plan` and creates their bind groups for `limit_eval`
-/// (`layout`), the output bound at each chunk's first sample.
+/// (`layout`), the output bound at each chunk's first sample; chunk scratch rows start at
+/// multiples of `align` points.
 pub(crate) fn upload(
     ctx: &GpuContext,
     layout: &wgpu::BindGroupLayout,
     limits: ChunkLimits,
     chunks: &[ChunkInputs],
     stride: usize,
+    align: usize,
     output: &wgpu::Buffer,
 ) -> Result<ChunkedSet> {
+    // One unit-weight gather (exact): row base_c + l copies flat point chunks[c].points[l];
+    // padding rows are empty (zero).
+    let mut offsets = vec![0u32];
+    let mut indices = Vec::new();
+    let mut bases = Vec::with_capacity(chunks.len());
+    for c in chunks {
+        while (offsets.len() - 1) % align.max(1) != 0 {
+            offsets.push(indices.len() as u32);
+        }
+        bases.push(offsets.len() - 1);
+        for &i in &c.points {
+            indices.push(i);
+            offsets.push(indices.len() as u32);
+        }
+    }
+    let rows = offsets.len() - 1;
+    let weights = vec![1.0f32; indices.len()];
+    let scratch = VertexBuffer::zeroed(ctx, rows.max(1), 3)?;
+    let gather = if rows == 0 {
+        None
+    } else {
+        Some(StencilKernel::with_limits(
+            ctx,
+            &StencilTable::new(&offsets, &indices, &weights)?,
+            ChunkLimits {
+                max_stride: 3,
+                ..limits
+            },
+        )?)
+    };
     let mut set = ChunkedSet {
         dispatches: Vec::with_capacity(chunks.len()),
         buffers: Vec::new(),
-        gathers: Vec::with_capacity(chunks.len()),
-        spare: Vec::new(),
+        gather: None,
     };
-    for c in chunks {
+    for (c, &base) in chunks.iter().zip(&bases) {
         let n = (c.end - c.start) as u32;
         let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, limits.max_workgroups_per_dimension);
         let config = LimitConfig {
@@ -347,21 +378,12 @@ pub(crate) fn upload(
         let patch_map = up("limit chunk patch map", &c.patch_map)?;
         let patch_info = up("limit chunk patch data", &c.patch_info)?;
         let cvs = up("limit chunk control indices", &c.cvs)?;
-        // Row l of the gather copies flat point c.points[l] (weight 1: exact).
-        let scratch = VertexBuffer::zeroed(ctx, c.points.len().max(1), 3)?;
-        let gather = if c.points.is_empty() {
-            None
-        } else {
-            let offsets: Vec<u32> = (0..=c.points.len() as u32).collect();
-            let weights = vec![1.0f32; c.points.len()];
-            Some(StencilKernel::with_limits(
-                ctx,
-                &StencilTable::new(&offsets, &c.points, &weights)?,
-                ChunkLimits {
-                    max_stride: 3,
-                    ..limits
-                },
-            )?)
+        let range = |buffer, first: usize, count: usize, words: usize| {
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: (first * words) as u64 * 4,
+                size: wgpu::BufferSize::new((count.max(1) * words) as u64 * 4),
+            })
         };
         let bind_group = ctx.scoped(|| {
             let entry = |binding, resource| wgpu::BindGroupEntry { binding, resource };
@@ -374,25 +396,23 @@ pub(crate) fn upload(
                     entry(2, patch_map.as_entire_binding()),
                     entry(3, patch_info.as_entire_binding()),
                     entry(4, cvs.as_entire_binding()),
-                    entry(5, scratch.raw().as_entire_binding()),
                     entry(
-                        6,
-                        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                            buffer: output,
-                            offset: (c.start * stride) as u64 * 4,
-                            size: wgpu::BufferSize::new(u64::from(n) * stride as u64 * 4),
-                        }),
+                        5,
+                        range(
+                            scratch.raw(),
+                            base.min(rows.saturating_sub(1)),
+                            c.points.len(),
+                            3,
+                        ),
                     ),
+                    entry(6, range(output, c.start, n as usize, stride)),
                 ],
             }))
         })?;
         set.dispatches.push((bind_group, (gx, gy)));
         set.buffers
             .extend([config, queries, patch_map, patch_info, cvs]);
-        match gather {
-            Some(g) => set.gathers.push((g, scratch)),
-            None => set.spare.push(scratch),
-        }
     }
+    set.gather = gather.map(|g| (g, scratch));
     Ok(set)
 }
