@@ -398,9 +398,11 @@ pub(crate) fn upload(
                     entry(4, cvs.as_entire_binding()),
                     entry(
                         5,
+                        // A chunk reading no point (only holes or ptex faces out of
+                        // range) binds the first row, unread.
                         range(
                             scratch.raw(),
-                            base.min(rows.saturating_sub(1)),
+                            if c.points.is_empty() { 0 } else { base },
                             c.points.len(),
                             3,
                         ),
