@@ -24,8 +24,9 @@
 //! `max_compute_workgroups_per_dimension`. When the patch tables and the point array each
 //! fit one binding they are bound whole; otherwise every chunk of samples reads compacted
 //! copies holding only what it samples (its ptex faces' patch sub-trees, their control
-//! indices renumbered, its points gathered each frame into a scratch buffer by a unit-weight
-//! [`StencilKernel`]; see [`crate::limit_chunks`]), with results bit for bit those of the
+//! indices renumbered and, if the point array exceeds a binding too, its points gathered each
+//! frame into a scratch buffer by a unit-weight [`StencilKernel`]; see
+//! [`crate::limit_chunks`]), with results bit for bit those of the
 //! whole tables. The refinement of `update` still reads the flat point array as one binding:
 //! a point array over the adapter's binding limit is refused with [`GpuError::TooLarge`].
 //!
@@ -482,6 +483,10 @@ impl GpuLimit {
             Tables::Chunked { tables, cv_offsets } => {
                 let max_dispatch = u64::from(self.limits.max_workgroups_per_dimension).pow(2)
                     * u64::from(WORKGROUP_SIZE);
+                // Points compacted (and gathered per frame) only when the flat array exceeds
+                // one binding.
+                let compact_points =
+                    (3 * self.num_points()) as u64 * WORD > self.limits.max_binding_bytes;
                 let plan = limit_chunks::plan(
                     tables,
                     cv_offsets,
@@ -492,6 +497,7 @@ impl GpuLimit {
                         max_words: (self.limits.max_binding_bytes / WORD) as usize,
                         max_samples: max_dispatch.min(u64::from(u32::MAX)) as usize,
                         align: self.row_align,
+                        compact_points,
                     },
                 )?;
                 let set = limit_chunks::upload(
@@ -502,6 +508,7 @@ impl GpuLimit {
                     stride,
                     self.row_align,
                     &output,
+                    (!compact_points).then_some(self.points.raw()),
                 )?;
                 return Ok(GpuSamples {
                     count,

@@ -14,9 +14,11 @@
 //! cvs         point i           → local point l(i); `points[l]` = i (the gather list)
 //! ```
 //!
-//! Per frame the chunk's points are gathered from the flat point array into a scratch buffer
-//! (a unit-weight `stencil_apply`, exact), so every binding of a chunk holds only what the
-//! chunk reads. The kernel does the same arithmetic on the same values, so the results are bit
+//! When the flat point array itself exceeds one binding, the chunks' points are gathered per
+//! frame into a scratch buffer (one unit-weight `stencil_apply` for all chunks, exact), so
+//! every binding of a chunk holds only what the chunk reads; otherwise the control indices
+//! keep their flat indices and the point array is bound whole (no per-frame cost: the usual
+//! case, since a regular patch has 16 control indices but about one point of its own). The kernel does the same arithmetic on the same values, so the results are bit
 //! for bit those of the unchunked tables. Chunks grow by blocks of `align` samples (their
 //! starts stay aligned for the output binding) while every local table fits `max_words`.
 
@@ -57,6 +59,7 @@ pub struct ChunkInputs {
 /// The global tables and the `global → local` maps of the chunk being built.
 struct Builder<'a> {
     t: &'a LimitTables,
+    compact_points: bool,
     cv_offsets: &'a [u32],
     root_local: Vec<u32>,
     patch_local: Vec<u32>,
@@ -74,9 +77,15 @@ struct Builder<'a> {
 type Mark = [usize; 8];
 
 impl<'a> Builder<'a> {
-    fn new(t: &'a LimitTables, cv_offsets: &'a [u32], num_points: usize) -> Self {
+    fn new(
+        t: &'a LimitTables,
+        cv_offsets: &'a [u32],
+        num_points: usize,
+        compact_points: bool,
+    ) -> Self {
         Self {
             t,
+            compact_points,
             cv_offsets,
             root_local: vec![EMPTY; t.num_roots as usize],
             patch_local: vec![EMPTY; cv_offsets.len().saturating_sub(1)],
@@ -145,6 +154,9 @@ impl<'a> Builder<'a> {
         let slot = self.point_local.get_mut(i as usize).ok_or_else(|| {
             GpuError::InvalidStencil(format!("control index {i} outside the point array"))
         })?;
+        if !self.compact_points {
+            return Ok(i);
+        }
         if *slot == EMPTY {
             *slot = self.points.len() as u32;
             self.points.push(i);
@@ -232,6 +244,9 @@ pub struct PlanLimits {
     pub max_samples: usize,
     /// Chunk starts are multiples of this many samples.
     pub align: usize,
+    /// Whether to compact the points too; if not, control indices stay indices into the
+    /// flat point array (bound whole) and [`ChunkInputs::points`] stays empty.
+    pub compact_points: bool,
 }
 
 /// Chunks of `queries` (packed, [`QUERY_WORDS`] per sample) whose local tables, queries and
@@ -250,9 +265,10 @@ pub fn plan(
         max_words,
         max_samples,
         align,
+        compact_points,
     } = lim;
     let align = align.max(1);
-    let mut b = Builder::new(t, cv_offsets, num_points);
+    let mut b = Builder::new(t, cv_offsets, num_points, compact_points);
     let mut chunks = Vec::new();
     let mut start = 0;
     let mut end = 0;
@@ -323,6 +339,7 @@ pub(crate) fn upload(
     stride: usize,
     align: usize,
     output: &wgpu::Buffer,
+    whole_points: Option<&wgpu::Buffer>,
 ) -> Result<ChunkedSet> {
     // One unit-weight gather (exact): row base_c + l copies flat point chunks[c].points[l];
     // padding rows are empty (zero).
@@ -400,12 +417,15 @@ pub(crate) fn upload(
                         5,
                         // A chunk reading no point (only holes or ptex faces out of
                         // range) binds the first row, unread.
-                        range(
-                            scratch.raw(),
-                            if c.points.is_empty() { 0 } else { base },
-                            c.points.len(),
-                            3,
-                        ),
+                        match whole_points {
+                            Some(points) => points.as_entire_binding(),
+                            None => range(
+                                scratch.raw(),
+                                if c.points.is_empty() { 0 } else { base },
+                                c.points.len(),
+                                3,
+                            ),
+                        },
                     ),
                     entry(6, range(output, c.start, n as usize, stride)),
                 ],

@@ -64,6 +64,7 @@ fn compacted_chunks_reproduce_the_whole_tables_bit_for_bit() {
                 max_words,
                 max_samples: 1000,
                 align: 16,
+                compact_points: true,
             },
         )
         .unwrap();
@@ -136,6 +137,7 @@ fn a_block_too_big_for_one_binding_is_a_typed_error() {
             max_words: 40,
             max_samples: 1000,
             align: 16,
+            compact_points: true,
         },
     );
     assert!(
@@ -149,57 +151,67 @@ fn gpu_compacted_inputs_match_whole_tables_bit_for_bit() {
     let Some(ctx) = context_or_skip("gpu_compacted_inputs_match_whole_tables_bit_for_bit") else {
         return;
     };
-    let (mesh, table) = load("catmark_car", 1);
-    // 16 KiB bindings: the patch tables and the point array of the car exceed one binding.
-    let limits = ChunkLimits {
-        max_binding_bytes: 1 << 14,
-        max_workgroups_per_dimension: 1 << 12,
-        max_stride: 12,
-    };
+    // A regular torus: 16 control indices per patch, one point per vertex, so the control
+    // indices outgrow a binding long before the points do.
+    let mesh = subsurf::shapes::torus(24, 24, 1.0, 0.3);
+    let table =
+        PatchTable::build(&Topology::new(&mesh).unwrap(), &PatchOptions::default()).unwrap();
     let t = LimitTables::new(&table);
-    assert!(4 * t.cvs.len() > 1 << 14 && 12 * table.num_points() > 1 << 14);
-    let mut small = GpuLimit::with_limits(&ctx, &table, limits).unwrap();
+    let point_bytes = 12 * table.num_points() as u64;
+    // 4 KiB bindings: the patch tables and the point array exceed one binding (points
+    // gathered per chunk); then bindings that hold the point array but not the control
+    // indices (tables compacted, points bound whole).
+    let fit_points = point_bytes.next_multiple_of(256);
+    assert!(4 * t.cvs.len() as u64 > fit_points && point_bytes > 1 << 12);
     let mut full = GpuLimit::new(&ctx, &table).unwrap();
-    small.update(&ctx, &mesh.positions).unwrap();
     full.update(&ctx, &mesh.positions).unwrap();
     let q = queries(&table, 5);
     let points = table.points(&mesh.positions);
-    for derivatives in [false, true] {
-        let a = small.samples(&ctx, &q, derivatives).unwrap();
-        let b = full.samples(&ctx, &q, derivatives).unwrap();
-        assert!(a.inputs_compacted() && !b.inputs_compacted());
-        assert!(a.num_dispatches() > 4, "{} dispatches", a.num_dispatches());
+    for binding in [1 << 12, fit_points] {
+        let limits = ChunkLimits {
+            max_binding_bytes: binding,
+            max_workgroups_per_dimension: 1 << 12,
+            max_stride: 12,
+        };
+        let mut small = GpuLimit::with_limits(&ctx, &table, limits).unwrap();
+        small.update(&ctx, &mesh.positions).unwrap();
+        for derivatives in [false, true] {
+            let a = small.samples(&ctx, &q, derivatives).unwrap();
+            let b = full.samples(&ctx, &q, derivatives).unwrap();
+            assert!(a.inputs_compacted() && !b.inputs_compacted());
+            assert!(a.num_dispatches() > 1, "{} dispatches", a.num_dispatches());
+            small.eval(&ctx, &a).unwrap();
+            full.eval(&ctx, &b).unwrap();
+            let (ga, gb) = (a.download(&ctx).unwrap(), b.download(&ctx).unwrap());
+            assert!(
+                ga.iter().zip(&gb).all(|(x, y)| x.to_bits() == y.to_bits()),
+                "{binding}-byte bindings: compacted GPU evaluation differs from the whole tables"
+            );
+            // And both follow the CPU twin (f32 rounding of the GPU's arithmetic).
+            let want = eval_cpu(&table, &points, &q, a.stride);
+            let worst = ga
+                .iter()
+                .zip(&want)
+                .map(|(x, y)| (x - y).abs())
+                .fold(0.0f32, f32::max);
+            assert!(worst < 1e-3, "GPU vs CPU twin: {worst}");
+        }
+        // A second update moves the points: the compacted chunks follow.
+        let moved: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| [p[0] + 1.0, p[1], p[2]])
+            .collect();
+        small.update(&ctx, &moved).unwrap();
+        let a = small.samples(&ctx, &q, false).unwrap();
         small.eval(&ctx, &a).unwrap();
-        full.eval(&ctx, &b).unwrap();
-        let (ga, gb) = (a.download(&ctx).unwrap(), b.download(&ctx).unwrap());
-        assert!(
-            ga.iter().zip(&gb).all(|(x, y)| x.to_bits() == y.to_bits()),
-            "compacted GPU evaluation differs from the whole tables"
-        );
-        // And both follow the CPU twin (f32 rounding of the GPU's arithmetic).
-        let want = eval_cpu(&table, &points, &q, a.stride);
+        let ga = a.download(&ctx).unwrap();
+        let want = eval_cpu(&table, &table.points(&moved), &q, 6);
         let worst = ga
             .iter()
             .zip(&want)
             .map(|(x, y)| (x - y).abs())
             .fold(0.0f32, f32::max);
-        assert!(worst < 1e-3, "GPU vs CPU twin: {worst}");
+        assert!(worst < 1e-3, "after update, GPU vs CPU twin: {worst}");
     }
-    // A second update moves the points: the gathers follow.
-    let moved: Vec<[f32; 3]> = mesh
-        .positions
-        .iter()
-        .map(|p| [p[0] + 1.0, p[1], p[2]])
-        .collect();
-    small.update(&ctx, &moved).unwrap();
-    let a = small.samples(&ctx, &q, false).unwrap();
-    small.eval(&ctx, &a).unwrap();
-    let ga = a.download(&ctx).unwrap();
-    let want = eval_cpu(&table, &table.points(&moved), &q, 6);
-    let worst = ga
-        .iter()
-        .zip(&want)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0f32, f32::max);
-    assert!(worst < 1e-3, "after update, GPU vs CPU twin: {worst}");
 }
