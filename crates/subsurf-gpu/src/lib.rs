@@ -42,6 +42,7 @@ pub mod error;
 pub mod kernels;
 pub mod limit;
 pub mod limit_chunks;
+mod limit_twin;
 pub mod prep;
 pub mod refine;
 pub mod shared;

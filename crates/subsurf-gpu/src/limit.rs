@@ -62,13 +62,12 @@
 
 use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
-use crate::cpu::limit_eval::{
-    limit_eval, pack_queries, LimitInputs, LimitTables, QUERY_WORDS, WORKGROUP_SIZE,
-};
+use crate::cpu::limit_eval::{pack_queries, LimitTables, QUERY_WORDS, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::kernels::grid_2d;
 use crate::kernels::stencil::{ChunkLimits, StencilKernel};
 use crate::limit_chunks;
+pub use crate::limit_twin::{eval_cpu, tessellate_cpu, unpack_points};
 use crate::refine::{auto_pipeline, uniform_init, GpuRefiner};
 use crate::shaders;
 use crate::shared::LimitConfig;
@@ -166,21 +165,6 @@ impl GpuSamples {
     }
 }
 
-/// Limit points from a kernel output of `stride` floats per sample.
-pub fn unpack_points(out: &[f32], stride: usize) -> Vec<LimitPoint> {
-    out.chunks_exact(stride)
-        .map(|o| {
-            let v = |k: usize| [o[k], o[k + 1], o[k + 2]];
-            LimitPoint {
-                p: v(0),
-                n: v(3),
-                du: if stride >= 12 { v(6) } else { [0.0; 3] },
-                dv: if stride >= 12 { v(9) } else { [0.0; 3] },
-            }
-        })
-        .collect()
-}
-
 impl GpuTessellation {
     /// Reads the tessellation back: positions, normals and the plan's quads.
     pub fn download(&self, ctx: &GpuContext) -> Result<Tessellation> {
@@ -198,50 +182,6 @@ fn upload_words(ctx: &GpuContext, what: &'static str, words: &[u32]) -> Result<w
     let zero = [0u32];
     let words = if words.is_empty() { &zero[..] } else { words };
     storage_buffer_init(ctx, what, bytemuck::cast_slice(words))
-}
-
-/// The CPU twin of [`GpuLimit::update`] followed by [`GpuLimit::eval`]: `stride` floats per
-/// query from the flat point array `points` ([`PatchTable::points`]).
-pub fn eval_cpu(
-    table: &PatchTable,
-    points: &[[f32; 3]],
-    queries: &[(u32, f32, f32)],
-    stride: usize,
-) -> Vec<f32> {
-    let t = LimitTables::new(table);
-    let q = pack_queries(queries);
-    let cfg = LimitConfig {
-        item_count: queries.len() as u32,
-        grid_width: queries.len() as u32,
-        out_stride: stride as u32,
-        num_roots: t.num_roots,
-    };
-    let inp = LimitInputs {
-        queries: &q,
-        patch_map: &t.patch_map,
-        patch_info: &t.patch_info,
-        cvs: &t.cvs,
-        points: points.as_flattened(),
-    };
-    let mut out = vec![0.0; queries.len() * stride];
-    limit_eval(&cfg, &inp, &mut out);
-    out
-}
-
-/// The CPU twin of a [`GpuTessellation`]: the plan's samples evaluated by the twin.
-pub fn tessellate_cpu(
-    table: &PatchTable,
-    points: &[[f32; 3]],
-    samples_per_side: usize,
-) -> subsurf::Result<Tessellation> {
-    let plan = table.tessellation_plan(samples_per_side)?;
-    let out = eval_cpu(table, points, &plan.queries, 6);
-    Ok(Tessellation {
-        samples_per_side: plan.samples_per_side,
-        positions: out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect(),
-        normals: out.chunks_exact(6).map(|v| [v[3], v[4], v[5]]).collect(),
-        quads: plan.quads,
-    })
 }
 
 impl GpuLimit {
