@@ -181,3 +181,15 @@ pub(crate) fn read_back(ctx: &GpuContext, buffer: &wgpu::Buffer, bytes: u64) -> 
     staging.unmap();
     Ok(data)
 }
+
+impl VertexBuffer {
+    /// A second handle on the same GPU buffer (kernels writing it through either handle
+    /// write the same memory; submission order orders them).
+    pub(crate) fn alias(&self) -> Self {
+        Self {
+            buffer: self.buffer.clone(),
+            vertex_count: self.vertex_count,
+            stride: self.stride,
+        }
+    }
+}

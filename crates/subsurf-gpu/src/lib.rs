@@ -14,6 +14,26 @@
 //! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`) and
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
 //! patches, `limit_eval`) and [`GpuUvRefiner`] (face-varying refinement of UVs).
+//!
+//! # Adapter limits
+//!
+//! Work is split against the adapter's `max_storage_buffer_binding_size` (128 MiB on
+//! lavapipe) and `max_compute_workgroups_per_dimension` rather than refused; each entry point
+//! has a `with_limits` constructor taking lower [`ChunkLimits`], which the tests use to force
+//! chunking on small meshes. Without any adapter, [`GpuContext::new`] returns
+//! [`GpuError::NoAdapter`]. What is split, and what must still fit one binding (else
+//! [`GpuError::TooLarge`]):
+//!
+//! | entry point | split per chunk | bound whole |
+//! |---|---|---|
+//! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row | the source vertex buffer |
+//! | [`GpuRefiner`] | every level's tables, by child row | each level's vertex buffer |
+//! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`], bit for bit the unchunked results) | the flat point array in `update` (refinement and end-cap stencils read it) |
+//! | [`GpuPrep`] | dispatch grids; the tessellation's vertex and index buffers | positions, rings, vertex and patch coefficients |
+//!
+//! The first buffers to reach 128 MiB are the p-rep's patch coefficients (at least 192 bytes
+//! per face: about 700,000 faces) and vertex coefficients (about 130 bytes per vertex of
+//! valence 4), then the limit point array (12 bytes per point: about 11 million points).
 
 pub mod buffers;
 pub mod context;
@@ -21,6 +41,8 @@ pub mod cpu;
 pub mod error;
 pub mod kernels;
 pub mod limit;
+pub mod limit_chunks;
+mod limit_twin;
 pub mod prep;
 pub mod refine;
 pub mod shared;

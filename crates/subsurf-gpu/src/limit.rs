@@ -21,8 +21,14 @@
 //!
 //! Samples are dispatched in chunks whose query and output bindings start at aligned offsets,
 //! so no binding exceeds `max_storage_buffer_binding_size` and no dispatch exceeds
-//! `max_compute_workgroups_per_dimension`. The point array and the patch tables are bound
-//! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
+//! `max_compute_workgroups_per_dimension`. When the patch tables and the point array each
+//! fit one binding they are bound whole; otherwise every chunk of samples reads compacted
+//! copies holding only what it samples (its ptex faces' patch sub-trees, their control
+//! indices renumbered and, if the point array exceeds a binding too, its points gathered each
+//! frame into a scratch buffer by a unit-weight [`StencilKernel`]; see
+//! [`crate::limit_chunks`]), with results bit for bit those of the
+//! whole tables. The refinement of `update` still reads the flat point array as one binding:
+//! a point array over the adapter's binding limit is refused with [`GpuError::TooLarge`].
 //!
 //! # Figures
 //!
@@ -40,6 +46,13 @@
 //! | 17 | 403,717 | 16.9 ms (23.9 M/s) | 38.5 ms (10.5 M/s) | 28.5 ms (14.2 M/s) | 31.0 ms | 22.7 ms (17.8 M/s) |
 //! | 33 | 1,613,797 | 91.7 ms (17.6 M/s) | 152 ms (10.6 M/s) | 98.2 ms (16.4 M/s) | 152 ms | 93.7 ms (17.2 M/s) |
 //!
+//! Compacted inputs (the same run with `with_limits` bindings of 256 KiB, so the car's
+//! tables split into 8 chunks at N = 5 and 12 at N = 9; a busier machine than the table
+//! above, best of two runs of same-run medians): `eval` 5.6 ms against 3.4 ms whole at N = 5
+//! and 12.0 ms against 11.6 ms at N = 9, `update` + `eval` 16.1 ms against 11.2 ms and
+//! 20.1 ms against 20.6 ms: the per-frame gather of the chunks' points costs about 2 ms at
+//! N = 5 and is lost in the noise at N = 9.
+//!
 //! The software rasterizer runs the kernel as 8-wide SIMD lanes on the same two cores, so
 //! evaluation alone is about as fast as the rayon CPU path; `update` (gathers and refinement
 //! of the sparse levels, end-cap stencils, copies) adds 3–5 ms. One gather loop serves every
@@ -49,12 +62,12 @@
 
 use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
-use crate::cpu::limit_eval::{
-    limit_eval, pack_queries, LimitInputs, LimitTables, QUERY_WORDS, WORKGROUP_SIZE,
-};
+use crate::cpu::limit_eval::{pack_queries, LimitTables, QUERY_WORDS, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::kernels::grid_2d;
 use crate::kernels::stencil::{ChunkLimits, StencilKernel};
+use crate::limit_chunks;
+pub use crate::limit_twin::{eval_cpu, tessellate_cpu, unpack_points};
 use crate::refine::{auto_pipeline, uniform_init, GpuRefiner};
 use crate::shaders;
 use crate::shared::LimitConfig;
@@ -72,13 +85,26 @@ pub struct GpuLimit {
     num_base: usize,
     points: VertexBuffer,
     local: Option<(StencilKernel, VertexBuffer)>,
-    patch_map: wgpu::Buffer,
-    patch_info: wgpu::Buffer,
-    cvs: wgpu::Buffer,
+    tables: Tables,
     num_roots: u32,
     limits: ChunkLimits,
     row_align: usize,
     pipeline: wgpu::ComputePipeline,
+}
+
+/// The patch tables of `limit_eval`: bound whole when they and the point array fit one
+/// binding, else kept on the host and compacted per chunk of samples ([`limit_chunks`]).
+#[derive(Debug)]
+enum Tables {
+    Whole {
+        patch_map: wgpu::Buffer,
+        patch_info: wgpu::Buffer,
+        cvs: wgpu::Buffer,
+    },
+    Chunked {
+        tables: LimitTables,
+        cv_offsets: Vec<u32>,
+    },
 }
 
 /// A set of samples on the GPU: queries uploaded once, an output buffer of `stride` floats
@@ -93,8 +119,10 @@ pub struct GpuSamples {
     /// The output buffer (also usable as a vertex buffer).
     pub output: wgpu::Buffer,
     chunks: Vec<(wgpu::BindGroup, (u32, u32))>,
-    _queries: wgpu::Buffer,
-    _configs: Vec<wgpu::Buffer>,
+    /// With compacted inputs: the gather of every chunk's points into a scratch buffer.
+    gather: Option<(StencilKernel, VertexBuffer)>,
+    compacted: bool,
+    _buffers: Vec<wgpu::Buffer>,
 }
 
 /// A watertight tessellation on the GPU: the samples of a [`TessellationPlan`] (6 floats per
@@ -120,6 +148,12 @@ impl GpuSamples {
         self.chunks.len()
     }
 
+    /// Whether the chunks read compacted copies of the patch tables and points (tables or
+    /// point array larger than one binding) rather than the whole tables.
+    pub fn inputs_compacted(&self) -> bool {
+        self.compacted
+    }
+
     /// Reads the output back (`stride` floats per sample; waits for the submitted work).
     pub fn download(&self, ctx: &GpuContext) -> Result<Vec<f32>> {
         read_back(ctx, &self.output, (self.count * self.stride) as u64 * WORD)
@@ -129,21 +163,6 @@ impl GpuSamples {
     pub fn download_points(&self, ctx: &GpuContext) -> Result<Vec<LimitPoint>> {
         Ok(unpack_points(&self.download(ctx)?, self.stride))
     }
-}
-
-/// Limit points from a kernel output of `stride` floats per sample.
-pub fn unpack_points(out: &[f32], stride: usize) -> Vec<LimitPoint> {
-    out.chunks_exact(stride)
-        .map(|o| {
-            let v = |k: usize| [o[k], o[k + 1], o[k + 2]];
-            LimitPoint {
-                p: v(0),
-                n: v(3),
-                du: if stride >= 12 { v(6) } else { [0.0; 3] },
-                dv: if stride >= 12 { v(9) } else { [0.0; 3] },
-            }
-        })
-        .collect()
 }
 
 impl GpuTessellation {
@@ -159,65 +178,10 @@ impl GpuTessellation {
     }
 }
 
-fn bound_whole(
-    ctx: &GpuContext,
-    limits: &ChunkLimits,
-    what: &'static str,
-    words: &[u32],
-) -> Result<wgpu::Buffer> {
-    let bytes = words.len() as u64 * WORD;
-    if bytes > limits.max_binding_bytes {
-        return Err(GpuError::TooLarge {
-            what,
-            needed: bytes,
-            limit: limits.max_binding_bytes,
-        });
-    }
+fn upload_words(ctx: &GpuContext, what: &'static str, words: &[u32]) -> Result<wgpu::Buffer> {
+    let zero = [0u32];
+    let words = if words.is_empty() { &zero[..] } else { words };
     storage_buffer_init(ctx, what, bytemuck::cast_slice(words))
-}
-
-/// The CPU twin of [`GpuLimit::update`] followed by [`GpuLimit::eval`]: `stride` floats per
-/// query from the flat point array `points` ([`PatchTable::points`]).
-pub fn eval_cpu(
-    table: &PatchTable,
-    points: &[[f32; 3]],
-    queries: &[(u32, f32, f32)],
-    stride: usize,
-) -> Vec<f32> {
-    let t = LimitTables::new(table);
-    let q = pack_queries(queries);
-    let cfg = LimitConfig {
-        item_count: queries.len() as u32,
-        grid_width: queries.len() as u32,
-        out_stride: stride as u32,
-        num_roots: t.num_roots,
-    };
-    let inp = LimitInputs {
-        queries: &q,
-        patch_map: &t.patch_map,
-        patch_info: &t.patch_info,
-        cvs: &t.cvs,
-        points: points.as_flattened(),
-    };
-    let mut out = vec![0.0; queries.len() * stride];
-    limit_eval(&cfg, &inp, &mut out);
-    out
-}
-
-/// The CPU twin of a [`GpuTessellation`]: the plan's samples evaluated by the twin.
-pub fn tessellate_cpu(
-    table: &PatchTable,
-    points: &[[f32; 3]],
-    samples_per_side: usize,
-) -> subsurf::Result<Tessellation> {
-    let plan = table.tessellation_plan(samples_per_side)?;
-    let out = eval_cpu(table, points, &plan.queries, 6);
-    Ok(Tessellation {
-        samples_per_side: plan.samples_per_side,
-        positions: out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect(),
-        normals: out.chunks_exact(6).map(|v| [v[3], v[4], v[5]]).collect(),
-        quads: plan.quads,
-    })
 }
 
 impl GpuLimit {
@@ -305,9 +269,28 @@ impl GpuLimit {
             None
         };
         let t = LimitTables::new(table);
-        let patch_map = bound_whole(ctx, &limits, "limit patch map", &t.patch_map)?;
-        let patch_info = bound_whole(ctx, &limits, "limit patch data", &t.patch_info)?;
-        let cvs = bound_whole(ctx, &limits, "limit control indices", &t.cvs)?;
+        let num_roots = t.num_roots;
+        let fits = |words: usize| words as u64 * WORD <= limits.max_binding_bytes;
+        let tables = if [
+            t.patch_map.len(),
+            t.patch_info.len(),
+            t.cvs.len(),
+            3 * num_points,
+        ]
+        .into_iter()
+        .all(fits)
+        {
+            Tables::Whole {
+                patch_map: upload_words(ctx, "limit patch map", &t.patch_map)?,
+                patch_info: upload_words(ctx, "limit patch data", &t.patch_info)?,
+                cvs: upload_words(ctx, "limit control indices", &t.cvs)?,
+            }
+        } else {
+            Tables::Chunked {
+                tables: t,
+                cv_offsets: table.cv_offsets.clone(),
+            }
+        };
         let pipeline = ctx.scoped(|| {
             Ok(auto_pipeline(
                 ctx,
@@ -324,10 +307,8 @@ impl GpuLimit {
             num_base: table.level_offsets[1] as usize,
             points,
             local,
-            patch_map,
-            patch_info,
-            cvs,
-            num_roots: t.num_roots,
+            tables,
+            num_roots,
             limits,
             row_align,
             pipeline,
@@ -351,8 +332,8 @@ impl GpuLimit {
     }
 
     /// Writes new base positions and rebuilds the point array on the GPU: refinement, copies
-    /// of each level into place, end-cap local points. Sample sets keep their bindings; call
-    /// [`Self::eval`] to re-evaluate them.
+    /// of each level into place, end-cap local points, all recorded into one submission.
+    /// Sample sets keep their bindings; call [`Self::eval`] to re-evaluate them.
     pub fn update(&mut self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
         if positions.len() != self.num_base {
             return Err(GpuError::BufferMismatch(format!(
@@ -365,23 +346,35 @@ impl GpuLimit {
             ctx.queue
                 .write_buffer(self.points.raw(), 0, bytemuck::cast_slice(positions));
         }
-        for (d, (gather, refiner)) in self.levels.iter_mut().enumerate() {
-            gather.apply(ctx, &self.points, refiner.input_mut())?;
-            refiner.dispatch(ctx)?;
-            let out = refiner.output();
-            let bytes = out.len_floats() as u64 * WORD;
-            if bytes > 0 {
-                let at = u64::from(self.level_offsets[d + 1]) * 3 * WORD;
-                copy(ctx, out.raw(), self.points.raw(), at, bytes)?;
+        let points = &self.points;
+        let level_offsets = &self.level_offsets;
+        let levels = &mut self.levels;
+        let local = &mut self.local;
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("limit update"),
+                });
+            for (d, (gather, refiner)) in levels.iter_mut().enumerate() {
+                gather.encode(ctx, &mut encoder, points, refiner.input_mut())?;
+                refiner.encode(&mut encoder);
+                let out = refiner.output();
+                let bytes = out.len_floats() as u64 * WORD;
+                if bytes > 0 {
+                    let at = u64::from(level_offsets[d + 1]) * 3 * WORD;
+                    encoder.copy_buffer_to_buffer(out.raw(), 0, points.raw(), at, bytes);
+                }
             }
-        }
-        if let Some((kernel, local)) = &mut self.local {
-            kernel.apply(ctx, &self.points, local)?;
-            let first = u64::from(*self.level_offsets.last().unwrap_or(&0)) * 3 * WORD;
-            let bytes = local.len_floats() as u64 * WORD;
-            copy(ctx, local.raw(), self.points.raw(), first, bytes)?;
-        }
-        Ok(())
+            if let Some((kernel, local)) = local {
+                kernel.encode(ctx, &mut encoder, points, local)?;
+                let first = u64::from(*level_offsets.last().unwrap_or(&0)) * 3 * WORD;
+                let bytes = local.len_floats() as u64 * WORD;
+                encoder.copy_buffer_to_buffer(local.raw(), 0, points.raw(), first, bytes);
+            }
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
     }
 
     /// Uploads a sample set of `(ptex face, u, v)` queries; `derivatives` selects 12 floats per
@@ -411,7 +404,6 @@ impl GpuLimit {
             )));
         }
         let words = pack_queries(queries);
-        let queries_buf = storage_buffer_init(ctx, "limit queries", bytemuck::cast_slice(&words))?;
         let out_bytes = (count * stride) as u64 * WORD;
         let output = ctx.scoped(|| {
             Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -422,6 +414,54 @@ impl GpuLimit {
             }))
         })?;
         let layout = self.pipeline.get_bind_group_layout(0);
+        let (patch_map, patch_info, cvs) = match &self.tables {
+            Tables::Whole {
+                patch_map,
+                patch_info,
+                cvs,
+            } => (patch_map, patch_info, cvs),
+            Tables::Chunked { tables, cv_offsets } => {
+                let max_dispatch = u64::from(self.limits.max_workgroups_per_dimension).pow(2)
+                    * u64::from(WORKGROUP_SIZE);
+                // Points compacted (and gathered per frame) only when the flat array exceeds
+                // one binding.
+                let compact_points =
+                    (3 * self.num_points()) as u64 * WORD > self.limits.max_binding_bytes;
+                let plan = limit_chunks::plan(
+                    tables,
+                    cv_offsets,
+                    self.num_points(),
+                    &words,
+                    stride,
+                    limit_chunks::PlanLimits {
+                        max_words: (self.limits.max_binding_bytes / WORD) as usize,
+                        max_samples: max_dispatch.min(u64::from(u32::MAX)) as usize,
+                        align: self.row_align,
+                        compact_points,
+                    },
+                )?;
+                let set = limit_chunks::upload(
+                    ctx,
+                    &layout,
+                    self.limits,
+                    &plan,
+                    stride,
+                    self.row_align,
+                    &output,
+                    (!compact_points).then_some(self.points.raw()),
+                )?;
+                return Ok(GpuSamples {
+                    count,
+                    stride,
+                    output,
+                    chunks: set.dispatches,
+                    gather: set.gather,
+                    compacted: true,
+                    _buffers: set.buffers,
+                });
+            }
+        };
+        let queries_buf = storage_buffer_init(ctx, "limit queries", bytemuck::cast_slice(&words))?;
         let mut chunks = Vec::new();
         let mut configs = Vec::new();
         for (start, end) in self.sample_chunks(count, stride)? {
@@ -441,9 +481,9 @@ impl GpuLimit {
                     entries: &[
                         entry(0, config_buf.as_entire_binding()),
                         entry(1, part(&queries_buf, start, n, QUERY_WORDS)),
-                        entry(2, self.patch_map.as_entire_binding()),
-                        entry(3, self.patch_info.as_entire_binding()),
-                        entry(4, self.cvs.as_entire_binding()),
+                        entry(2, patch_map.as_entire_binding()),
+                        entry(3, patch_info.as_entire_binding()),
+                        entry(4, cvs.as_entire_binding()),
                         entry(5, self.points.raw().as_entire_binding()),
                         entry(6, part(&output, start, n, stride)),
                     ],
@@ -452,13 +492,15 @@ impl GpuLimit {
             chunks.push((bind_group, (gx, gy)));
             configs.push(config_buf);
         }
+        configs.push(queries_buf);
         Ok(GpuSamples {
             count,
             stride,
             output,
             chunks,
-            _queries: queries_buf,
-            _configs: configs,
+            gather: None,
+            compacted: false,
+            _buffers: configs,
         })
     }
 
@@ -534,6 +576,9 @@ impl GpuLimit {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("limit_eval"),
                 });
+            if let Some((gather, scratch)) = &samples.gather {
+                gather.encode(ctx, &mut encoder, &self.points, &mut scratch.alias())?;
+            }
             {
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                     label: Some("limit_eval"),
@@ -549,26 +594,6 @@ impl GpuLimit {
             Ok(())
         })
     }
-}
-
-/// Submits a copy of the first `bytes` of `src` to `dst` at byte offset `at`.
-fn copy(
-    ctx: &GpuContext,
-    src: &wgpu::Buffer,
-    dst: &wgpu::Buffer,
-    at: u64,
-    bytes: u64,
-) -> Result<()> {
-    ctx.scoped(|| {
-        let mut encoder = ctx
-            .device
-            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                label: Some("limit points copy"),
-            });
-        encoder.copy_buffer_to_buffer(src, 0, dst, at, bytes);
-        ctx.queue.submit([encoder.finish()]);
-        Ok(())
-    })
 }
 
 /// Samples `start .. start + n` of a buffer of `words_per` words per sample.

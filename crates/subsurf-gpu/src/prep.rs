@@ -13,7 +13,11 @@
 //! (vertex and index buffers, the largest by far) are bound at the chunk's first item, at an
 //! aligned offset, so no binding exceeds `max_storage_buffer_binding_size`. The inputs
 //! gathered at arbitrary indices (positions, rings, vertex and patch coefficients) are bound
-//! whole; past the binding limit they are refused with [`GpuError::TooLarge`].
+//! whole; past the binding limit they are refused with [`GpuError::TooLarge`] (the patch
+//! coefficients first, at about 700,000 faces for 128 MiB). Splitting them needs chunk-local
+//! sub-problems (a chunk of faces with its vertices' rings, local sectors and h blocks, and an
+//! owner chunk for every shared edge and vertex of the tessellation so that seams stay
+//! computed from one side), as `GpuLimit` does for its tables.
 
 use crate::buffers::{read_back, storage_buffer_init};
 use crate::context::GpuContext;

@@ -222,20 +222,23 @@ impl GpuRefiner {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("refine_level"),
                 });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("refine_level"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                for d in &self.dispatches {
-                    pass.set_bind_group(0, &d.bind_group, &[]);
-                    pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
-                }
-            }
+            self.encode(&mut encoder);
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })
+    }
+
+    /// Records [`Self::dispatch`]'s passes into `encoder` (submitted by the caller).
+    pub(crate) fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("refine_level"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for d in &self.dispatches {
+            pass.set_bind_group(0, &d.bind_group, &[]);
+            pass.dispatch_workgroups(d.groups.0, d.groups.1, 1);
+        }
     }
 
     /// [`Self::update`] then [`Self::download`].

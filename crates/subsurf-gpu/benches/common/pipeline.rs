@@ -4,7 +4,7 @@ use std::time::{Duration, Instant};
 use subsurf::prep::{Grid, PrepPatches, PrepTopology};
 use subsurf::{Mesh, Refiner, Scheme, Topology};
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
-use subsurf_gpu::{GpuContext, GpuLimit, GpuPrep, GpuRefiner};
+use subsurf_gpu::{ChunkLimits, GpuContext, GpuLimit, GpuPrep, GpuRefiner};
 
 const CAR: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes/catmark_car.obj"));
 const LEFTHANDED: &str = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/../subsurf/tests/data/prep/catmark_lefthanded.obj"));
@@ -155,10 +155,27 @@ fn limit_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, 
                 gpu.eval(ctx, &tess.samples).expect("eval");
                 ctx.wait_idle().expect("wait");
             });
+            // The same with 256 KiB bindings: patch tables and points compacted per chunk.
+            let small = ChunkLimits { max_binding_bytes: 1 << 18, ..ChunkLimits::from_context(ctx) };
+            let mut compact = GpuLimit::with_limits(ctx, &table, small).expect("GPU limit upload");
+            let ctess = compact.tessellation(ctx, &table, n).expect("tessellation buffers");
+            assert!(ctess.samples.inputs_compacted());
+            let c_resident = median(|| {
+                compact.update(ctx, &mesh.positions).expect("update");
+                compact.eval(ctx, &ctess.samples).expect("eval");
+                ctx.wait_idle().expect("wait");
+            });
+            let c_eval = median(|| {
+                compact.eval(ctx, &ctess.samples).expect("eval");
+                ctx.wait_idle().expect("wait");
+            });
+            let compacted = format!("update + eval, 256 KiB bindings ({} chunks)", ctess.samples.num_dispatches());
             for (what, t) in [
                 ("update + eval, resident", resident),
                 ("+ read-back", readback),
                 ("eval only", eval_only),
+                (compacted.as_str(), c_resident),
+                ("eval only, 256 KiB bindings", c_eval),
             ] {
                 println!(
                     "limit {name} N={n:2} ({samples:.0} samples) | GPU {adapter} {what} | {:9.3} ms | {:8.2} Msamples/s",

@@ -232,6 +232,28 @@ impl StencilKernel {
         src: &VertexBuffer,
         dst: &mut VertexBuffer,
     ) -> Result<()> {
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("stencil_apply"),
+                });
+            self.encode(ctx, &mut encoder, src, dst)?;
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
+    }
+
+    /// Records [`Self::apply`] into `encoder` (submitted by the caller). The chunks'
+    /// uniforms are written through the queue, so one encoder may hold one application of
+    /// a given kernel per stride.
+    pub(crate) fn encode(
+        &self,
+        ctx: &GpuContext,
+        encoder: &mut wgpu::CommandEncoder,
+        src: &VertexBuffer,
+        dst: &mut VertexBuffer,
+    ) -> Result<()> {
         let stride = src.stride();
         if dst.stride() != stride {
             return Err(GpuError::BufferMismatch(format!(
@@ -263,12 +285,7 @@ impl StencilKernel {
         }
         let stride_u32 = u32::try_from(stride)
             .map_err(|_| GpuError::BufferMismatch(format!("stride {stride} is too large")))?;
-        ctx.scoped(|| {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("stencil_apply"),
-                });
+        {
             let mut bind_groups = Vec::with_capacity(self.chunks.len());
             for chunk in &self.chunks {
                 let rows = (chunk.range.row_end - chunk.range.row_start) as u32;
@@ -326,9 +343,8 @@ impl StencilKernel {
                     pass.dispatch_workgroups(*gx, *gy, 1);
                 }
             }
-            ctx.queue.submit([encoder.finish()]);
             Ok(())
-        })
+        }
     }
 }
 
