@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{bin, repo, tmp};
+use common::{bin, repo, run_ok, tmp};
 use std::path::PathBuf;
 
 fn example(name: &str) -> PathBuf {
@@ -11,16 +11,7 @@ fn example(name: &str) -> PathBuf {
 
 #[test]
 fn info_json_reports_the_car() {
-    let out = bin()
-        .args(["info", "--json"])
-        .arg(example("car.obj"))
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let out = run_ok(bin().args(["info", "--json"]).arg(example("car.obj")));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["vertices"], 1642);
     assert_eq!(v["faces"], 1575);
@@ -34,17 +25,12 @@ fn info_json_reports_the_car() {
 fn refine_writes_obj_and_ply_with_the_expected_counts() {
     for ext in ["obj", "ply"] {
         let out_path = tmp(&format!("car2.{ext}"));
-        let out = bin()
-            .arg("refine")
-            .arg(example("car.obj"))
-            .args(["--level", "2", "-o"])
-            .arg(&out_path)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+        run_ok(
+            bin()
+                .arg("refine")
+                .arg(example("car.obj"))
+                .args(["--level", "2", "-o"])
+                .arg(&out_path),
         );
         let mesh = subsurf::io::read_path(&out_path).unwrap();
         // 1575 quads -> 16x at level 2; vertices V2 = V1 + F1 + E1.

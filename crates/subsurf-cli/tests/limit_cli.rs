@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{bin, repo, tmp};
+use common::{bin, repo, run_ok, tmp};
 use std::path::PathBuf;
 
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
@@ -17,17 +17,12 @@ fn shape(name: &str) -> PathBuf {
 #[test]
 fn eval_writes_the_library_samples() {
     let out_path = tmp("pyramid.txt");
-    let out = bin()
-        .arg("eval")
-        .arg(shape("catmark_pyramid"))
-        .args(["--samples", "3", "-o"])
-        .arg(&out_path)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        bin()
+            .arg("eval")
+            .arg(shape("catmark_pyramid"))
+            .args(["--samples", "3", "-o"])
+            .arg(&out_path),
     );
     let text = std::fs::read_to_string(&out_path).unwrap();
     let lines: Vec<Vec<f32>> = text
@@ -58,17 +53,12 @@ fn eval_writes_the_library_samples() {
 #[test]
 fn limit_writes_a_watertight_mesh() {
     let out_path = tmp("cube.obj");
-    let out = bin()
-        .arg("limit")
-        .arg(shape("catmark_cube"))
-        .args(["--tess", "4", "--isolation", "2", "-o"])
-        .arg(&out_path)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        bin()
+            .arg("limit")
+            .arg(shape("catmark_cube"))
+            .args(["--tess", "4", "--isolation", "2", "-o"])
+            .arg(&out_path),
     );
     let m = subsurf::io::read_path(&out_path).unwrap();
     // 6 faces × 3 × 3 cells × 2 triangles; V = 8 + 12·2 + 6·4 shared samples.

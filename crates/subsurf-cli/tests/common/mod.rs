@@ -24,6 +24,17 @@ pub fn tmp(name: &str) -> PathBuf {
     dir.join(name)
 }
 
+/// Runs a command and asserts it succeeded, showing its stderr otherwise.
+pub fn run_ok(cmd: &mut Command) -> Output {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
 /// Runs a command that needs a GPU adapter. Without one it fails with the install hint, or
 /// returns `None` after a loud SKIPPED line when `SUBSURF_SKIP_GPU=1`. Asserts success.
 pub fn run_gpu(cmd: &mut Command) -> Option<Output> {
