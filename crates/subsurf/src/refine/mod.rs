@@ -210,7 +210,8 @@ impl Refiner {
         self.levels.len() - 1
     }
 
-    /// The last level's topology.
+    /// The last level's topology. Built with [`RefineOptions::lean`], it holds only face lists,
+    /// hole flags and the vertex count (its edge, ring and tag tables are empty).
     pub fn last(&self) -> &Topology {
         &self.levels[self.levels.len() - 1]
     }
