@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bin, repo, tmp};
+use common::{bin, repo, run_ok, tmp};
 use std::path::Path;
 use std::process::Output;
 
@@ -16,12 +16,7 @@ fn run_gpu(args: &[&std::ffi::OsStr]) -> Option<Output> {
 }
 
 fn run_cpu(args: &[&std::ffi::OsStr]) {
-    let out = bin().args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    run_ok(bin().args(args));
 }
 
 fn assert_same_mesh(gpu: &Path, cpu: &Path) {
@@ -52,27 +47,35 @@ fn path_str(p: &Path) -> String {
     p.to_str().expect("test paths are UTF-8").to_string()
 }
 
-/// `subsurf <cmd> <input> <extra…> -o <out>` with both backends; outputs compared.
-fn compare_backends(cmd: &str, input: &Path, extra: &[&str], stem: &str) {
-    let (g, c) = (
-        tmp(&format!("{stem}_gpu.obj")),
-        tmp(&format!("{stem}_cpu.obj")),
-    );
+/// `subsurf <cmd> <input> <extra…> -o <out>` on the GPU into `gpu`, then on the CPU into
+/// `cpu`; `false` when the GPU run was skipped (no adapter and `SUBSURF_SKIP_GPU=1`).
+fn run_both(cmd: &str, input: &Path, extra: &[&str], gpu: &Path, cpu: &Path) -> bool {
     let args = |o: &Path| {
         let mut v = vec![cmd.to_string(), path_str(input)];
         v.extend(extra.iter().map(|s| s.to_string()));
         v.extend(["-o".to_string(), path_str(o)]);
         v
     };
-    let ga = args(&g);
+    let ga = args(gpu);
     let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_ref()).collect();
     if run_gpu(&ga).is_none() {
-        return;
+        return false;
     }
-    let ca = args(&c);
+    let ca = args(cpu);
     let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_ref()).collect();
     run_cpu(&ca);
-    assert_same_mesh(&g, &c);
+    true
+}
+
+/// `subsurf <cmd> <input> <extra…> -o <out>` with both backends; output meshes compared.
+fn compare_backends(cmd: &str, input: &Path, extra: &[&str], stem: &str) {
+    let (g, c) = (
+        tmp(&format!("{stem}_gpu.obj")),
+        tmp(&format!("{stem}_cpu.obj")),
+    );
+    if run_both(cmd, input, extra, &g, &c) {
+        assert_same_mesh(&g, &c);
+    }
 }
 
 #[test]
@@ -95,24 +98,9 @@ fn prep_gpu_matches_cpu() {
 fn refine_uvs_gpu_match_cpu() {
     let input = repo("testdata/shapes/catmark_fvar_bound1.obj");
     let (g, c) = (tmp("uv_gpu.obj"), tmp("uv_cpu.obj"));
-    let args = |o: &Path| -> Vec<std::ffi::OsString> {
-        vec![
-            "refine".into(),
-            input.clone().into(),
-            "--level".into(),
-            "2".into(),
-            "-o".into(),
-            o.into(),
-        ]
-    };
-    let ga = args(&g);
-    let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_os_str()).collect();
-    if run_gpu(&ga).is_none() {
+    if !run_both("refine", &input, &["--level", "2"], &g, &c) {
         return;
     }
-    let ca = args(&c);
-    let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_os_str()).collect();
-    run_cpu(&ca);
     assert_same_mesh(&g, &c);
     let (gu, cu) = (
         subsurf::io::read_path(&g)
@@ -165,24 +153,9 @@ fn eval_lines(path: &Path) -> Vec<Vec<f32>> {
 fn eval_gpu_matches_cpu() {
     let input = repo("testdata/shapes/catmark_hole_test1.obj");
     let (g, c) = (tmp("eval_gpu.txt"), tmp("eval_cpu.txt"));
-    let args = |o: &Path| -> Vec<std::ffi::OsString> {
-        vec![
-            "eval".into(),
-            input.clone().into(),
-            "--samples".into(),
-            "4".into(),
-            "-o".into(),
-            o.into(),
-        ]
-    };
-    let ga = args(&g);
-    let ga: Vec<&std::ffi::OsStr> = ga.iter().map(|s| s.as_os_str()).collect();
-    if run_gpu(&ga).is_none() {
+    if !run_both("eval", &input, &["--samples", "4"], &g, &c) {
         return;
     }
-    let ca = args(&c);
-    let ca: Vec<&std::ffi::OsStr> = ca.iter().map(|s| s.as_os_str()).collect();
-    run_cpu(&ca);
     let (gl, cl) = (eval_lines(&g), eval_lines(&c));
     // Same samples (holes skipped on both), values within f32 rounding: positions relative to
     // the mesh size (a few units), derivatives to theirs.
