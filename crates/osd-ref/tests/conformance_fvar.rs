@@ -81,16 +81,7 @@ fn compare(
 }
 
 fn shapes_with_uvs() -> Vec<(String, Mesh)> {
-    let mut names: Vec<String> = std::fs::read_dir(common::shapes_dir())
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| {
-            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
-        })
-        .map(|n| n.trim_end_matches(".obj").to_string())
-        .collect();
-    names.sort();
+    let names = common::shape_names(&["catmark_", "bilinear_"]);
     names
         .into_iter()
         .filter_map(|name| {

@@ -15,10 +15,7 @@ fn osd_mesh(m: &Mesh) -> OsdMesh<'_> {
 }
 
 fn diagonal(points: &[[f32; 3]]) -> f32 {
-    let (lo, hi) = subsurf::mesh::bounding_box(points).unwrap_or(([0.0; 3], [1.0; 3]));
-    ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2) + (hi[2] - lo[2]).powi(2))
-        .sqrt()
-        .max(1e-30)
+    subsurf::mesh::bbox_diagonal(points).max(1e-30)
 }
 
 /// Compares one shape at every level up to `max_level`; returns the worst relative error.
@@ -69,16 +66,7 @@ fn compare_with(name: &str, max_level: usize, edit: impl Fn(&mut Mesh)) -> f32 {
 #[test]
 fn every_catmark_and_bilinear_shape_matches_opensubdiv() {
     require_osd!();
-    let mut names: Vec<String> = std::fs::read_dir(common::shapes_dir())
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| {
-            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
-        })
-        .map(|n| n.trim_end_matches(".obj").to_string())
-        .collect();
-    names.sort();
+    let names = common::shape_names(&["catmark_", "bilinear_"]);
     assert!(
         names.len() >= 60,
         "expected the regression shapes, found {}",

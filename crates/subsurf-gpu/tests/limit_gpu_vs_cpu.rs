@@ -43,14 +43,7 @@ fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
 }
 
 fn bbox_diagonal(p: &[[f32; 3]]) -> f64 {
-    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-    for q in p {
-        for k in 0..3 {
-            lo[k] = lo[k].min(q[k] as f64);
-            hi[k] = hi[k].max(q[k] as f64);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+    subsurf::mesh::bbox_diagonal(p) as f64
 }
 
 fn dist(a: [f32; 3], b: [f32; 3]) -> f64 {

@@ -12,28 +12,12 @@ fn shapes_dir() -> std::path::PathBuf {
 
 /// Catmark and bilinear shapes of the regression set, sorted by name.
 fn shape_paths() -> Vec<std::path::PathBuf> {
-    let mut v: Vec<_> = std::fs::read_dir(shapes_dir())
+    subsurf::shapes::regression_shapes(&shapes_dir(), &["catmark_", "bilinear_"])
         .expect("testdata/shapes is readable")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            let n = p.file_name().unwrap().to_string_lossy();
-            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
-        })
-        .collect();
-    v.sort();
-    v
 }
 
 fn bbox_diagonal(p: &[[f32; 3]]) -> f64 {
-    let mut lo = [f64::MAX; 3];
-    let mut hi = [f64::MIN; 3];
-    for q in p {
-        for k in 0..3 {
-            lo[k] = lo[k].min(q[k] as f64);
-            hi[k] = hi[k].max(q[k] as f64);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
+    subsurf::mesh::bbox_diagonal(p) as f64
 }
 
 /// Every GPU position is finite and within `1e-5` of the bbox diagonal of the CPU's.

@@ -98,3 +98,11 @@ pub fn bounding_box(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
     }
     Some((lo, hi))
 }
+
+/// Length of the bounding-box diagonal of a point set (0 for an empty set): the scale that
+/// relative errors are measured against.
+pub fn bbox_diagonal(points: &[[f32; 3]]) -> f32 {
+    bounding_box(points).map_or(0.0, |(lo, hi)| {
+        (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f32>().sqrt()
+    })
+}

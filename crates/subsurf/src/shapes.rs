@@ -78,3 +78,23 @@ pub fn pole(n: usize) -> Mesh {
         .collect();
     Mesh::from_faces(p, &faces)
 }
+
+/// The OBJ files of `dir` whose names start with one of `prefixes` (OpenSubdiv's regression
+/// shapes: `catmark_`, `bilinear_`, …), sorted by name.
+pub fn regression_shapes(
+    dir: &std::path::Path,
+    prefixes: &[&str],
+) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(dir)? {
+        let path = e?.path();
+        let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+        if let Some(n) = name {
+            if n.ends_with(".obj") && prefixes.iter().any(|p| n.starts_with(p)) {
+                v.push(path);
+            }
+        }
+    }
+    v.sort();
+    Ok(v)
+}

@@ -9,16 +9,7 @@ use subsurf::{CreaseMethod, FVarLinearInterpolation, Mesh, RefineOptions, Refine
 
 fn shapes() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
-    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            let n = p.file_name().unwrap().to_string_lossy();
-            (n.starts_with("catmark_") || n.starts_with("bilinear_")) && n.ends_with(".obj")
-        })
-        .collect();
-    v.sort();
-    v
+    subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_"]).unwrap()
 }
 
 #[test]

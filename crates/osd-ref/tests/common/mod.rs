@@ -73,3 +73,13 @@ pub fn unique_edges(face_counts: &[u32], face_indices: &[u32]) -> Vec<[u32; 2]> 
 pub fn dist(a: [f32; 3], b: [f32; 3]) -> f32 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
+
+/// Names (without `.obj`) of the regression shapes whose names start with one of `prefixes`,
+/// sorted.
+pub fn shape_names(prefixes: &[&str]) -> Vec<String> {
+    subsurf::shapes::regression_shapes(&shapes_dir(), prefixes)
+        .expect("testdata/shapes is readable")
+        .iter()
+        .filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned()))
+        .collect()
+}

@@ -48,14 +48,7 @@ fn catmark_shapes() -> Vec<String> {
 }
 
 fn diagonal(p: &[[f32; 3]]) -> f32 {
-    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-    for q in p {
-        for c in 0..3 {
-            lo[c] = lo[c].min(q[c]);
-            hi[c] = hi[c].max(q[c]);
-        }
-    }
-    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f32>().sqrt()
+    crate::mesh::bbox_diagonal(p)
 }
 
 /// Asserts that two tables hold the same patches, with control points at the same

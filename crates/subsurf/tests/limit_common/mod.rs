@@ -38,13 +38,5 @@ pub fn shape_names() -> Vec<String> {
 
 /// Length of the bounding-box diagonal.
 pub fn bbox_diagonal(p: &[[f32; 3]]) -> f32 {
-    let mut lo = [f32::MAX; 3];
-    let mut hi = [f32::MIN; 3];
-    for q in p {
-        for c in 0..3 {
-            lo[c] = lo[c].min(q[c]);
-            hi[c] = hi[c].max(q[c]);
-        }
-    }
-    (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f32>().sqrt()
+    subsurf::mesh::bbox_diagonal(p)
 }
