@@ -25,6 +25,6 @@
 //! ```
 //!
 //! The meshes are embedded in the binary. `GPU_PIPELINE_QUICK=1` runs only the smaller cases,
-//! `GPU_PIPELINE_ONLY=refine|prep|limit` one section.
+//! `GPU_PIPELINE_ONLY=refine|prep|prep_large|limit` one section.
 
 include!("../benches/common/pipeline.rs");

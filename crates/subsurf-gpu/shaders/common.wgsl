@@ -33,7 +33,8 @@ struct RefineConfig {
 }
 
 // Per-dispatch parameters of the p-rep kernels (prep_vertex_pass, prep_patch_pass,
-// prep_eval_grid). Flat buffers, 3 floats per point:
+// prep_eval_grid), counts of one sub-problem (src/prep_chunks.rs). Flat buffers, 3 floats per
+// point:
 //   vertex_data = [limit V | e1 V | e2 V | tangent S | interior S]
 //   patch_data  = [g 16 F | h 16 P]
 struct PrepConfig {
@@ -47,8 +48,16 @@ struct PrepConfig {
     // Samples per patch side of prep_eval_grid (>= 2).
     samples: u32,
     // Item of invocation 0 (the dispatch covers first_item .. first_item + item_count); the
-    // outputs of prep_eval_grid are bound at the chunk's first item.
+    // outputs of prep_eval_grid are bound at an aligned offset at or before the chunk's first
+    // item, out_shift words before it.
     first_item: u32,
+    // Local vertices 0..owned_vertices have their tessellation sample written by this
+    // sub-problem; V above counts every core vertex (the vertex_data layout).
+    owned_vertices: u32,
+    out_shift: u32,
+    // Vertex-buffer slot of the sub-problem's first face-interior sample (entry `indices`).
+    face_slot_base: u32,
+    _pad: u32,
 }
 
 // Offset (in floats) of valence n's constants in `valence_consts`: valence m holds

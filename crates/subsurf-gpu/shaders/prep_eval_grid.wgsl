@@ -3,14 +3,18 @@
 //
 //   x(u,v) = sum_{i,j<4} g_ij B3_i(u) B3_j(v) + sum_{16 slots} h_ij B5_i(u) B5_j(v)
 //
-// Vertex layout (as `PrepPatches::tessellate` of the subsurf crate): one vertex per mesh
-// vertex (its limit point g00, normal e1 x e2), then n-2 per edge, then (n-2)^2 per face.
-// A shared-edge sample is computed ONCE, by the invocation of its edge, from the edge curve
+// Run once per sub-problem (src/prep_chunks.rs; the whole mesh when it is one). Items of a
+// sub-problem, in its region of the vertex buffer: one sample per OWNED vertex (its limit point
+// g00, normal e1 x e2), then n-2 per owned edge, then (n-2)^2 per face. A shared-edge sample is
+// computed ONCE, by the invocation of its edge, from the edge curve
 // sum_i g_i0 B3_i(t) + h20 B5_2(t) + h30 B5_3(t) of the face owning the edge in its canonical
 // direction; both faces' triangles index it, so the two sides are identical bit for bit.
 //
 // Entry `main`: one invocation per output vertex, writes 6 floats (position, unit normal).
-// Entry `indices`: one invocation per grid cell, writes its two ccw triangles.
+// Entry `indices`: one invocation per grid cell, writes its two ccw triangles; the slots of
+// its corner and edge samples come from `corner_slots` (8 per face: 4 corner-vertex slots, 4
+// first-edge-sample slots with bit 31 set when the face runs along the edge's direction).
+// Both write at out_shift + 6 * (item - first_item) of their output binding.
 // CPU twin: src/cpu/prep_eval_grid.rs.
 
 const WORKGROUP_SIZE: u32 = 64u;
@@ -23,8 +27,7 @@ const NO_H: u32 = 0xffffffffu;
 @group(0) @binding(4) var<storage, read> vertex_data: array<f32>;
 @group(0) @binding(5) var<storage, read> patch_data: array<f32>;
 @group(0) @binding(6) var<storage, read_write> out_vertices: array<f32>;
-@group(0) @binding(7) var<storage, read> face_verts: array<u32>;
-@group(0) @binding(8) var<storage, read> face_edges: array<u32>;
+@group(0) @binding(7) var<storage, read> corner_slots: array<u32>;
 @group(0) @binding(9) var<storage, read_write> out_indices: array<u32>;
 
 struct Basis {
@@ -120,7 +123,7 @@ fn eval_patch(f: u32, bu_in: Basis, bv_in: Basis) -> Sample {
 }
 
 fn emit(item: u32, p: vec3<f32>, nrm: vec3<f32>) {
-    let o = 6u * item;
+    let o = config.out_shift + 6u * item;
     out_vertices[o] = p.x;
     out_vertices[o + 1u] = p.y;
     out_vertices[o + 2u] = p.z;
@@ -138,11 +141,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let item = config.first_item + local;
     let n = config.samples;
     let m = n - 2u;
-    let nv = config.num_vertices;
+    let nv = config.owned_vertices;
     let ne = config.num_edges;
     if item < nv {
-        let e1 = vd(nv + item);
-        let e2 = vd(2u * nv + item);
+        let e1 = vd(config.num_vertices + item);
+        let e2 = vd(2u * config.num_vertices + item);
         emit(local, vd(item), normalized(cross(e1, e2)));
         return;
     }
@@ -177,22 +180,22 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     emit(local, smp.p, normalized(cross(smp.du, smp.dv)));
 }
 
-// Index in the vertex array of grid sample (i, j) of face f (see the layout above).
+// Slot in the vertex buffer of grid sample (i, j) of face f.
 fn grid_vertex(f: u32, i: u32, j: u32) -> u32 {
     let n = config.samples;
     let last = n - 1u;
     let m = n - 2u;
     if i == 0u && j == 0u {
-        return face_verts[4u * f];
+        return corner_slots[8u * f];
     }
     if i == last && j == 0u {
-        return face_verts[4u * f + 1u];
+        return corner_slots[8u * f + 1u];
     }
     if i == last && j == last {
-        return face_verts[4u * f + 2u];
+        return corner_slots[8u * f + 2u];
     }
     if i == 0u && j == last {
-        return face_verts[4u * f + 3u];
+        return corner_slots[8u * f + 3u];
     }
     var c = 4u;
     var s = 0u;
@@ -210,15 +213,14 @@ fn grid_vertex(f: u32, i: u32, j: u32) -> u32 {
         s = last - j;
     }
     if c < 4u {
-        let e = face_edges[4u * f + c];
-        let forward = face_verts[4u * f + c] < face_verts[4u * f + (c + 1u) % 4u];
+        let w = corner_slots[8u * f + 4u + c];
         var k = m - s;
-        if forward {
+        if (w & 0x80000000u) != 0u {
             k = s - 1u;
         }
-        return config.num_vertices + e * m + k;
+        return (w & 0x7fffffffu) + k;
     }
-    return config.num_vertices + config.num_edges * m + f * m * m + (j - 1u) * m + (i - 1u);
+    return config.face_slot_base + f * m * m + (j - 1u) * m + (i - 1u);
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -237,7 +239,7 @@ fn indices(@builtin(global_invocation_id) gid: vec3<u32>) {
     let b = grid_vertex(f, i + 1u, j);
     let c = grid_vertex(f, i + 1u, j + 1u);
     let d = grid_vertex(f, i, j + 1u);
-    let o = 6u * local;
+    let o = config.out_shift + 6u * local;
     out_indices[o] = a;
     out_indices[o + 1u] = b;
     out_indices[o + 2u] = c;

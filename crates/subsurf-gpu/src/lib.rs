@@ -29,11 +29,11 @@
 //! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row | the source vertex buffer |
 //! | [`GpuRefiner`] | every level's tables, by child row | each level's vertex buffer |
 //! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`], bit for bit the unchunked results) | the flat point array in `update` (refinement and end-cap stencils read it) |
-//! | [`GpuPrep`] | dispatch grids; the tessellation's vertex and index buffers | positions, rings, vertex and patch coefficients |
+//! | [`GpuPrep`] | the mesh, into sub-problems of faces with their corners' rings ([`prep_chunks`]: positions, rings, vertex and patch coefficients of each fit one binding); dispatch grids; the tessellation's vertex and index buffers | nothing that grows with the mesh |
 //!
-//! The first buffers to reach 128 MiB are the p-rep's patch coefficients (at least 192 bytes
-//! per face: about 700,000 faces) and vertex coefficients (about 130 bytes per vertex of
-//! valence 4), then the limit point array (12 bytes per point: about 11 million points).
+//! The first buffer to reach 128 MiB is then the limit point array (12 bytes per point:
+//! about 11 million points). A p-rep is split once its patch coefficients (at least 192
+//! bytes per face) pass one binding: about 700,000 faces at 128 MiB.
 
 pub mod buffers;
 pub mod context;
@@ -44,6 +44,7 @@ pub mod limit;
 pub mod limit_chunks;
 mod limit_twin;
 pub mod prep;
+pub mod prep_chunks;
 pub mod refine;
 pub mod shared;
 pub mod table;
@@ -55,6 +56,7 @@ pub use error::GpuError;
 pub use kernels::stencil::{ChunkLimits, StencilKernel};
 pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
+pub use prep_chunks::PrepChunks;
 pub use refine::GpuRefiner;
 pub use table::StencilTable;
 pub use uv::GpuUvRefiner;

@@ -7,17 +7,14 @@
 //! buffer of position + normal, index buffer of triangles) allocated once per `n`. All data
 //! stays on the GPU until read back.
 //!
-//! Every pass is split into chunks of items (vertices, faces, grid vertices, grid cells):
-//! a chunk's first item is a field of its uniform (`first_item`), so no dispatch exceeds
-//! `max_compute_workgroups_per_dimension`², and the per-item outputs of the tessellation
-//! (vertex and index buffers, the largest by far) are bound at the chunk's first item, at an
-//! aligned offset, so no binding exceeds `max_storage_buffer_binding_size`. The inputs
-//! gathered at arbitrary indices (positions, rings, vertex and patch coefficients) are bound
-//! whole; past the binding limit they are refused with [`GpuError::TooLarge`] (the patch
-//! coefficients first, at about 700,000 faces for 128 MiB). Splitting them needs chunk-local
-//! sub-problems (a chunk of faces with its vertices' rings, local sectors and h blocks, and an
-//! owner chunk for every shared edge and vertex of the tessellation so that seams stay
-//! computed from one side), as `GpuLimit` does for its tables.
+//! Nothing is bound past the adapter's `max_storage_buffer_binding_size`. The mesh is split
+//! into sub-problems ([`crate::prep_chunks`]: ranges of faces with their corners' rings,
+//! renumbered locally) whose tables each fit one binding; a mesh that fits is one
+//! sub-problem, numbered as the mesh. Each sub-problem's passes are further split into
+//! dispatches of at most `max_compute_workgroups_per_dimension`² invocations (a chunk's first
+//! item is the `first_item` field of its uniform), and the tessellation's vertex and index
+//! buffers, the largest by far, are bound per dispatch from the aligned offset at or before
+//! its first item. Only the adapter's `max_buffer_size` bounds those two buffers.
 
 use crate::buffers::{read_back, storage_buffer_init};
 use crate::context::GpuContext;
@@ -25,73 +22,57 @@ use crate::cpu::prep_eval_grid::{
     grid_params, prep_eval_grid_invocation, prep_grid_indices_invocation, EvalInputs,
 };
 use crate::cpu::prep_patch_pass::{prep_patch_pass, PatchInputs};
-use crate::cpu::prep_vertex_pass::{prep_vertex_pass, valence_consts};
+use crate::cpu::prep_vertex_pass::prep_vertex_pass;
 use crate::error::{GpuError, Result};
 use crate::kernels::chunked_pass::{
     empty_storage, pass, submit, upload_u32, Bind, Pass, PassLimits,
 };
 use crate::kernels::stencil::ChunkLimits;
+use crate::prep_chunks::PrepChunks;
 use crate::shaders;
 use crate::shared::PrepConfig;
+use std::sync::Arc;
 use subsurf::prep::{PrepTopology, Tessellation};
 
 const WORD: u64 = 4;
 
-/// The flat tables the p-rep kernels read, built from a [`PrepTopology`].
+/// The flat tables the p-rep kernels read for one sub-problem ([`crate::prep_chunks`]): the
+/// whole mesh, numbered as the [`PrepTopology`], when it fits one binding.
 #[derive(Debug, Clone)]
 pub struct PrepTables {
-    /// Counts (`item_count`, `grid_width`, `samples` left 0).
+    /// Counts of the sub-problem (`item_count`, `grid_width`, `samples` left 0).
     pub config: PrepConfig,
-    /// Ring offsets (V + 1).
+    /// Ring offsets of the core vertices (core + 1).
     pub ring_offsets: Vec<u32>,
-    /// Rings (2 S).
+    /// Rings of the core vertices in local numbering (2 S).
     pub ring_indices: Vec<u32>,
     /// Flat per-valence constants.
     pub valence_consts: Vec<f32>,
-    /// Vertex of each face corner (4 F).
+    /// Local vertex of each face corner (4 F).
     pub face_verts: Vec<u32>,
     /// Sector of each face corner (4 F).
     pub corner_sector: Vec<u32>,
-    /// Edge of each face corner (4 F).
-    pub face_edges: Vec<u32>,
-    /// Canonical face corner of each edge (E).
+    /// Local face corner running along each owned edge in its canonical direction (E).
     pub edge_corner: Vec<u32>,
-    /// h block of each face (F), `u32::MAX` for a B-quad.
+    /// Local h block of each face (F), `u32::MAX` for a B-quad.
     pub h_index: Vec<u32>,
     /// Number of perturbed faces `P`.
     pub num_perturbed: usize,
+    /// Global vertex of each local vertex: owned core, other core, then halo vertices.
+    pub vertex_ids: Vec<u32>,
+    /// Global edge of each owned edge (ascending).
+    pub edge_ids: Vec<u32>,
+    /// Global index of the first face.
+    pub first_face: u32,
+    /// Global h block of the first perturbed face.
+    pub first_h: u32,
 }
 
 impl PrepTables {
-    /// Flattens `t`, checking that every count fits the kernels' 32-bit indexing.
+    /// The whole of `t` as one sub-problem, checking that every count fits the kernels'
+    /// 32-bit indexing.
     pub fn new(t: &PrepTopology) -> Result<Self> {
-        let too_big =
-            |what: &str| GpuError::BufferMismatch(format!("{what} exceed 32-bit indexing"));
-        let s = t.sector_vertex.len();
-        if 3 * (3 * t.num_vertices + 2 * s) >= u32::MAX as usize {
-            return Err(too_big("vertex data"));
-        }
-        if 3 * 16 * (t.num_faces() + t.perturbed_faces.len()) >= u32::MAX as usize {
-            return Err(too_big("patch coefficients"));
-        }
-        Ok(Self {
-            config: PrepConfig {
-                num_vertices: t.num_vertices as u32,
-                num_sectors: s as u32,
-                num_faces: t.num_faces() as u32,
-                num_edges: t.num_edges() as u32,
-                ..Default::default()
-            },
-            ring_offsets: t.ring_offsets.clone(),
-            ring_indices: t.ring_indices.clone(),
-            valence_consts: valence_consts(t.max_valence.max(3)),
-            face_verts: t.face_verts.clone(),
-            corner_sector: t.corner_sector.clone(),
-            face_edges: t.face_edges.clone(),
-            edge_corner: t.edge_corner.clone(),
-            h_index: t.h_index.clone(),
-            num_perturbed: t.perturbed_faces.len(),
-        })
+        Ok(PrepChunks::new(t, u64::MAX)?.chunks.swap_remove(0))
     }
 
     /// Floats of the vertex pass output.
@@ -105,18 +86,6 @@ impl PrepTables {
         3 * 16 * (self.config.num_faces as usize + self.num_perturbed)
     }
 
-    /// Vertices of the watertight `n×n` tessellation.
-    pub fn grid_vertices(&self, n: usize) -> usize {
-        let c = &self.config;
-        let m = n - 2;
-        c.num_vertices as usize + c.num_edges as usize * m + c.num_faces as usize * m * m
-    }
-
-    /// Grid cells (two triangles each) of the `n×n` tessellation.
-    pub fn grid_cells(&self, n: usize) -> usize {
-        self.config.num_faces as usize * (n - 1) * (n - 1)
-    }
-
     fn config_for(&self, items: usize, samples: usize) -> PrepConfig {
         PrepConfig {
             item_count: items as u32,
@@ -126,7 +95,8 @@ impl PrepTables {
         }
     }
 
-    /// CPU twin of [`GpuPrep::update`]: `(vertex_data, patch_data)` for `positions`.
+    /// CPU twin of the sub-problem's share of [`GpuPrep::update`]: `(vertex_data,
+    /// patch_data)` for the positions of its local vertices.
     pub fn run_passes_cpu(&self, positions: &[[f32; 3]]) -> (Vec<f32>, Vec<f32>) {
         let mut vd = vec![0.0; self.vertex_data_len()];
         let nv = self.config.num_vertices as usize;
@@ -155,14 +125,15 @@ impl PrepTables {
         (vd, pd)
     }
 
-    /// CPU twin of [`GpuPrep::eval_grid`]: the watertight tessellation from pass outputs.
-    pub fn eval_grid_cpu(
+    /// CPU twin of the sub-problem's entry `main` of `prep_eval_grid`: its region of the
+    /// `n×n` vertex buffer (6 floats per vertex) from its pass outputs.
+    pub fn eval_region_cpu(
         &self,
         n: usize,
         vertex_data: &[f32],
         patch_data: &[f32],
-    ) -> Tessellation<f32> {
-        let n = n.max(2);
+        out: &mut [f32],
+    ) {
         let params = grid_params(n);
         let inp = EvalInputs {
             params: &params,
@@ -171,23 +142,30 @@ impl PrepTables {
             vertex_data,
             patch_data,
         };
-        let nvert = self.grid_vertices(n);
-        let cfg = self.config_for(nvert, n);
-        let mut out = vec![0.0f32; 6 * nvert];
-        for item in 0..nvert as u32 {
-            prep_eval_grid_invocation(item, &cfg, &inp, &mut out);
+        let items = out.len() / 6;
+        let cfg = self.config_for(items, n);
+        for item in 0..items as u32 {
+            prep_eval_grid_invocation(item, &cfg, &inp, out);
         }
-        let cells = self.grid_cells(n);
-        let cfg = self.config_for(cells, n);
+    }
+
+    /// CPU twin of the sub-problem's entry `indices`: 6 indices per grid cell of its faces,
+    /// given its `corner_slots` and the slot of its first face-interior sample.
+    pub fn indices_cpu(&self, n: usize, corner_slots: &[u32], face_slot_base: u32) -> Vec<u32> {
+        let cells = self.config.num_faces as usize * (n - 1) * (n - 1);
+        let cfg = PrepConfig {
+            face_slot_base,
+            ..self.config_for(cells, n)
+        };
         let mut idx = vec![0u32; 6 * cells];
         for item in 0..cells as u32 {
-            prep_grid_indices_invocation(item, &cfg, &self.face_verts, &self.face_edges, &mut idx);
+            prep_grid_indices_invocation(item, &cfg, corner_slots, &mut idx);
         }
-        unpack(&out, &idx)
+        idx
     }
 }
 
-fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
+pub(crate) fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
     Tessellation {
         positions: vertices
             .chunks_exact(6)
@@ -204,23 +182,35 @@ fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
     }
 }
 
-/// A p-rep resident on the GPU: connectivity tables, positions and both passes' outputs.
+/// One sub-problem's resident buffers.
 #[derive(Debug)]
-pub struct GpuPrep {
-    tables: PrepTables,
+struct ChunkBuffers {
     positions: wgpu::Buffer,
     vertex_data: wgpu::Buffer,
     patch_data: wgpu::Buffer,
     edge_corner: wgpu::Buffer,
     h_index: wgpu::Buffer,
-    face_verts: wgpu::Buffer,
-    face_edges: wgpu::Buffer,
-    passes: [Pass; 2],
+}
+
+/// A p-rep resident on the GPU: connectivity tables, positions and both passes' outputs, per
+/// sub-problem.
+#[derive(Debug)]
+pub struct GpuPrep {
+    plan: Arc<PrepChunks>,
+    buffers: Vec<ChunkBuffers>,
+    /// Vertex then patch pass of every sub-problem.
+    passes: Vec<Pass>,
     lim: PassLimits,
+    _consts: wgpu::Buffer,
 }
 
 /// An `n×n` watertight tessellation on the GPU: `vertices` (6 floats: position, unit normal)
 /// and `indices` (3 per ccw triangle), filled by [`GpuPrep::eval_grid`].
+///
+/// The vertex buffer holds each sub-problem's region in turn ([`crate::prep_chunks`]); with
+/// one sub-problem (any mesh whose tables fit one binding) that is the layout of
+/// `PrepPatches::tessellate`, and [`Self::download`] returns that layout in every case. The
+/// triangles are those of `PrepPatches::tessellate`, in its order.
 #[derive(Debug)]
 pub struct GpuGrid {
     /// Samples per patch side.
@@ -233,24 +223,30 @@ pub struct GpuGrid {
     pub num_vertices: usize,
     /// Number of indices (3 per triangle).
     pub num_indices: usize,
-    _params: wgpu::Buffer,
-    passes: [Pass; 2],
+    plan: Arc<PrepChunks>,
+    _tables: Vec<wgpu::Buffer>,
+    /// Entry `main` of every sub-problem, then entry `indices` of every sub-problem.
+    passes: Vec<Pass>,
 }
 
 impl GpuGrid {
     /// Dispatches of one [`GpuPrep::eval_grid`] (more than one when chunked).
     pub fn num_dispatches(&self) -> usize {
-        self.passes[0].dispatches.len()
+        self.passes[..self.plan.chunks.len()]
+            .iter()
+            .map(|p| p.dispatches.len())
+            .sum()
     }
 
-    /// Reads the tessellation back (waits for the submitted work).
+    /// Reads the tessellation back (waits for the submitted work), in the layout of
+    /// `PrepPatches::tessellate`.
     pub fn download(&self, ctx: &GpuContext) -> Result<Tessellation<f32>> {
         let v = read_back(ctx, &self.vertices, (6 * self.num_vertices) as u64 * WORD)?;
         let i: Vec<u32> = read_back(ctx, &self.indices, self.num_indices as u64 * WORD)?
             .into_iter()
             .map(f32::to_bits)
             .collect();
-        Ok(unpack(&v, &i))
+        Ok(self.plan.to_canonical(self.n, unpack(&v, &i)))
     }
 }
 
@@ -261,10 +257,8 @@ impl GpuPrep {
         Self::with_limits(ctx, topo, ChunkLimits::from_context(ctx))
     }
 
-    /// [`Self::new`] with the dispatches chunked against `limits` (clamped to the adapter's):
-    /// lower values force more chunks, which tests use to exercise chunking. The limits bound
-    /// the per-chunk bindings (grid outputs) and dispatch grids; the buffers bound whole must
-    /// fit the adapter's binding limit.
+    /// [`Self::new`] with the work split against `limits` (clamped to the adapter's): lower
+    /// values force more sub-problems and dispatches, which tests use to exercise the split.
     pub fn with_limits(ctx: &GpuContext, topo: &PrepTopology, limits: ChunkLimits) -> Result<Self> {
         let adapter = ChunkLimits::from_context(ctx);
         let lim = PassLimits {
@@ -278,76 +272,82 @@ impl GpuPrep {
             row_align: (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize)
                 .max(1),
         };
-        let tables = PrepTables::new(topo)?;
-        let nv = tables.config.num_vertices as usize;
-        let positions = empty_storage(ctx, "prep positions", (3 * nv) as u64 * WORD, true)?;
-        let ring_offsets = upload_u32(ctx, "prep ring offsets", &tables.ring_offsets)?;
-        let ring_indices = upload_u32(ctx, "prep ring indices", &tables.ring_indices)?;
+        let plan = Arc::new(PrepChunks::new(topo, lim.limits.max_binding_bytes)?);
         let consts = storage_buffer_init(
             ctx,
             "prep valence constants",
-            bytemuck::cast_slice(&tables.valence_consts),
+            bytemuck::cast_slice(&plan.chunks[0].valence_consts),
         )?;
-        let face_verts = upload_u32(ctx, "prep face vertices", &tables.face_verts)?;
-        let corner_sector = upload_u32(ctx, "prep corner sectors", &tables.corner_sector)?;
-        let face_edges = upload_u32(ctx, "prep face edges", &tables.face_edges)?;
-        let edge_corner = upload_u32(ctx, "prep edge corners", &tables.edge_corner)?;
-        let h_index = upload_u32(ctx, "prep h index", &tables.h_index)?;
-        let vertex_data = empty_storage(
-            ctx,
-            "prep vertex data",
-            tables.vertex_data_len() as u64 * WORD,
-            true,
-        )?;
-        let patch_data = empty_storage(
-            ctx,
-            "prep patch data",
-            tables.patch_data_len() as u64 * WORD,
-            true,
-        )?;
-        let vp = pass(
-            ctx,
-            &lim,
-            "prep_vertex_pass",
-            shaders::PREP_VERTEX_PASS,
-            "main",
-            tables.config_for(nv, 0),
-            &[
-                Bind::Whole(1, &positions),
-                Bind::Whole(2, &ring_offsets),
-                Bind::Whole(3, &ring_indices),
-                Bind::Whole(4, &consts),
-                Bind::Whole(5, &vertex_data),
-            ],
-        )?;
-        let pp = pass(
-            ctx,
-            &lim,
-            "prep_patch_pass",
-            shaders::PREP_PATCH_PASS,
-            "main",
-            tables.config_for(tables.config.num_faces as usize, 0),
-            &[
-                Bind::Whole(1, &face_verts),
-                Bind::Whole(2, &corner_sector),
-                Bind::Whole(3, &ring_offsets),
-                Bind::Whole(4, &h_index),
-                Bind::Whole(5, &consts),
-                Bind::Whole(6, &vertex_data),
-                Bind::Whole(7, &patch_data),
-            ],
-        )?;
+        let mut buffers = Vec::with_capacity(plan.chunks.len());
+        let mut passes = Vec::with_capacity(2 * plan.chunks.len());
+        for t in &plan.chunks {
+            let nv = t.config.num_vertices as usize;
+            let b = ChunkBuffers {
+                positions: empty_storage(
+                    ctx,
+                    "prep positions",
+                    (3 * t.vertex_ids.len()) as u64 * WORD,
+                    true,
+                )?,
+                vertex_data: empty_storage(
+                    ctx,
+                    "prep vertex data",
+                    t.vertex_data_len() as u64 * WORD,
+                    true,
+                )?,
+                patch_data: empty_storage(
+                    ctx,
+                    "prep patch data",
+                    t.patch_data_len() as u64 * WORD,
+                    true,
+                )?,
+                edge_corner: upload_u32(ctx, "prep edge corners", &t.edge_corner)?,
+                h_index: upload_u32(ctx, "prep h index", &t.h_index)?,
+            };
+            let ring_offsets = upload_u32(ctx, "prep ring offsets", &t.ring_offsets)?;
+            let ring_indices = upload_u32(ctx, "prep ring indices", &t.ring_indices)?;
+            let face_verts = upload_u32(ctx, "prep face vertices", &t.face_verts)?;
+            let corner_sector = upload_u32(ctx, "prep corner sectors", &t.corner_sector)?;
+            passes.push(pass(
+                ctx,
+                &lim,
+                "prep_vertex_pass",
+                shaders::PREP_VERTEX_PASS,
+                "main",
+                t.config_for(nv, 0),
+                &[
+                    Bind::Whole(1, &b.positions),
+                    Bind::Whole(2, &ring_offsets),
+                    Bind::Whole(3, &ring_indices),
+                    Bind::Whole(4, &consts),
+                    Bind::Whole(5, &b.vertex_data),
+                ],
+            )?);
+            passes.push(pass(
+                ctx,
+                &lim,
+                "prep_patch_pass",
+                shaders::PREP_PATCH_PASS,
+                "main",
+                t.config_for(t.config.num_faces as usize, 0),
+                &[
+                    Bind::Whole(1, &face_verts),
+                    Bind::Whole(2, &corner_sector),
+                    Bind::Whole(3, &ring_offsets),
+                    Bind::Whole(4, &b.h_index),
+                    Bind::Whole(5, &consts),
+                    Bind::Whole(6, &b.vertex_data),
+                    Bind::Whole(7, &b.patch_data),
+                ],
+            )?);
+            buffers.push(b);
+        }
         Ok(Self {
-            tables,
-            positions,
-            vertex_data,
-            patch_data,
-            edge_corner,
-            h_index,
-            face_verts,
-            face_edges,
-            passes: [vp, pp],
+            plan,
+            buffers,
+            passes,
             lim,
+            _consts: consts,
         })
     }
 
@@ -356,103 +356,153 @@ impl GpuPrep {
         self.passes.iter().map(|p| p.dispatches.len()).sum()
     }
 
-    /// The flat tables (for the CPU twins).
-    pub fn tables(&self) -> &PrepTables {
-        &self.tables
+    /// The sub-problems and their tables (for the CPU twins).
+    pub fn chunks(&self) -> &PrepChunks {
+        &self.plan
     }
 
-    /// Writes `positions` and submits the vertex and patch passes.
+    /// Writes `positions` (each sub-problem's local vertices, gathered on the CPU when
+    /// there is more than one) and submits the vertex and patch passes.
     pub fn update(&self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
-        let nv = self.tables.config.num_vertices as usize;
+        let nv = self.plan.num_vertices;
         if positions.len() != nv {
             return Err(GpuError::BufferMismatch(format!(
                 "{} positions for a p-rep of {nv} vertices",
                 positions.len()
             )));
         }
-        if nv > 0 {
-            ctx.queue
-                .write_buffer(&self.positions, 0, bytemuck::cast_slice(positions));
+        if let [b] = &self.buffers[..] {
+            if nv > 0 {
+                ctx.queue
+                    .write_buffer(&b.positions, 0, bytemuck::cast_slice(positions));
+            }
+        } else {
+            for (k, b) in self.buffers.iter().enumerate() {
+                let local = self.plan.gather_positions(k, positions);
+                ctx.queue
+                    .write_buffer(&b.positions, 0, bytemuck::cast_slice(&local));
+            }
         }
         submit(ctx, "prep passes", &self.passes)
     }
 
-    /// Reads back `(vertex_data, patch_data)` (layouts in [`PrepConfig`]).
+    /// Reads back `(vertex_data, patch_data)` in the global layouts of [`PrepConfig`].
     pub fn download_coefficients(&self, ctx: &GpuContext) -> Result<(Vec<f32>, Vec<f32>)> {
-        Ok((
-            read_back(
-                ctx,
-                &self.vertex_data,
-                self.tables.vertex_data_len() as u64 * WORD,
-            )?,
-            read_back(
-                ctx,
-                &self.patch_data,
-                self.tables.patch_data_len() as u64 * WORD,
-            )?,
-        ))
+        let per = self
+            .plan
+            .chunks
+            .iter()
+            .zip(&self.buffers)
+            .map(|(t, b)| {
+                Ok((
+                    read_back(ctx, &b.vertex_data, t.vertex_data_len() as u64 * WORD)?,
+                    read_back(ctx, &b.patch_data, t.patch_data_len() as u64 * WORD)?,
+                ))
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(self.plan.to_canonical_coefficients(&per))
     }
 
     /// Allocates the buffers and bind groups of an `n×n` tessellation (`n >= 2`) and fills
     /// its index buffer (the indices depend on the connectivity only).
     pub fn grid(&self, ctx: &GpuContext, n: usize) -> Result<GpuGrid> {
         let n = n.max(2);
-        let nvert = self.tables.grid_vertices(n);
-        let cells = self.tables.grid_cells(n);
+        let plan = &self.plan;
+        let nvert = plan.grid_vertices(n);
+        let cells = plan.num_faces * (n - 1) * (n - 1);
         if 6 * nvert as u64 >= u32::MAX as u64 || 6 * cells as u64 >= u32::MAX as u64 {
             return Err(GpuError::BufferMismatch(format!(
                 "a {n}x{n} tessellation of {} faces exceeds 32-bit indexing",
-                self.tables.config.num_faces
+                plan.num_faces
             )));
         }
         let params =
             storage_buffer_init(ctx, "prep params", bytemuck::cast_slice(&grid_params(n)))?;
         let vertices = empty_storage(ctx, "prep grid vertices", (6 * nvert) as u64 * WORD, false)?;
         let indices = empty_storage(ctx, "prep grid indices", (6 * cells) as u64 * WORD, false)?;
-        let ev = pass(
-            ctx,
-            &self.lim,
-            "prep_eval_grid",
-            shaders::PREP_EVAL_GRID,
-            "main",
-            self.tables.config_for(nvert, n),
-            &[
-                Bind::Whole(1, &params),
-                Bind::Whole(2, &self.edge_corner),
-                Bind::Whole(3, &self.h_index),
-                Bind::Whole(4, &self.vertex_data),
-                Bind::Whole(5, &self.patch_data),
-                Bind::PerItem(6, &vertices, 6),
-            ],
-        )?;
-        let ix = pass(
-            ctx,
-            &self.lim,
-            "prep_grid_indices",
-            shaders::PREP_EVAL_GRID,
-            "indices",
-            self.tables.config_for(cells, n),
-            &[
-                Bind::Whole(7, &self.face_verts),
-                Bind::Whole(8, &self.face_edges),
-                Bind::PerItem(9, &indices, 6),
-            ],
-        )?;
+        let starts = plan.region_starts(n);
+        let mut tables = Vec::new();
+        let mut eval = Vec::new();
+        let mut index = Vec::new();
+        let mut first_cell = 0u64;
+        for (k, ((t, b), slots)) in plan
+            .chunks
+            .iter()
+            .zip(&self.buffers)
+            .zip(plan.corner_slots(n))
+            .enumerate()
+        {
+            let (start, region) = (starts[k], plan.region_len(k, n));
+            eval.push(pass(
+                ctx,
+                &self.lim,
+                "prep_eval_grid",
+                shaders::PREP_EVAL_GRID,
+                "main",
+                t.config_for(region, n),
+                &[
+                    Bind::Whole(1, &params),
+                    Bind::Whole(2, &b.edge_corner),
+                    Bind::Whole(3, &b.h_index),
+                    Bind::Whole(4, &b.vertex_data),
+                    Bind::Whole(5, &b.patch_data),
+                    Bind::PerItem {
+                        binding: 6,
+                        buffer: &vertices,
+                        words: 6,
+                        base: start as u64,
+                    },
+                ],
+            )?);
+            let slots = upload_u32(ctx, "prep corner slots", &slots)?;
+            let face_cells = t.config.num_faces as usize * (n - 1) * (n - 1);
+            let m = n - 2;
+            let face_slot_base = start + region - t.config.num_faces as usize * m * m;
+            index.push(pass(
+                ctx,
+                &self.lim,
+                "prep_grid_indices",
+                shaders::PREP_EVAL_GRID,
+                "indices",
+                PrepConfig {
+                    face_slot_base: face_slot_base as u32,
+                    ..t.config_for(face_cells, n)
+                },
+                &[
+                    Bind::Whole(7, &slots),
+                    Bind::PerItem {
+                        binding: 9,
+                        buffer: &indices,
+                        words: 6,
+                        base: first_cell,
+                    },
+                ],
+            )?);
+            tables.push(slots);
+            first_cell += face_cells as u64;
+        }
+        eval.extend(index);
+        tables.push(params);
         let grid = GpuGrid {
             n,
             vertices,
             indices,
             num_vertices: nvert,
             num_indices: 6 * cells,
-            _params: params,
-            passes: [ev, ix],
+            plan: Arc::clone(plan),
+            _tables: tables,
+            passes: eval,
         };
-        submit(ctx, "prep grid indices", &grid.passes[1..])?;
+        submit(ctx, "prep grid indices", &grid.passes[plan.chunks.len()..])?;
         Ok(grid)
     }
 
     /// Evaluates the current patches into `grid`'s vertex buffer (positions and normals).
     pub fn eval_grid(&self, ctx: &GpuContext, grid: &GpuGrid) -> Result<()> {
-        submit(ctx, "prep eval grid", &grid.passes[..1])
+        submit(
+            ctx,
+            "prep eval grid",
+            &grid.passes[..self.plan.chunks.len()],
+        )
     }
 }

@@ -45,7 +45,9 @@ const _: () = assert!(std::mem::size_of::<RefineConfig>() == 32);
 /// Per-dispatch parameters of the p-rep kernels (keep in sync with shaders/common.wgsl).
 ///
 /// Flat buffers of the p-rep, 3 floats per point: `vertex_data = [limit V | e1 V | e2 V |
-/// tangent S | interior S]`, `patch_data = [g 16 F | h 16 P]`.
+/// tangent S | interior S]`, `patch_data = [g 16 F | h 16 P]`. The counts are those of one
+/// sub-problem (see `prep_chunks`): `V` its core vertices, `S` their sectors, `F` its faces,
+/// `E` the edges whose samples it writes; the whole mesh when it is one sub-problem.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
 pub struct PrepConfig {
@@ -67,9 +69,20 @@ pub struct PrepConfig {
     /// `first_item .. first_item + item_count`; per-item outputs of `prep_eval_grid` are bound
     /// at the chunk's first item.
     pub first_item: u32,
+    /// Vertices whose tessellation sample this sub-problem writes: local vertices
+    /// `0..owned_vertices` (`prep_eval_grid`).
+    pub owned_vertices: u32,
+    /// Words between the start of the per-item output binding and the chunk's first item
+    /// (the binding starts at an aligned offset at or before it).
+    pub out_shift: u32,
+    /// Slot in the vertex buffer of the sub-problem's first face-interior sample
+    /// (`prep_eval_grid` entry `indices`).
+    pub face_slot_base: u32,
+    /// Padding to 48 bytes.
+    pub _pad: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<PrepConfig>() == 32);
+const _: () = assert!(std::mem::size_of::<PrepConfig>() == 48);
 
 /// Per-dispatch parameters of `limit_eval` (keep in sync with shaders/common.wgsl).
 #[repr(C)]

@@ -7,7 +7,7 @@ use common::context_or_skip;
 use subsurf::prep::quadrangulate::quadrangulate;
 use subsurf::prep::{PrepPatches, PrepTopology, Tessellation};
 use subsurf::{Mesh, Topology};
-use subsurf_gpu::{ChunkLimits, GpuPrep, PrepTables};
+use subsurf_gpu::{ChunkLimits, GpuPrep, PrepChunks, PrepTables};
 
 /// Closed quad meshes: the p-rep test shapes (split into quads where needed) and a cube.
 fn meshes() -> Vec<(String, Mesh)> {
@@ -96,26 +96,137 @@ fn compare_tessellation(what: &str, got: &Tessellation<f32>, want: &Tessellation
     assert_watertight(what, got);
 }
 
+fn bits(v: &[f32]) -> Vec<u32> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
 #[test]
 fn twins_reproduce_the_cpu_construction() {
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let tables = PrepTables::new(&p.topology).unwrap();
-        let (vd, pd) = tables.run_passes_cpu(&mesh.positions);
+        let whole = PrepChunks::new(&p.topology, u64::MAX).unwrap();
+        assert_eq!(
+            whole.chunks.len(),
+            1,
+            "{name}: one sub-problem without a limit"
+        );
+        let (vd, pd) = whole.run_passes_cpu(&mesh.positions);
         let (want_vd, want_pd) = cpu_flat(&p);
-        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&vd), bits(&want_vd), "{name}: vertex pass");
         assert_eq!(bits(&pd), bits(&want_pd), "{name}: patch pass");
         let diag = bbox_diagonal(&mesh.positions);
         for n in [2, 3, 6] {
-            let t = tables.eval_grid_cpu(n, &vd, &pd);
+            let t = whole.tessellate_cpu(&mesh.positions, n);
             compare_tessellation(&format!("{name} twin n={n}"), &t, &p.tessellate(n), diag);
         }
     }
 }
 
-/// The twin of `prep_eval_grid` run in chunks (`first_item`, output at the chunk's start)
-/// writes exactly what one dispatch writes.
+/// A mesh that fits is one sub-problem numbered exactly as the mesh.
+#[test]
+fn one_sub_problem_is_the_mesh() {
+    for (name, mesh) in meshes() {
+        let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
+        let t = PrepTables::new(&topo).unwrap();
+        let iota = |n: usize| (0..n as u32).collect::<Vec<_>>();
+        assert_eq!(t.vertex_ids, iota(topo.num_vertices), "{name}");
+        assert_eq!(t.edge_ids, iota(topo.num_edges()), "{name}");
+        assert_eq!(
+            t.config.owned_vertices as usize, topo.num_vertices,
+            "{name}"
+        );
+        assert_eq!(t.ring_offsets, topo.ring_offsets, "{name}");
+        assert_eq!(t.ring_indices, topo.ring_indices, "{name}");
+        assert_eq!(t.face_verts, topo.face_verts, "{name}");
+        assert_eq!(t.edge_corner, topo.edge_corner, "{name}");
+        assert_eq!(t.h_index, topo.h_index, "{name}");
+    }
+}
+
+/// The closed test meshes and the torus refined twice (512 quads).
+fn meshes_and_a_refined_torus() -> Vec<(String, Mesh)> {
+    let mut out = meshes();
+    let base = out[3].1.clone();
+    let refiner = subsurf::Refiner::new(Topology::new(&base).unwrap(), 2).unwrap();
+    out.push((
+        "catmark_torus level 2".to_string(),
+        refiner.to_mesh(2, refiner.refine_positions(&base.positions)),
+    ));
+    out
+}
+
+/// Split into sub-problems of a few faces each, the twins compute exactly the unsplit
+/// result: the same coefficient bits, the same tessellation bits in the same layout.
+#[test]
+fn sub_problems_reproduce_the_whole_bit_for_bit() {
+    for (name, mesh) in meshes_and_a_refined_torus() {
+        let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
+        let whole = PrepChunks::new(&topo, u64::MAX).unwrap();
+        let (wvd, wpd) = whole.run_passes_cpu(&mesh.positions);
+        for limit in [1 << 11, 1 << 13, 1 << 16] {
+            let split = PrepChunks::new(&topo, limit).unwrap();
+            let what = format!("{name}, {limit}-byte bindings");
+            // Every table of every sub-problem fits the limit.
+            for t in &split.chunks {
+                let c = &t.config;
+                for (table, bytes) in [
+                    ("positions", 12 * t.vertex_ids.len()),
+                    ("rings", 4 * t.ring_indices.len()),
+                    ("vertex data", 4 * t.vertex_data_len()),
+                    ("patch data", 4 * t.patch_data_len()),
+                    ("corner slots", 32 * c.num_faces as usize),
+                ] {
+                    assert!(bytes as u64 <= limit, "{what}: {table} {bytes} bytes");
+                }
+            }
+            if 192 * topo.num_faces() as u64 > 2 * limit {
+                assert!(split.chunks.len() > 1, "{what}: not split");
+            }
+            let (vd, pd) = split.run_passes_cpu(&mesh.positions);
+            assert_eq!(bits(&vd), bits(&wvd), "{what}: vertex data");
+            assert_eq!(bits(&pd), bits(&wpd), "{what}: patch data");
+            for n in [2, 3, 5] {
+                // Every sample is written by exactly one sub-problem.
+                let mut canon = split.canonical_slots(n);
+                canon.sort_unstable();
+                assert!(
+                    canon.iter().enumerate().all(|(i, &c)| i as u32 == c),
+                    "{what}"
+                );
+                let got = split.tessellate_cpu(&mesh.positions, n);
+                let want = whole.tessellate_cpu(&mesh.positions, n);
+                assert_eq!(got.triangles, want.triangles, "{what} n={n}: triangles");
+                assert_eq!(
+                    bits(got.positions.as_flattened()),
+                    bits(want.positions.as_flattened()),
+                    "{what} n={n}: positions"
+                );
+                assert_eq!(
+                    bits(got.normals.as_flattened()),
+                    bits(want.normals.as_flattened()),
+                    "{what} n={n}: normals"
+                );
+            }
+        }
+    }
+}
+
+/// A face that cannot fit one binding with its corners' rings is a typed error.
+#[test]
+fn a_face_over_the_limit_is_too_large() {
+    let (_, mesh) = meshes().swap_remove(0);
+    let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
+    match PrepChunks::new(&topo, 100) {
+        Err(subsurf_gpu::GpuError::TooLarge { needed, limit, .. }) => {
+            assert!(needed > limit && limit == 100)
+        }
+        other => panic!("expected TooLarge, got {other:?}"),
+    }
+}
+
+/// The twin of `prep_eval_grid` run in dispatches (`first_item`, output bound from the
+/// aligned word at or before the dispatch's first item, `out_shift` words in) writes exactly
+/// what one dispatch writes.
 #[test]
 fn twin_chunks_compose() {
     use subsurf_gpu::cpu::prep_eval_grid::{grid_params, prep_eval_grid_invocation, EvalInputs};
@@ -132,25 +243,30 @@ fn twin_chunks_compose() {
         vertex_data: &vd,
         patch_data: &pd,
     };
-    let whole = tables.eval_grid_cpu(n, &vd, &pd);
-    let total = tables.grid_vertices(n) as u32;
+    let total = PrepChunks::new(&p.topology, u64::MAX)
+        .unwrap()
+        .grid_vertices(n) as u32;
+    let mut whole = vec![0.0f32; 6 * total as usize];
+    tables.eval_region_cpu(n, &vd, &pd, &mut whole);
     let mut out = vec![0.0f32; 6 * total as usize];
+    let align = 64;
     for start in (0..total).step_by(37) {
         let count = 37.min(total - start);
+        let shift = 6 * start % align;
         let cfg = subsurf_gpu::shared::PrepConfig {
             item_count: count,
             grid_width: count,
             samples: n as u32,
             first_item: start,
+            out_shift: shift,
             ..tables.config
         };
-        let chunk = &mut out[6 * start as usize..6 * (start + count) as usize];
+        let window = &mut out[(6 * start - shift) as usize..6 * (start + count) as usize];
         for local in 0..count {
-            prep_eval_grid_invocation(local, &cfg, &inp, chunk);
+            prep_eval_grid_invocation(local, &cfg, &inp, window);
         }
     }
-    let positions: Vec<[f32; 3]> = out.chunks_exact(6).map(|v| [v[0], v[1], v[2]]).collect();
-    assert_eq!(positions, whole.positions);
+    assert_eq!(bits(&out), bits(&whole));
 }
 
 #[test]
@@ -222,30 +338,51 @@ fn gpu_update_follows_a_deformation() {
     assert!(gpu.update(&ctx, &mesh.positions[1..]).is_err());
 }
 
+/// Split into sub-problems and dispatches far below the adapter's limits, the GPU computes
+/// the unsplit GPU result bit for bit (coefficients and tessellation) and matches the CPU.
 #[test]
 fn chunked_passes_match_cpu() {
     let Some(ctx) = context_or_skip("chunked_passes_match_cpu") else {
         return;
     };
-    // Grids of at most 2 x 2 workgroups and 16 KiB per-chunk bindings: every pass and the
-    // grid's vertex and index buffers are split.
+    // Grids of at most 2 x 2 workgroups and 16 KiB bindings: the mesh is split into
+    // sub-problems, and every pass and the grid's vertex and index buffers into dispatches.
     let limits = ChunkLimits {
         max_binding_bytes: 1 << 14,
         max_workgroups_per_dimension: 2,
         max_stride: 6,
     };
-    // The torus refined twice: 512 quads, 512 vertices.
-    let (name, base) = meshes().swap_remove(3);
-    let refiner = subsurf::Refiner::new(Topology::new(&base).unwrap(), 2).unwrap();
-    let mesh = refiner.to_mesh(2, refiner.refine_positions(&base.positions));
+    let (name, mesh) = meshes_and_a_refined_torus().swap_remove(4);
     let p = PrepPatches::<f32>::build(&mesh).unwrap();
     let gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
+    let whole = GpuPrep::new(&ctx, &p.topology).unwrap();
+    assert!(gpu.chunks().chunks.len() > 2 && whole.chunks().chunks.len() == 1);
     gpu.update(&ctx, &mesh.positions).unwrap();
+    whole.update(&ctx, &mesh.positions).unwrap();
+    let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
+    let (wvd, wpd) = whole.download_coefficients(&ctx).unwrap();
+    assert_eq!(bits(&vd), bits(&wvd), "{name}: vertex data");
+    assert_eq!(bits(&pd), bits(&wpd), "{name}: patch data");
     let diag = bbox_diagonal(&mesh.positions);
-    let n = 9;
-    let grid = gpu.grid(&ctx, n).unwrap();
-    assert!(gpu.num_dispatches() > 2 && grid.num_dispatches() > 4);
-    gpu.eval_grid(&ctx, &grid).unwrap();
-    let t = grid.download(&ctx).unwrap();
-    compare_tessellation(&format!("{name} chunked"), &t, &p.tessellate(n), diag);
+    for n in [2, 9] {
+        let grid = gpu.grid(&ctx, n).unwrap();
+        assert!(gpu.num_dispatches() > 2 && grid.num_dispatches() > 4);
+        gpu.eval_grid(&ctx, &grid).unwrap();
+        let t = grid.download(&ctx).unwrap();
+        compare_tessellation(&format!("{name} chunked n={n}"), &t, &p.tessellate(n), diag);
+        let wgrid = whole.grid(&ctx, n).unwrap();
+        whole.eval_grid(&ctx, &wgrid).unwrap();
+        let w = wgrid.download(&ctx).unwrap();
+        assert_eq!(t.triangles, w.triangles, "{name} n={n}");
+        assert_eq!(
+            bits(t.positions.as_flattened()),
+            bits(w.positions.as_flattened()),
+            "{name} n={n}: split vs whole positions"
+        );
+        assert_eq!(
+            bits(t.normals.as_flattened()),
+            bits(w.normals.as_flattened()),
+            "{name} n={n}: split vs whole normals"
+        );
+    }
 }

@@ -69,7 +69,7 @@ fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh,
     }
 }
 
-fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usize]) {
+fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usize], check: bool) {
     let topo = PrepTopology::new(&Topology::new(mesh).expect("topology")).expect("closed quads");
     let mut cpu =
         PrepPatches::<f32>::from_prep_topology(topo.clone(), &mesh.positions).expect("p-rep");
@@ -101,11 +101,25 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
                 ctx.wait_idle().expect("wait");
             });
             println!(
-                "prep {nf} faces N={n:2} | GPU {adapter} | {:9.3} ms | {:8.1} fps ({} vertices)",
+                "prep {nf} faces N={n:2} | GPU {adapter} | {:9.3} ms | {:8.1} fps ({} vertices, {} sub-problems)",
                 ms(t),
                 1.0 / t.as_secs_f64(),
-                grid.num_vertices
+                grid.num_vertices,
+                gpu.chunks().chunks.len()
             );
+            if check {
+                // The GPU tessellation against the CPU's: same triangles, largest position
+                // difference relative to the bounding-box diagonal.
+                let got = grid.download(ctx).expect("read back");
+                cpu.update(&mesh.positions).expect("update");
+                let want = cpu.tessellate(n);
+                assert_eq!(got.triangles, want.triangles, "GPU index buffer differs");
+                let diff = got.positions.iter().zip(&want.positions).flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs())).fold(0.0f32, f32::max);
+                println!(
+                    "prep {nf} faces N={n:2} | GPU vs CPU: triangles identical, max |dp| = {:.2e} of the diagonal",
+                    diff / subsurf::mesh::bbox_diagonal(&mesh.positions)
+                );
+            }
         }
     }
 }
@@ -234,7 +248,7 @@ fn main() {
         cases.push(("catmark_car", &car, 4));
         cases.push(("torus262k", &torus, 2));
     }
-    // `GPU_PIPELINE_ONLY=refine|prep|limit` runs one section.
+    // `GPU_PIPELINE_ONLY=refine|prep|prep_large|limit` runs one section.
     let only = std::env::var("GPU_PIPELINE_ONLY").unwrap_or_default();
     let run = |section: &str| only.is_empty() || only == section;
     if run("refine") {
@@ -246,7 +260,17 @@ fn main() {
     if run("prep") {
         let lh =
             subsurf::io::obj::read_with_scheme(LEFTHANDED, Scheme::Catmark).expect("lefthanded");
-        prep_case(ctx.as_ref(), &adapter, &copies(&lh, 3), sizes);
+        prep_case(ctx.as_ref(), &adapter, &copies(&lh, 3), sizes, false);
+    }
+    // A p-rep past one 128 MiB binding: the three copies refined 5 times (1.33 M quads,
+    // valences 3-5), split into sub-problems on adapters with 128 MiB bindings.
+    if only == "prep_large" || (!quick && run("prep")) {
+        let lh =
+            subsurf::io::obj::read_with_scheme(LEFTHANDED, Scheme::Catmark).expect("lefthanded");
+        let base = copies(&lh, 3);
+        let refiner = Refiner::new(Topology::new(&base).expect("topology"), 5).expect("refine");
+        let big = refiner.to_mesh(5, refiner.refine_positions(&base.positions));
+        prep_case(ctx.as_ref(), &adapter, &big, &[3, 5], true);
     }
     if run("limit") {
         limit_case(ctx.as_ref(), &adapter, "catmark_car", &car, 3, sizes);

@@ -6,8 +6,10 @@
 //! x(u,v) = Σ_{i,j<4} g_ij B³_i(u) B³_j(v) + Σ_{16 slots} h_ij B⁵_i(u) B⁵_j(v)
 //! ```
 //!
-//! Vertex layout (that of `PrepPatches::tessellate`): `V` corner vertices (the limit points,
-//! normal `e1 × e2`), `n − 2` samples per edge, `(n − 2)²` per face. A shared-edge sample is
+//! Run once per sub-problem (`crate::prep_chunks`; the whole mesh when it is one). Items of a
+//! sub-problem, in its region of the vertex buffer: one sample per owned vertex (its limit
+//! point, normal `e1 × e2`), `n − 2` per owned edge, `(n − 2)²` per face; with one
+//! sub-problem this is the layout of `PrepPatches::tessellate`. A shared-edge sample is
 //! computed once, by the invocation of its edge, from the edge curve
 //! `Σ g_i0 B³_i + h20 B⁵_2 + h30 B⁵_3` of the face owning the edge in its canonical direction,
 //! and the triangles of both faces index it: the two sides are the same vertex, so the mesh
@@ -152,8 +154,8 @@ fn eval_patch(cfg: &PrepConfig, inp: &EvalInputs<'_>, f: u32, bu: &Basis, bv: &B
     [p, du, dv]
 }
 
-/// One invocation of entry `main`: output vertex `first_item + local`, written at `local`
-/// of binding 6 (`out_vertices`, bound at the chunk's first item).
+/// One invocation of entry `main`: output vertex `first_item + local`, written at
+/// `out_shift + 6 local` of binding 6 (`out_vertices`).
 pub fn prep_eval_grid_invocation(
     local: u32,
     cfg: &PrepConfig,
@@ -166,10 +168,10 @@ pub fn prep_eval_grid_invocation(
     let item = cfg.first_item + local;
     let n = cfg.samples;
     let m = n - 2;
-    let (nv, ne) = (cfg.num_vertices, cfg.num_edges);
+    let (nv, ne) = (cfg.owned_vertices, cfg.num_edges);
     let (p, nrm) = if item < nv {
-        let e1 = get(inp.vertex_data, nv + item);
-        let e2 = get(inp.vertex_data, 2 * nv + item);
+        let e1 = get(inp.vertex_data, cfg.num_vertices + item);
+        let e2 = get(inp.vertex_data, 2 * cfg.num_vertices + item);
         (get(inp.vertex_data, item), normalized(cross(e1, e2)))
     } else if item < nv + ne * m {
         let e = (item - nv) / m;
@@ -206,29 +208,23 @@ pub fn prep_eval_grid_invocation(
         let [p, du, dv] = eval_patch(cfg, inp, f, &bu, &bv);
         (p, normalized(cross(du, dv)))
     };
-    let o = 6 * local as usize;
+    let o = (cfg.out_shift + 6 * local) as usize;
     out_vertices[o..o + 3].copy_from_slice(&p);
     out_vertices[o + 3..o + 6].copy_from_slice(&nrm);
 }
 
-/// Index of grid sample `(i, j)` of face `f` in the vertex buffer (bindings 7, 8 =
-/// `face_verts`, `face_edges`).
-pub fn grid_vertex(
-    cfg: &PrepConfig,
-    face_verts: &[u32],
-    face_edges: &[u32],
-    f: u32,
-    i: u32,
-    j: u32,
-) -> u32 {
+/// Slot in the vertex buffer of grid sample `(i, j)` of face `f` (binding 7 =
+/// `corner_slots`: per face 4 corner-vertex slots, then 4 first-edge-sample slots with bit 31
+/// set when the face runs along the edge's canonical direction).
+pub fn grid_vertex(cfg: &PrepConfig, corner_slots: &[u32], f: u32, i: u32, j: u32) -> u32 {
     let n = cfg.samples;
     let (last, m) = (n - 1, n - 2);
-    let fv = |c: u32| face_verts[(4 * f + c) as usize];
+    let slot = |k: u32| corner_slots[(8 * f + k) as usize];
     match (i, j) {
-        (0, 0) => return fv(0),
-        (x, 0) if x == last => return fv(1),
-        (x, y) if x == last && y == last => return fv(2),
-        (0, y) if y == last => return fv(3),
+        (0, 0) => return slot(0),
+        (x, 0) if x == last => return slot(1),
+        (x, y) if x == last && y == last => return slot(2),
+        (0, y) if y == last => return slot(3),
         _ => {}
     }
     let edge = if j == 0 {
@@ -244,25 +240,23 @@ pub fn grid_vertex(
     };
     match edge {
         Some((c, s)) => {
-            let e = face_edges[(4 * f + c) as usize];
-            let k = if fv(c) < fv((c + 1) % 4) {
-                s - 1
-            } else {
-                m - s
-            };
-            cfg.num_vertices + e * m + k
+            let w = slot(4 + c);
+            let k = if w & FORWARD != 0 { s - 1 } else { m - s };
+            (w & !FORWARD) + k
         }
-        None => cfg.num_vertices + cfg.num_edges * m + f * m * m + (j - 1) * m + (i - 1),
+        None => cfg.face_slot_base + f * m * m + (j - 1) * m + (i - 1),
     }
 }
 
+/// Bit 31 of an edge entry of `corner_slots`: the face runs along the edge's direction.
+pub const FORWARD: u32 = 1 << 31;
+
 /// One invocation of entry `indices`: the two triangles of grid cell `first_item + local`,
-/// written at `local` of binding 9 (`out_indices`, bound at the chunk's first cell).
+/// written at `out_shift + 6 local` of binding 9 (`out_indices`).
 pub fn prep_grid_indices_invocation(
     local: u32,
     cfg: &PrepConfig,
-    face_verts: &[u32],
-    face_edges: &[u32],
+    corner_slots: &[u32],
     out_indices: &mut [u32],
 ) {
     if local >= cfg.item_count {
@@ -273,9 +267,9 @@ pub fn prep_grid_indices_invocation(
     let f = item / (cells * cells);
     let r = item % (cells * cells);
     let (j, i) = (r / cells, r % cells);
-    let g = |i, j| grid_vertex(cfg, face_verts, face_edges, f, i, j);
+    let g = |i, j| grid_vertex(cfg, corner_slots, f, i, j);
     let (a, b, c, d) = (g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1));
-    let o = 6 * local as usize;
+    let o = (cfg.out_shift + 6 * local) as usize;
     out_indices[o..o + 6].copy_from_slice(&[a, b, c, a, c, d]);
 }
 

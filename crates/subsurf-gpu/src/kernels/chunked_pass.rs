@@ -3,9 +3,10 @@
 //! A pass runs one entry point over `item_count` items (vertices, faces, grid vertices, grid
 //! cells) in chunks: a chunk's first item is the `first_item` field of its uniform
 //! ([`PrepConfig`]), so no dispatch exceeds `max_compute_workgroups_per_dimension`², and
-//! bindings marked [`Bind::PerItem`] (outputs written at the item's position in the chunk)
-//! are bound at the chunk's first item, at an aligned offset, so none exceeds
-//! `max_storage_buffer_binding_size`. Other bindings are bound whole.
+//! the binding marked [`Bind::PerItem`] (an output written at the item's position in the
+//! chunk) is bound from the aligned offset at or before the chunk's first item, which lies
+//! `out_shift` words into the binding, so none exceeds `max_storage_buffer_binding_size`.
+//! Other bindings are bound whole.
 
 use crate::buffers::{storage_buffer_init, STORAGE_USAGE};
 use crate::context::GpuContext;
@@ -28,11 +29,18 @@ pub(crate) struct Pass {
 }
 
 /// A binding of a pass: bound whole, or per chunk of items at `words` words per item
-/// (outputs indexed by the item's position in the chunk).
+/// (an output indexed by the item's position in the chunk), item 0 of the pass being item
+/// `base` of the buffer. A pass has at most one `PerItem` binding (its shift is the
+/// config's `out_shift`).
 #[derive(Clone, Copy)]
 pub(crate) enum Bind<'a> {
     Whole(u32, &'a wgpu::Buffer),
-    PerItem(u32, &'a wgpu::Buffer, u32),
+    PerItem {
+        binding: u32,
+        buffer: &'a wgpu::Buffer,
+        words: u32,
+        base: u64,
+    },
 }
 
 /// Limits a pass is chunked against, with the binding offset alignment in words.
@@ -98,8 +106,8 @@ pub(crate) fn upload_u32(
 }
 
 /// Item ranges `[start, end)` of a pass's dispatches: each within the dispatch grid limit,
-/// each per-item binding within the binding limit, starts aligned (in words, so for any
-/// number of words per item) when there is more than one chunk.
+/// each per-item binding (with up to `row_align` words of lead-in to its aligned start)
+/// within the binding limit.
 pub(crate) fn chunk_items(
     items: u32,
     words_per_item: u32,
@@ -109,10 +117,8 @@ pub(crate) fn chunk_items(
         u64::from(lim.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
     let mut per = max_dispatch.min(u64::from(u32::MAX));
     if words_per_item > 0 {
-        per = per.min(lim.limits.max_binding_bytes / WORD / u64::from(words_per_item));
-    }
-    if u64::from(items) > per {
-        per -= per % lim.row_align as u64;
+        let words = (lim.limits.max_binding_bytes / WORD).saturating_sub(lim.row_align as u64);
+        per = per.min(words / u64::from(words_per_item));
     }
     if per == 0 {
         return Err(GpuError::TooLarge {
@@ -136,14 +142,11 @@ pub(crate) fn pass(
     config: PrepConfig,
     bindings: &[Bind<'_>],
 ) -> Result<Pass> {
-    let words = bindings
-        .iter()
-        .map(|b| match b {
-            Bind::PerItem(_, _, w) => *w,
-            Bind::Whole(..) => 0,
-        })
-        .max()
-        .unwrap_or(0);
+    let per_item = bindings.iter().find_map(|b| match *b {
+        Bind::PerItem { words, base, .. } => Some((words, base)),
+        Bind::Whole(..) => None,
+    });
+    let words = per_item.map_or(0, |(w, _)| w);
     let pipeline = ctx.scoped(|| Ok(auto_pipeline(ctx, label, source, entry)))?;
     let layout = pipeline.get_bind_group_layout(0);
     let mut dispatches = Vec::new();
@@ -151,10 +154,18 @@ pub(crate) fn pass(
     for (start, end) in chunk_items(config.item_count, words, lim)? {
         let n = end - start;
         let (gx, gy) = grid_2d(n, WORKGROUP_SIZE, lim.limits.max_workgroups_per_dimension);
+        // The per-item binding's window: from the aligned word at or before the chunk's
+        // first item.
+        let (offset, shift) = per_item.map_or((0, 0), |(w, base)| {
+            let first = (base + u64::from(start)) * u64::from(w);
+            let shift = first % lim.row_align as u64;
+            ((first - shift) * WORD, shift)
+        });
         let chunk_config = PrepConfig {
             item_count: n,
             grid_width: gx * WORKGROUP_SIZE,
             first_item: start,
+            out_shift: shift as u32,
             ..config
         };
         let config_buf = uniform_init(ctx, bytemuck::bytes_of(&chunk_config))?;
@@ -168,12 +179,19 @@ pub(crate) fn pass(
                     binding,
                     resource: buf.as_entire_binding(),
                 },
-                Bind::PerItem(binding, buf, w) => wgpu::BindGroupEntry {
+                Bind::PerItem {
+                    binding,
+                    buffer,
+                    words,
+                    ..
+                } => wgpu::BindGroupEntry {
                     binding,
                     resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: buf,
-                        offset: u64::from(start) * u64::from(w) * WORD,
-                        size: wgpu::BufferSize::new(u64::from(n) * u64::from(w) * WORD),
+                        buffer,
+                        offset,
+                        size: wgpu::BufferSize::new(
+                            (shift + u64::from(n) * u64::from(words)) * WORD,
+                        ),
                     }),
                 },
             }));
