@@ -46,6 +46,7 @@ mod limit_twin;
 pub mod prep;
 pub mod prep_chunks;
 pub mod refine;
+pub(crate) mod refine_gather;
 pub mod shared;
 pub mod table;
 pub mod uv;

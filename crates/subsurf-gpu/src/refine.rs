@@ -5,8 +5,10 @@
 //! [`crate::cpu::refine_level`] for the layout). Every table is split into chunks of rows
 //! ([`plan_chunks`]) so that no binding exceeds `max_storage_buffer_binding_size` and no
 //! dispatch exceeds `max_compute_workgroups_per_dimension`; a chunk's first child row is a
-//! field of its uniform, so chunks need no aligned binding offsets. The vertex buffers of the
-//! levels are bound whole and must each fit one binding.
+//! field of its uniform, so chunks need no aligned binding offsets. The vertex buffers of a
+//! level are bound whole when they fit one binding; a level whose parent or child buffer
+//! does not is refined chunk by chunk from its inputs gathered through windows of the level
+//! buffers ([`crate::refine_gather`]), with the same bits.
 //!
 //! Bind groups and uniforms are built once in [`GpuRefiner::new`]; [`GpuRefiner::update`]
 //! writes new base positions and records the dispatches, nothing else.
@@ -17,6 +19,7 @@ use crate::cpu::refine_level::{level_dispatches, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::kernels::grid_2d;
 use crate::kernels::stencil::{plan_chunks, ChunkLimits};
+use crate::refine_gather::plan_gather;
 use crate::shaders;
 use crate::shared::RefineConfig;
 use crate::table::StencilTable;
@@ -43,6 +46,35 @@ pub struct GpuRefiner {
     dispatches: Vec<Dispatch>,
     pipeline: wgpu::ComputePipeline,
     bytes: u64,
+    /// Gathered inputs of the chunks of levels too large for one binding.
+    _scratch: VertexBuffer,
+}
+
+/// Where a dispatch reads its inputs: a level buffer (whole, or the window from a vertex),
+/// or the scratch buffer.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    Level(usize, Option<usize>),
+    Scratch,
+}
+
+/// Where a dispatch writes: a level buffer (whole, or the window from a vertex), or the
+/// scratch buffer of the given rows.
+#[derive(Debug, Clone, Copy)]
+enum Target {
+    Level(usize, Option<usize>),
+    Scratch(usize),
+}
+
+/// A dispatch planned on the host: its chunk of table rows and its bindings.
+struct Spec {
+    first_row: u32,
+    num_parent: u32,
+    offsets: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f32>,
+    parent: Source,
+    child: Target,
 }
 
 impl GpuRefiner {
@@ -84,19 +116,23 @@ impl GpuRefiner {
         };
         let pipeline = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
         let layout = pipeline.get_bind_group_layout(0);
+        let b = limits.max_binding_bytes;
         let mut levels = Vec::with_capacity(vertex_counts.len());
         for &count in vertex_counts {
-            let bytes = (count * STRIDE) as u64 * WORD;
-            if bytes > adapter.max_binding_bytes {
-                return Err(GpuError::TooLarge {
-                    what: "refined level vertex buffer (bound whole)",
-                    needed: bytes,
-                    limit: adapter.max_binding_bytes,
-                });
-            }
             levels.push(VertexBuffer::zeroed(ctx, count, STRIDE)?);
         }
-        let mut dispatches = Vec::new();
+        // Levels whose parent or child buffer exceeds one binding read their inputs through
+        // a scratch buffer (refine_gather). Their tables are planned at a quarter of the limit:
+        // a chunk's inputs (at most one per entry) then fill at most 3/4 of the scratch
+        // binding, and its rows 3/4 of the child window, whose lead-in (up to 63 vertices,
+        // 756 bytes) fits the rest for limits of 3 KiB and more. Source windows are whole
+        // aligned groups of 64 vertices.
+        let gather_limits = ChunkLimits {
+            max_binding_bytes: b / 4,
+            ..limits
+        };
+        let window = (b / (STRIDE as u64 * WORD) / 64 * 64) as usize;
+        let mut specs = Vec::new();
         let mut bytes = 0u64;
         for (level, s) in stencils.iter().enumerate() {
             if levels[level + 1].vertex_count() != s.num_rows() {
@@ -106,6 +142,15 @@ impl GpuRefiner {
                     levels[level + 1].vertex_count(),
                     s.num_rows()
                 )));
+            }
+            let too_big = |n: usize| (n * STRIDE) as u64 * WORD > b;
+            let gathered = too_big(s.num_parent_vertices) || too_big(s.num_rows());
+            if gathered && b < 3072 {
+                return Err(GpuError::TooLarge {
+                    what: "the windows of a refined level larger than one binding",
+                    needed: 3072,
+                    limit: b,
+                });
             }
             for (table, first_row) in level_dispatches(s) {
                 bytes += table.size_bytes() as u64;
@@ -117,65 +162,131 @@ impl GpuRefiner {
                         t.min_source_vertices() - 1
                     )));
                 }
-                for range in plan_chunks(&t, &limits, 1)? {
+                let plan_limits = if gathered { &gather_limits } else { &limits };
+                for range in plan_chunks(&t, plan_limits, 1)? {
                     let (r0, r1) = (range.row_start, range.row_end);
                     let (e0, e1) = (table.offsets[r0] as usize, table.offsets[r1] as usize);
-                    let local: Vec<u32> = table.offsets[r0..=r1]
+                    let offsets: Vec<u32> = table.offsets[r0..=r1]
                         .iter()
                         .map(|&o| o - table.offsets[r0])
                         .collect();
-                    let rows = (r1 - r0) as u32;
-                    let (gx, gy) =
-                        grid_2d(rows, WORKGROUP_SIZE, limits.max_workgroups_per_dimension);
-                    let config = RefineConfig {
-                        row_count: rows,
-                        stride: STRIDE as u32,
-                        grid_width: gx * WORKGROUP_SIZE,
-                        first_row: (first_row + r0) as u32,
-                        num_parent: s.num_parent_vertices as u32,
-                        _pad: [0; 3],
-                    };
-                    let buffers = [
-                        uniform_init(ctx, bytemuck::bytes_of(&config))?,
-                        storage_buffer_init(ctx, "refine offsets", bytemuck::cast_slice(&local))?,
-                        storage_buffer_init(
-                            ctx,
-                            "refine indices",
-                            bytemuck::cast_slice(&table.indices[e0..e1]),
-                        )?,
-                        storage_buffer_init(
-                            ctx,
-                            "refine weights",
-                            bytemuck::cast_slice(&table.weights[e0..e1]),
-                        )?,
-                    ];
-                    let bind_group = ctx.scoped(|| {
-                        Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                            label: Some("refine_level"),
-                            layout: &layout,
-                            entries: &[
-                                whole(0, &buffers[0]),
-                                whole(1, &buffers[1]),
-                                whole(2, &buffers[2]),
-                                whole(3, &buffers[3]),
-                                whole(4, levels[level].raw()),
-                                whole(5, levels[level + 1].raw()),
-                            ],
-                        }))
-                    })?;
-                    dispatches.push(Dispatch {
-                        bind_group,
-                        groups: (gx, gy),
-                        _buffers: buffers,
+                    let indices = &table.indices[e0..e1];
+                    let weights = table.weights[e0..e1].to_vec();
+                    let first = first_row + r0;
+                    if !gathered {
+                        specs.push(Spec {
+                            first_row: first as u32,
+                            num_parent: s.num_parent_vertices as u32,
+                            offsets,
+                            indices: indices.to_vec(),
+                            weights,
+                            parent: Source::Level(level, None),
+                            child: Target::Level(level + 1, None),
+                        });
+                        continue;
+                    }
+                    let plan = plan_gather(indices, s.num_parent_vertices, window);
+                    for g in plan.gathers {
+                        let n = g.rel.len();
+                        let lvl = level + usize::from(g.child);
+                        specs.push(Spec {
+                            first_row: g.first,
+                            num_parent: u32::MAX,
+                            offsets: (0..=n as u32).collect(),
+                            indices: g.rel,
+                            weights: vec![1.0; n],
+                            parent: Source::Level(lvl, Some(g.window * window)),
+                            child: Target::Scratch(plan.inputs),
+                        });
+                    }
+                    let start = first / 64 * 64;
+                    specs.push(Spec {
+                        first_row: (first - start) as u32,
+                        num_parent: u32::MAX,
+                        offsets,
+                        indices: plan.local,
+                        weights,
+                        parent: Source::Scratch,
+                        child: Target::Level(level + 1, Some(start)),
                     });
                 }
             }
+        }
+        let scratch_rows = specs
+            .iter()
+            .map(|d| match d.child {
+                Target::Scratch(n) => n,
+                Target::Level(..) => 0,
+            })
+            .max()
+            .unwrap_or(0);
+        let scratch = VertexBuffer::zeroed(ctx, scratch_rows, STRIDE)?;
+        let mut dispatches = Vec::with_capacity(specs.len());
+        for d in specs {
+            let rows = (d.offsets.len() - 1) as u32;
+            let (gx, gy) = grid_2d(rows, WORKGROUP_SIZE, limits.max_workgroups_per_dimension);
+            let config = RefineConfig {
+                row_count: rows,
+                stride: STRIDE as u32,
+                grid_width: gx * WORKGROUP_SIZE,
+                first_row: d.first_row,
+                num_parent: d.num_parent,
+                _pad: [0; 3],
+            };
+            let buffers = [
+                uniform_init(ctx, bytemuck::bytes_of(&config))?,
+                storage_buffer_init(ctx, "refine offsets", bytemuck::cast_slice(&d.offsets))?,
+                storage_buffer_init(ctx, "refine indices", bytemuck::cast_slice(&d.indices))?,
+                storage_buffer_init(ctx, "refine weights", bytemuck::cast_slice(&d.weights))?,
+            ];
+            let vertex_bytes = |n: usize| (n * STRIDE) as u64 * WORD;
+            let parent = match d.parent {
+                Source::Scratch => whole(4, scratch.raw()),
+                Source::Level(l, None) => whole(4, levels[l].raw()),
+                Source::Level(l, Some(first)) => {
+                    let n = window.min(levels[l].vertex_count() - first);
+                    part(4, levels[l].raw(), vertex_bytes(first), vertex_bytes(n))
+                }
+            };
+            let child = match d.child {
+                Target::Scratch(_) => whole(5, scratch.raw()),
+                Target::Level(l, None) => whole(5, levels[l].raw()),
+                Target::Level(l, Some(start)) => {
+                    let end = start + (d.first_row + rows) as usize;
+                    part(
+                        5,
+                        levels[l].raw(),
+                        vertex_bytes(start),
+                        vertex_bytes(end - start),
+                    )
+                }
+            };
+            let bind_group = ctx.scoped(|| {
+                Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("refine_level"),
+                    layout: &layout,
+                    entries: &[
+                        whole(0, &buffers[0]),
+                        whole(1, &buffers[1]),
+                        whole(2, &buffers[2]),
+                        whole(3, &buffers[3]),
+                        parent,
+                        child,
+                    ],
+                }))
+            })?;
+            dispatches.push(Dispatch {
+                bind_group,
+                groups: (gx, gy),
+                _buffers: buffers,
+            });
         }
         Ok(Self {
             levels,
             dispatches,
             pipeline,
             bytes,
+            _scratch: scratch,
         })
     }
 
@@ -285,6 +396,17 @@ fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
         binding,
         resource: buffer.as_entire_binding(),
+    }
+}
+
+fn part(binding: u32, buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset,
+            size: wgpu::BufferSize::new(size.max(WORD)),
+        }),
     }
 }
 

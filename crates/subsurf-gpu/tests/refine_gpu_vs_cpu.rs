@@ -105,6 +105,58 @@ fn chunked_tables_give_the_same_result() {
     );
 }
 
+/// Levels too large for the (forced) binding limit are refined from inputs gathered through
+/// windows of the level buffers: every level, bit for bit the unsplit refinement.
+#[test]
+fn gathered_levels_match_whole_levels_bit_for_bit() {
+    let Some(ctx) = context_or_skip("gathered_levels_match_whole_levels_bit_for_bit") else {
+        return;
+    };
+    for (name, level, bytes) in [
+        ("catmark_car.obj", 2, 8192),
+        ("catmark_torus.obj", 3, 3072),
+        ("catmark_pyramid_creases2.obj", 4, 4096),
+    ] {
+        let mesh = subsurf::io::read_path(shapes_dir().join(name)).unwrap();
+        let refiner = Refiner::new(Topology::new(&mesh).unwrap(), level).unwrap();
+        let limits = ChunkLimits {
+            max_binding_bytes: bytes,
+            max_workgroups_per_dimension: 4,
+            max_stride: 3,
+        };
+        // The last level exceeds the limit.
+        assert!(
+            refiner.levels[level].num_vertices() * 12 > bytes as usize,
+            "{name}"
+        );
+        let small = GpuRefiner::with_limits(&ctx, &refiner, limits).unwrap();
+        let whole = GpuRefiner::new(&ctx, &refiner).unwrap();
+        assert!(
+            small.num_dispatches() > 3 * whole.num_dispatches(),
+            "{name}"
+        );
+        small.update(&ctx, &mesh.positions).unwrap();
+        whole.update(&ctx, &mesh.positions).unwrap();
+        let cpu = refiner.refine_all(&mesh.positions);
+        for l in 1..=level {
+            let got = small.download_level(&ctx, l).unwrap();
+            let want = whole.download_level(&ctx, l).unwrap();
+            let bits = |v: &[[f32; 3]]| {
+                v.as_flattened()
+                    .iter()
+                    .map(|x| x.to_bits())
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(
+                bits(&got),
+                bits(&want),
+                "{name} level {l}: gathered vs whole"
+            );
+            assert_close(&format!("{name} level {l}"), &got, &cpu[l]);
+        }
+    }
+}
+
 #[test]
 fn update_follows_a_deformation() {
     let Some(ctx) = context_or_skip("update_follows_a_deformation") else {
