@@ -8,7 +8,7 @@
 //! field of its uniform, so chunks need no aligned binding offsets. The vertex buffers of a
 //! level are bound whole when they fit one binding; a level whose parent or child buffer
 //! does not is refined chunk by chunk from its inputs gathered through windows of the level
-//! buffers ([`crate::refine_gather`]), with the same bits.
+//! buffers ([`crate::gather`]), with the same bits.
 //!
 //! Bind groups and uniforms are built once in [`GpuRefiner::new`]; [`GpuRefiner::update`]
 //! writes new base positions and records the dispatches, nothing else.
@@ -17,9 +17,9 @@ use crate::buffers::{storage_buffer_init, VertexBuffer};
 use crate::context::GpuContext;
 use crate::cpu::refine_level::{level_dispatches, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
+use crate::gather::plan_gather;
 use crate::kernels::grid_2d;
 use crate::kernels::stencil::{plan_chunks, ChunkLimits};
-use crate::refine_gather::plan_gather;
 use crate::shaders;
 use crate::shared::RefineConfig;
 use crate::table::StencilTable;
@@ -122,7 +122,7 @@ impl GpuRefiner {
             levels.push(VertexBuffer::zeroed(ctx, count, STRIDE)?);
         }
         // Levels whose parent or child buffer exceeds one binding read their inputs through
-        // a scratch buffer (refine_gather). Their tables are planned at a quarter of the limit:
+        // a scratch buffer (crate::gather). Their tables are planned at a quarter of the limit:
         // a chunk's inputs (at most one per entry) then fill at most 3/4 of the scratch
         // binding, and its rows 3/4 of the child window, whose lead-in (up to 63 vertices,
         // 756 bytes) fits the rest for limits of 3 KiB and more. Source windows are whole
@@ -185,7 +185,7 @@ impl GpuRefiner {
                         });
                         continue;
                     }
-                    let plan = plan_gather(indices, s.num_parent_vertices, window);
+                    let plan = plan_gather(indices, s.num_parent_vertices, window, 1);
                     for g in plan.gathers {
                         let n = g.rel.len();
                         let lvl = level + usize::from(g.child);

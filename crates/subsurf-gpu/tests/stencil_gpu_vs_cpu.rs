@@ -112,6 +112,55 @@ fn big_table_is_chunked_and_matches() {
     assert_close_to_twin(&t, &src, stride, &gpu, &cpu);
 }
 
+/// A source larger than one binding is gathered window by window into a scratch buffer:
+/// bit for bit what one binding of the whole source gives, for strides in one block of 4 and
+/// above it.
+#[test]
+fn gathered_source_matches_one_binding_bit_for_bit() {
+    let Some(ctx) = context_or_skip("gathered_source_matches_one_binding_bit_for_bit") else {
+        return;
+    };
+    let mut rng = Rng::new(0xB16);
+    let (rows, sources) = (6_000usize, 50_000u32);
+    let t = random_table(&mut rng, rows, sources, 12);
+    let table = StencilTable::new(&t.offsets, &t.indices, &t.weights).unwrap();
+    let limits = ChunkLimits {
+        max_binding_bytes: 256 * 1024,
+        max_workgroups_per_dimension: 8,
+        max_stride: 7,
+    };
+    let small = StencilKernel::with_limits(&ctx, &table, limits).unwrap();
+    let whole = StencilKernel::with_limits(
+        &ctx,
+        &table,
+        ChunkLimits {
+            max_stride: 7,
+            ..ChunkLimits::from_context(&ctx)
+        },
+    )
+    .unwrap();
+    assert!(small.num_chunks() >= 10, "{} chunks", small.num_chunks());
+    assert!(small.gathers_source() && !whole.gathers_source());
+    for stride in [3usize, 7] {
+        // The source (50,000 vertices) is 2.3-5.3 times the limit.
+        assert!(sources as u64 * stride as u64 * 4 > 2 * limits.max_binding_bytes);
+        let src = random_values(&mut rng, sources as usize * stride, 10.0);
+        let got = run_gpu(&ctx, &small, &src, stride);
+        let want = run_gpu(&ctx, &whole, &src, stride);
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&got), bits(&want), "stride {stride}");
+        let cpu = apply_stencil_table(&table, &src, stride).unwrap();
+        assert_close_to_twin(&t, &src, stride, &got, &cpu);
+    }
+    // Gathers were planned for strides up to 7.
+    let src = VertexBuffer::upload(&ctx, &vec![0.0; sources as usize * 8], 8).unwrap();
+    let mut dst = VertexBuffer::zeroed(&ctx, rows, 8).unwrap();
+    assert!(matches!(
+        small.apply(&ctx, &src, &mut dst),
+        Err(GpuError::TooLarge { .. })
+    ));
+}
+
 #[test]
 fn buffers_are_reused_frame_after_frame() {
     let Some(ctx) = context_or_skip("buffers_are_reused_frame_after_frame") else {

@@ -6,15 +6,20 @@
 //! enough). Each chunk holds its own `offsets` (rebased to start at 0), `indices` and
 //! `weights`; the destination is bound at the chunk's first row, which is a multiple of
 //! `min_storage_buffer_offset_alignment / 4` rows so the binding offset is aligned for any
-//! stride. The source is bound whole (stencils reference arbitrary source vertices).
+//! stride. The source is bound from vertex 0 to the last vertex the table reads. When that
+//! exceeds one binding (sized for `max_stride`), each chunk first gathers the source
+//! vertices it reads into a scratch buffer, window by aligned window of the source, with
+//! unit-weight dispatches of the same kernel ([`crate::gather`]), and its rows read the
+//! scratch: the same bits as one binding of the whole source.
 //!
 //! Per frame a caller re-uploads only the source ([`VertexBuffer::write`]) and calls
 //! [`StencilKernel::apply`]; the results stay on the GPU until downloaded.
 
-use crate::buffers::{storage_buffer_init, VertexBuffer};
+use crate::buffers::{storage_buffer_init, VertexBuffer, STORAGE_USAGE};
 use crate::context::GpuContext;
 use crate::cpu::stencil_apply::WORKGROUP_SIZE;
 use crate::error::{GpuError, Result};
+use crate::gather::plan_gather;
 use crate::kernels::grid_2d;
 use crate::shaders;
 use crate::shared::StencilConfig;
@@ -124,6 +129,40 @@ struct Chunk {
     indices: wgpu::Buffer,
     weights: wgpu::Buffer,
     config: wgpu::Buffer,
+    /// Gathered source: the chunk's scratch rows and its gathers.
+    gathered: Option<(usize, Vec<GatherDispatch>)>,
+}
+
+/// Unit-weight rows copying `rows` source vertices of window `window` to scratch rows
+/// `first..`.
+#[derive(Debug)]
+struct GatherDispatch {
+    window: usize,
+    first: usize,
+    rows: usize,
+    offsets: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    config: wgpu::Buffer,
+}
+
+fn config_buffer(ctx: &GpuContext) -> Result<wgpu::Buffer> {
+    ctx.scoped(|| {
+        Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("stencil config"),
+            size: std::mem::size_of::<StencilConfig>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        }))
+    })
+}
+
+fn upload<T: bytemuck::Pod>(
+    ctx: &GpuContext,
+    label: &'static str,
+    data: &[T],
+) -> Result<wgpu::Buffer> {
+    storage_buffer_init(ctx, label, bytemuck::cast_slice(data))
 }
 
 /// A stencil table uploaded to the GPU with the `stencil_apply` pipeline.
@@ -134,6 +173,10 @@ pub struct StencilKernel {
     limits: ChunkLimits,
     /// The adapter's binding limit, which bounds the (unchunked) source binding.
     source_binding_limit: u64,
+    /// Vertices per source window when the source is gathered.
+    source_window: Option<usize>,
+    /// Scratch of the gathered source (`max_stride` floats per row).
+    scratch: Option<wgpu::Buffer>,
     chunks: Vec<Chunk>,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
@@ -162,9 +205,32 @@ impl StencilKernel {
         let limits = limits.clamped_to(adapter_limits);
         let row_align =
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
-        let ranges = plan_chunks(table, &limits, row_align)?;
+        let b = limits.max_binding_bytes;
+        let max_stride = limits.max_stride as u64;
+        // Gather the source when the vertices the table reads exceed one binding; chunks are
+        // then planned so that their inputs (at most one per entry) fill at most half of the
+        // scratch binding, leaving the rest for the alignment padding between gathers.
+        let gathered = table.min_source_vertices() as u64 * max_stride * WORD > b;
+        let plan_limits = if gathered {
+            ChunkLimits {
+                max_binding_bytes: b / (2 * max_stride),
+                ..limits
+            }
+        } else {
+            limits
+        };
+        let window = (b / (max_stride * WORD)) as usize / row_align * row_align;
+        if gathered && window == 0 {
+            return Err(GpuError::TooLarge {
+                what: "one aligned window of the stencil source",
+                needed: row_align as u64 * max_stride * WORD,
+                limit: b,
+            });
+        }
+        let ranges = plan_chunks(table, &plan_limits, row_align)?;
         let offsets = table.offsets();
         let mut chunks = Vec::with_capacity(ranges.len());
+        let mut scratch_rows = 0usize;
         for range in ranges {
             let (e0, e1) = (
                 offsets[range.row_start] as usize,
@@ -174,35 +240,72 @@ impl StencilKernel {
                 .iter()
                 .map(|&o| o - offsets[range.row_start])
                 .collect();
+            let mut indices = table.indices()[e0..e1].to_vec();
+            let gathered = if gathered {
+                let plan = plan_gather(&indices, usize::MAX, window, row_align);
+                if plan.inputs as u64 * max_stride * WORD > b {
+                    return Err(GpuError::TooLarge {
+                        what: "gathered stencil source of one chunk",
+                        needed: plan.inputs as u64 * max_stride * WORD,
+                        limit: b,
+                    });
+                }
+                scratch_rows = scratch_rows.max(plan.inputs);
+                indices = plan.local;
+                let gathers = plan
+                    .gathers
+                    .into_iter()
+                    .map(|g| {
+                        let n = g.rel.len();
+                        Ok(GatherDispatch {
+                            window: g.window,
+                            first: g.first as usize,
+                            rows: n,
+                            offsets: upload(
+                                ctx,
+                                "gather offsets",
+                                &(0..=n as u32).collect::<Vec<_>>(),
+                            )?,
+                            indices: upload(ctx, "gather indices", &g.rel)?,
+                            weights: upload(ctx, "gather weights", &vec![1.0f32; n])?,
+                            config: config_buffer(ctx)?,
+                        })
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                Some((plan.inputs, gathers))
+            } else {
+                None
+            };
             chunks.push(Chunk {
                 range,
-                offsets: storage_buffer_init(ctx, "stencil offsets", bytemuck::cast_slice(&local))?,
-                indices: storage_buffer_init(
-                    ctx,
-                    "stencil indices",
-                    bytemuck::cast_slice(&table.indices()[e0..e1]),
-                )?,
-                weights: storage_buffer_init(
-                    ctx,
-                    "stencil weights",
-                    bytemuck::cast_slice(&table.weights()[e0..e1]),
-                )?,
-                config: ctx.scoped(|| {
-                    Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                        label: Some("stencil config"),
-                        size: std::mem::size_of::<StencilConfig>() as u64,
-                        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-                        mapped_at_creation: false,
-                    }))
-                })?,
+                offsets: upload(ctx, "stencil offsets", &local)?,
+                indices: upload(ctx, "stencil indices", &indices)?,
+                weights: upload(ctx, "stencil weights", &table.weights()[e0..e1])?,
+                config: config_buffer(ctx)?,
+                gathered,
             });
         }
+        let scratch = if gathered {
+            let size = (scratch_rows as u64 * max_stride * WORD).max(WORD);
+            Some(ctx.scoped(|| {
+                Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("stencil gathered source"),
+                    size,
+                    usage: STORAGE_USAGE,
+                    mapped_at_creation: false,
+                }))
+            })?)
+        } else {
+            None
+        };
         let (layout, pipeline) = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
         Ok(Self {
             rows: table.rows(),
             min_source_vertices: table.min_source_vertices(),
             limits,
             source_binding_limit: adapter_limits.max_binding_bytes,
+            source_window: gathered.then_some(window),
+            scratch,
             chunks,
             layout,
             pipeline,
@@ -212,6 +315,12 @@ impl StencilKernel {
     /// Number of rows (destination vertices).
     pub fn rows(&self) -> usize {
         self.rows
+    }
+
+    /// Whether each chunk gathers its source vertices (the vertices the table reads exceed
+    /// one binding at `max_stride`).
+    pub fn gathers_source(&self) -> bool {
+        self.source_window.is_some()
     }
 
     /// Number of chunks the table was split into.
@@ -275,76 +384,163 @@ impl StencilKernel {
                 src.vertex_count()
             )));
         }
-        let src_bytes = src.len_floats() as u64 * WORD;
-        if src_bytes > self.source_binding_limit {
-            return Err(GpuError::TooLarge {
-                what: "stencil source binding",
-                needed: src_bytes,
-                limit: self.source_binding_limit,
-            });
-        }
         let stride_u32 = u32::try_from(stride)
             .map_err(|_| GpuError::BufferMismatch(format!("stride {stride} is too large")))?;
-        {
-            let mut bind_groups = Vec::with_capacity(self.chunks.len());
-            for chunk in &self.chunks {
-                let rows = (chunk.range.row_end - chunk.range.row_start) as u32;
-                let dst_bytes = u64::from(rows) * u64::from(stride_u32) * WORD;
-                if dst_bytes > self.limits.max_binding_bytes {
-                    return Err(GpuError::TooLarge {
-                        what: "stencil destination chunk binding",
-                        needed: dst_bytes,
-                        limit: self.limits.max_binding_bytes,
-                    });
-                }
-                let (gx, gy) = grid_2d(
-                    rows,
-                    WORKGROUP_SIZE,
-                    self.limits.max_workgroups_per_dimension,
-                );
-                let config = StencilConfig {
-                    row_count: rows,
-                    stride: stride_u32,
-                    grid_width: gx * WORKGROUP_SIZE,
-                    _pad: 0,
-                };
-                ctx.queue
-                    .write_buffer(&chunk.config, 0, bytemuck::bytes_of(&config));
-                let dst_offset = chunk.range.row_start as u64 * u64::from(stride_u32) * WORD;
-                let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("stencil_apply"),
-                    layout: &self.layout,
-                    entries: &[
-                        whole(0, &chunk.config),
-                        whole(1, &chunk.offsets),
-                        whole(2, &chunk.indices),
-                        whole(3, &chunk.weights),
-                        whole(4, src.raw()),
-                        wgpu::BindGroupEntry {
-                            binding: 5,
-                            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                                buffer: dst.raw(),
-                                offset: dst_offset,
-                                size: wgpu::BufferSize::new(dst_bytes),
-                            }),
-                        },
-                    ],
+        let vertex_bytes = |n: usize| n as u64 * u64::from(stride_u32) * WORD;
+        // The source binding(s): up to the last vertex read, or windows for the gathers.
+        let src_bytes = vertex_bytes(self.min_source_vertices);
+        match self.source_window {
+            None if src_bytes > self.source_binding_limit => {
+                return Err(GpuError::TooLarge {
+                    what: "stencil source binding",
+                    needed: src_bytes,
+                    limit: self.source_binding_limit,
                 });
-                bind_groups.push((bind_group, gx, gy));
             }
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("stencil_apply"),
-                    timestamp_writes: None,
+            Some(_) if stride > self.limits.max_stride => {
+                return Err(GpuError::TooLarge {
+                    what: "gathered stencil source of a stride above the planned max_stride",
+                    needed: vertex_bytes(1),
+                    limit: self.limits.max_stride as u64 * WORD,
                 });
-                pass.set_pipeline(&self.pipeline);
-                for (bind_group, gx, gy) in &bind_groups {
-                    pass.set_bind_group(0, bind_group, &[]);
-                    pass.dispatch_workgroups(*gx, *gy, 1);
-                }
             }
-            Ok(())
+            _ => {}
         }
+        let source = wgpu::BindGroupEntry {
+            binding: 4,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: src.raw(),
+                offset: 0,
+                size: wgpu::BufferSize::new(src_bytes.max(WORD)),
+            }),
+        };
+        let mut dispatches = Vec::new();
+        for chunk in &self.chunks {
+            if let (Some((inputs, gathers)), Some(window), Some(scratch)) =
+                (&chunk.gathered, self.source_window, &self.scratch)
+            {
+                for g in gathers {
+                    let first = g.window * window;
+                    let n = window.min(src.vertex_count() - first);
+                    let bind_group = self.bind_group(
+                        ctx,
+                        [&g.config, &g.offsets, &g.indices, &g.weights],
+                        part(4, src.raw(), vertex_bytes(first), vertex_bytes(n)),
+                        part(5, scratch, vertex_bytes(g.first), vertex_bytes(g.rows)),
+                        g.rows as u32,
+                        stride_u32,
+                    );
+                    dispatches.push(bind_group);
+                }
+                let bind_group = self.bind_group(
+                    ctx,
+                    [
+                        &chunk.config,
+                        &chunk.offsets,
+                        &chunk.indices,
+                        &chunk.weights,
+                    ],
+                    part(4, scratch, 0, vertex_bytes(*inputs)),
+                    self.destination(dst, chunk, stride_u32)?,
+                    (chunk.range.row_end - chunk.range.row_start) as u32,
+                    stride_u32,
+                );
+                dispatches.push(bind_group);
+            } else {
+                let bind_group = self.bind_group(
+                    ctx,
+                    [
+                        &chunk.config,
+                        &chunk.offsets,
+                        &chunk.indices,
+                        &chunk.weights,
+                    ],
+                    source.clone(),
+                    self.destination(dst, chunk, stride_u32)?,
+                    (chunk.range.row_end - chunk.range.row_start) as u32,
+                    stride_u32,
+                );
+                dispatches.push(bind_group);
+            }
+        }
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("stencil_apply"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        for (bind_group, gx, gy) in &dispatches {
+            pass.set_bind_group(0, bind_group, &[]);
+            pass.dispatch_workgroups(*gx, *gy, 1);
+        }
+        Ok(())
+    }
+
+    /// The destination binding of `chunk`: its rows of `dst`.
+    fn destination<'a>(
+        &self,
+        dst: &'a VertexBuffer,
+        chunk: &Chunk,
+        stride: u32,
+    ) -> Result<wgpu::BindGroupEntry<'a>> {
+        let rows = (chunk.range.row_end - chunk.range.row_start) as u64;
+        let dst_bytes = rows * u64::from(stride) * WORD;
+        if dst_bytes > self.limits.max_binding_bytes {
+            return Err(GpuError::TooLarge {
+                what: "stencil destination chunk binding",
+                needed: dst_bytes,
+                limit: self.limits.max_binding_bytes,
+            });
+        }
+        let offset = chunk.range.row_start as u64 * u64::from(stride) * WORD;
+        Ok(part(5, dst.raw(), offset, dst_bytes))
+    }
+
+    /// Writes the uniform of a dispatch of `rows` rows and returns its bind group and grid.
+    fn bind_group(
+        &self,
+        ctx: &GpuContext,
+        [config, offsets, indices, weights]: [&wgpu::Buffer; 4],
+        source: wgpu::BindGroupEntry<'_>,
+        destination: wgpu::BindGroupEntry<'_>,
+        rows: u32,
+        stride: u32,
+    ) -> (wgpu::BindGroup, u32, u32) {
+        let (gx, gy) = grid_2d(
+            rows,
+            WORKGROUP_SIZE,
+            self.limits.max_workgroups_per_dimension,
+        );
+        let c = StencilConfig {
+            row_count: rows,
+            stride,
+            grid_width: gx * WORKGROUP_SIZE,
+            _pad: 0,
+        };
+        ctx.queue.write_buffer(config, 0, bytemuck::bytes_of(&c));
+        let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("stencil_apply"),
+            layout: &self.layout,
+            entries: &[
+                whole(0, config),
+                whole(1, offsets),
+                whole(2, indices),
+                whole(3, weights),
+                source,
+                destination,
+            ],
+        });
+        (bind_group, gx, gy)
+    }
+}
+
+fn part(binding: u32, buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset,
+            size: wgpu::BufferSize::new(size.max(WORD)),
+        }),
     }
 }
 
