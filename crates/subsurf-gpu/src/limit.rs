@@ -27,8 +27,10 @@
 //! indices renumbered and, if the point array exceeds a binding too, its points gathered each
 //! frame into a scratch buffer by a unit-weight [`StencilKernel`]; see
 //! [`crate::limit_chunks`]), with results bit for bit those of the
-//! whole tables. The refinement of `update` still reads the flat point array as one binding:
-//! a point array over the adapter's binding limit is refused with [`GpuError::TooLarge`].
+//! whole tables. A flat point array over one binding is read by `update` the same way: the
+//! level gathers and end-cap stencils gather their sources window by window
+//! ([`StencilKernel`]), and sparse levels over one binding are refined from gathered inputs
+//! ([`GpuRefiner`]); only the adapter's `max_buffer_size` bounds the point array.
 //!
 //! # Figures
 //!
@@ -244,14 +246,6 @@ impl GpuLimit {
             levels.push((gather, refiner));
         }
         let num_points = table.num_points();
-        let point_bytes = (3 * num_points) as u64 * WORD;
-        if point_bytes > adapter.max_binding_bytes {
-            return Err(GpuError::TooLarge {
-                what: "limit point array (bound whole)",
-                needed: point_bytes,
-                limit: adapter.max_binding_bytes,
-            });
-        }
         let points = VertexBuffer::zeroed(ctx, num_points, 3)?;
         let lp = &table.local_points;
         let local = if lp.num_rows() > 0 {

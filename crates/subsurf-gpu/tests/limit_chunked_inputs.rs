@@ -215,3 +215,64 @@ fn gpu_compacted_inputs_match_whole_tables_bit_for_bit() {
         assert!(worst < 1e-3, "after update, GPU vs CPU twin: {worst}");
     }
 }
+
+/// A point array larger than one binding: the sparse levels' gathers and refinement, the
+/// end-cap stencils and the evaluation all split their sources, and `update` and the
+/// tessellation are bit for bit those of whole bindings.
+#[test]
+fn point_array_over_one_binding_matches_whole_bindings() {
+    let Some(ctx) = context_or_skip("point_array_over_one_binding_matches_whole_bindings") else {
+        return;
+    };
+    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (name, isolation, binding) in [("catmark_car", 2, 32 << 10), ("catmark_car", 3, 64 << 10)] {
+        let (mesh, table) = load(name, isolation);
+        let point_bytes = 12 * table.num_points() as u64;
+        // Sparse levels, end caps, and points several times the binding.
+        assert!(
+            !table.level_stencils.is_empty() && table.local_points.num_rows() > 0,
+            "{name}"
+        );
+        assert!(
+            point_bytes > 4 * binding,
+            "{name}: {point_bytes} bytes of points"
+        );
+        let limits = ChunkLimits {
+            max_binding_bytes: binding,
+            max_workgroups_per_dimension: 1 << 12,
+            max_stride: 12,
+        };
+        let mut small = GpuLimit::with_limits(&ctx, &table, limits).unwrap();
+        let mut full = GpuLimit::new(&ctx, &table).unwrap();
+        small.update(&ctx, &mesh.positions).unwrap();
+        full.update(&ctx, &mesh.positions).unwrap();
+        let (ps, pf) = (
+            small.download_points(&ctx).unwrap(),
+            full.download_points(&ctx).unwrap(),
+        );
+        assert_eq!(
+            bits(ps.as_flattened()),
+            bits(pf.as_flattened()),
+            "{name}: points"
+        );
+        // And the CPU's points (f32 rounding of the same sums).
+        let want = table.points(&mesh.positions);
+        let diag = subsurf::mesh::bbox_diagonal(&mesh.positions);
+        let worst = ps
+            .iter()
+            .zip(&want)
+            .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
+            .fold(0.0f32, f32::max);
+        assert!(worst < 1e-5 * diag, "{name}: points vs CPU {worst}");
+        let ts = small.tessellation(&ctx, &table, 5).unwrap();
+        let tf = full.tessellation(&ctx, &table, 5).unwrap();
+        small.eval(&ctx, &ts.samples).unwrap();
+        full.eval(&ctx, &tf.samples).unwrap();
+        let (gs, gf) = (
+            ts.samples.download(&ctx).unwrap(),
+            tf.samples.download(&ctx).unwrap(),
+        );
+        assert!(gs.iter().all(|x| x.is_finite()), "{name}: NaN");
+        assert_eq!(bits(&gs), bits(&gf), "{name}: tessellation");
+    }
+}
