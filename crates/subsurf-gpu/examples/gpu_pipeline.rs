@@ -25,6 +25,7 @@
 //! ```
 //!
 //! The meshes are embedded in the binary. `GPU_PIPELINE_QUICK=1` runs only the smaller cases,
-//! `GPU_PIPELINE_ONLY=refine|prep|prep_large|limit` one section.
+//! `GPU_PIPELINE_ONLY=refine|refine_large|prep|prep_large|limit` one section (`refine_large`, the
+//! car at level 7, only when named).
 
 include!("../benches/common/pipeline.rs");

@@ -20,26 +20,26 @@
 //! Work is split against the adapter's `max_storage_buffer_binding_size` (128 MiB on
 //! lavapipe) and `max_compute_workgroups_per_dimension` rather than refused; each entry point
 //! has a `with_limits` constructor taking lower [`ChunkLimits`], which the tests use to force
-//! chunking on small meshes. Without any adapter, [`GpuContext::new`] returns
-//! [`GpuError::NoAdapter`]. What is split, and what must still fit one binding (else
-//! [`GpuError::TooLarge`]):
+//! the splits on small meshes (each split is tested bit for bit against whole bindings).
+//! Without any adapter, [`GpuContext::new`] returns [`GpuError::NoAdapter`]. Only the
+//! adapter's `max_buffer_size` bounds a buffer; what is split:
 //!
-//! | entry point | split per chunk | bound whole |
-//! |---|---|---|
-//! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row | the source vertex buffer |
-//! | [`GpuRefiner`] | every level's tables, by child row | each level's vertex buffer |
-//! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`], bit for bit the unchunked results) | the flat point array in `update` (refinement and end-cap stencils read it) |
-//! | [`GpuPrep`] | the mesh, into sub-problems of faces with their corners' rings ([`prep_chunks`]: positions, rings, vertex and patch coefficients of each fit one binding); dispatch grids; the tessellation's vertex and index buffers | nothing that grows with the mesh |
+//! | entry point | split per chunk |
+//! |---|---|
+//! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row; a source larger than one binding gathered per chunk, window by window, into a scratch buffer ([`gather`]) |
+//! | [`GpuRefiner`] | every level's tables, by child row; a level whose buffers exceed one binding refined from inputs gathered the same way, writing the child through a window |
+//! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`]); `update` through the split stencils and refiners above |
+//! | [`GpuPrep`] | the mesh, into sub-problems of faces with their corners' rings ([`prep_chunks`]: positions, rings, vertex and patch coefficients of each fit one binding); dispatch grids; the tessellation's vertex and index buffers |
 //!
-//! The first buffer to reach 128 MiB is then the limit point array (12 bytes per point:
-//! about 11 million points). A p-rep is split once its patch coefficients (at least 192
-//! bytes per face) pass one binding: about 700,000 faces at 128 MiB.
+//! Splitting is rarely needed at 128 MiB: a p-rep is split from about 700,000 faces (192
+//! bytes of patch coefficients per face), a refined level from about 11 million vertices,
+//! a limit point array from about 11 million points.
 
 pub mod buffers;
 pub mod context;
 pub mod cpu;
 pub mod error;
-pub(crate) mod gather;
+pub mod gather;
 pub mod kernels;
 pub mod limit;
 pub mod limit_chunks;

@@ -67,6 +67,20 @@ fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh,
             out / t.as_secs_f64() / 1e6
         );
     }
+    let last_bytes = 12 * refiner.last().num_vertices() as u64;
+    let binding = ctx.limits().max_storage_buffer_binding_size;
+    if last_bytes > binding {
+        // Levels past one binding are refined from gathered inputs: check them.
+        let got = gpu.refine(ctx, &mesh.positions).expect("refine");
+        let want = refiner.refine_positions(&mesh.positions);
+        let diff = got.iter().zip(&want).flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs())).fold(0.0f32, f32::max);
+        println!(
+            "refine {name} L{level} | last level {} MiB > {} MiB binding | GPU vs CPU max |dp| = {:.2e} of the diagonal",
+            last_bytes >> 20,
+            binding >> 20,
+            diff / subsurf::mesh::bbox_diagonal(&mesh.positions)
+        );
+    }
 }
 
 fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usize], check: bool) {
@@ -248,13 +262,17 @@ fn main() {
         cases.push(("catmark_car", &car, 4));
         cases.push(("torus262k", &torus, 2));
     }
-    // `GPU_PIPELINE_ONLY=refine|prep|prep_large|limit` runs one section.
+    // `GPU_PIPELINE_ONLY=refine|refine_large|prep|prep_large|limit` runs one section.
     let only = std::env::var("GPU_PIPELINE_ONLY").unwrap_or_default();
     let run = |section: &str| only.is_empty() || only == section;
     if run("refine") {
         for (name, mesh, level) in cases {
             refine_case(ctx.as_ref(), &adapter, name, mesh, level);
         }
+    }
+    // A refined level past one 128 MiB binding: the car at level 7 (25 M vertices, 302 MB).
+    if only == "refine_large" {
+        refine_case(ctx.as_ref(), &adapter, "catmark_car", &car, 7);
     }
     let sizes: &[usize] = if quick { &[5, 9] } else { &[5, 9, 17, 33] };
     if run("prep") {
