@@ -18,8 +18,8 @@ use crate::context::GpuContext;
 use crate::cpu::refine_level::{level_dispatches, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::gather::plan_gather;
-use crate::kernels::grid_2d;
 use crate::kernels::stencil::{plan_chunks, ChunkLimits};
+use crate::kernels::{grid_2d, part};
 use crate::shaders;
 use crate::shared::RefineConfig;
 use crate::table::StencilTable;
@@ -396,17 +396,6 @@ fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
         binding,
         resource: buffer.as_entire_binding(),
-    }
-}
-
-fn part(binding: u32, buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer,
-            offset,
-            size: wgpu::BufferSize::new(size.max(WORD)),
-        }),
     }
 }
 

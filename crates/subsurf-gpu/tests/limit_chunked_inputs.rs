@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::context_or_skip;
+use common::{bits, context_or_skip};
 use subsurf::limit::{PatchOptions, PatchTable};
 use subsurf::{Mesh, Topology};
 use subsurf_gpu::cpu::limit_eval::{limit_eval, pack_queries, LimitInputs, LimitTables};
@@ -224,7 +224,6 @@ fn point_array_over_one_binding_matches_whole_bindings() {
     let Some(ctx) = context_or_skip("point_array_over_one_binding_matches_whole_bindings") else {
         return;
     };
-    let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
     for (name, isolation, binding) in [("catmark_car", 2, 32 << 10), ("catmark_car", 3, 64 << 10)] {
         let (mesh, table) = load(name, isolation);
         let point_bytes = 12 * table.num_points() as u64;

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::context_or_skip;
+use common::{bits, context_or_skip};
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, Tessellation};
 use subsurf::{Mesh, Topology};
 use subsurf_gpu::limit::{eval_cpu, tessellate_cpu};
@@ -103,20 +103,14 @@ fn twin_reproduces_the_library_bit_for_bit() {
             let want = surface.tessellate(n).unwrap();
             let got = tessellate_cpu(&table, &points, n).unwrap();
             assert_eq!(got.quads, want.quads, "{name} n={n}: quads");
-            let bits = |v: &[[f32; 3]]| {
-                v.as_flattened()
-                    .iter()
-                    .map(|x| x.to_bits())
-                    .collect::<Vec<_>>()
-            };
             assert_eq!(
-                bits(&got.positions),
-                bits(&want.positions),
+                bits(got.positions.as_flattened()),
+                bits(want.positions.as_flattened()),
                 "{name} n={n}: positions"
             );
             assert_eq!(
-                bits(&got.normals),
-                bits(&want.normals),
+                bits(got.normals.as_flattened()),
+                bits(want.normals.as_flattened()),
                 "{name} n={n}: normals"
             );
         }

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::context_or_skip;
+use common::{bits, context_or_skip};
 use subsurf::prep::quadrangulate::quadrangulate;
 use subsurf::prep::{PrepPatches, PrepTopology, Tessellation};
 use subsurf::{Mesh, Topology};
@@ -96,8 +96,19 @@ fn compare_tessellation(what: &str, got: &Tessellation<f32>, want: &Tessellation
     assert_watertight(what, got);
 }
 
-fn bits(v: &[f32]) -> Vec<u32> {
-    v.iter().map(|x| x.to_bits()).collect()
+/// The same tessellation bit for bit: triangles, positions, normals.
+fn assert_same_bits(what: &str, got: &Tessellation<f32>, want: &Tessellation<f32>) {
+    assert_eq!(got.triangles, want.triangles, "{what}: triangles");
+    assert_eq!(
+        bits(got.positions.as_flattened()),
+        bits(want.positions.as_flattened()),
+        "{what}: positions"
+    );
+    assert_eq!(
+        bits(got.normals.as_flattened()),
+        bits(want.normals.as_flattened()),
+        "{what}: normals"
+    );
 }
 
 #[test]
@@ -195,17 +206,7 @@ fn sub_problems_reproduce_the_whole_bit_for_bit() {
                 );
                 let got = split.tessellate_cpu(&mesh.positions, n);
                 let want = whole.tessellate_cpu(&mesh.positions, n);
-                assert_eq!(got.triangles, want.triangles, "{what} n={n}: triangles");
-                assert_eq!(
-                    bits(got.positions.as_flattened()),
-                    bits(want.positions.as_flattened()),
-                    "{what} n={n}: positions"
-                );
-                assert_eq!(
-                    bits(got.normals.as_flattened()),
-                    bits(want.normals.as_flattened()),
-                    "{what} n={n}: normals"
-                );
+                assert_same_bits(&format!("{what} n={n}"), &got, &want);
             }
         }
     }
@@ -373,16 +374,6 @@ fn chunked_passes_match_cpu() {
         let wgrid = whole.grid(&ctx, n).unwrap();
         whole.eval_grid(&ctx, &wgrid).unwrap();
         let w = wgrid.download(&ctx).unwrap();
-        assert_eq!(t.triangles, w.triangles, "{name} n={n}");
-        assert_eq!(
-            bits(t.positions.as_flattened()),
-            bits(w.positions.as_flattened()),
-            "{name} n={n}: split vs whole positions"
-        );
-        assert_eq!(
-            bits(t.normals.as_flattened()),
-            bits(w.normals.as_flattened()),
-            "{name} n={n}: split vs whole normals"
-        );
+        assert_same_bits(&format!("{name} n={n}, split vs whole"), &t, &w);
     }
 }

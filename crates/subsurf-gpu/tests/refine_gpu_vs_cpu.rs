@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::context_or_skip;
+use common::{bits, context_or_skip};
 use subsurf::{Refiner, Topology};
 use subsurf_gpu::{ChunkLimits, GpuContext, GpuRefiner};
 
@@ -141,15 +141,9 @@ fn gathered_levels_match_whole_levels_bit_for_bit() {
         for l in 1..=level {
             let got = small.download_level(&ctx, l).unwrap();
             let want = whole.download_level(&ctx, l).unwrap();
-            let bits = |v: &[[f32; 3]]| {
-                v.as_flattened()
-                    .iter()
-                    .map(|x| x.to_bits())
-                    .collect::<Vec<_>>()
-            };
             assert_eq!(
-                bits(&got),
-                bits(&want),
+                bits(got.as_flattened()),
+                bits(want.as_flattened()),
                 "{name} level {l}: gathered vs whole"
             );
             assert_close(&format!("{name} level {l}"), &got, &cpu[l]);

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{assert_close_to_twin, context_or_skip, random_table, random_values, Rng};
+use common::{assert_close_to_twin, bits, context_or_skip, random_table, random_values, Rng};
 use subsurf_gpu::cpu::stencil_apply::apply_stencil_table;
 use subsurf_gpu::{ChunkLimits, GpuError, StencilKernel, StencilTable, VertexBuffer};
 
@@ -147,7 +147,6 @@ fn gathered_source_matches_one_binding_bit_for_bit() {
         let src = random_values(&mut rng, sources as usize * stride, 10.0);
         let got = run_gpu(&ctx, &small, &src, stride);
         let want = run_gpu(&ctx, &whole, &src, stride);
-        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&got), bits(&want), "stride {stride}");
         let cpu = apply_stencil_table(&table, &src, stride).unwrap();
         assert_close_to_twin(&t, &src, stride, &got, &cpu);

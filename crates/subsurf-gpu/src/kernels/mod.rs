@@ -5,6 +5,24 @@
 pub(crate) mod chunked_pass;
 pub mod stencil;
 
+/// Binding `binding` to `size` bytes of `buffer` from `offset` (at least one word: empty
+/// bindings are invalid).
+pub(crate) fn part(
+    binding: u32,
+    buffer: &wgpu::Buffer,
+    offset: u64,
+    size: u64,
+) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer,
+            offset,
+            size: wgpu::BufferSize::new(size.max(4)),
+        }),
+    }
+}
+
 /// Workgroup grid covering `invocations` invocations of `workgroup_size` each without
 /// exceeding `max_per_dim` workgroups along x or y: returns `(x, y)` workgroup counts.
 /// Invocation `(gx, gy)` handles item `gy * x * workgroup_size + gx`.

@@ -20,7 +20,7 @@ use crate::context::GpuContext;
 use crate::cpu::stencil_apply::WORKGROUP_SIZE;
 use crate::error::{GpuError, Result};
 use crate::gather::plan_gather;
-use crate::kernels::grid_2d;
+use crate::kernels::{grid_2d, part};
 use crate::shaders;
 use crate::shared::StencilConfig;
 use crate::table::StencilTable;
@@ -416,52 +416,37 @@ impl StencilKernel {
         };
         let mut dispatches = Vec::new();
         for chunk in &self.chunks {
-            if let (Some((inputs, gathers)), Some(window), Some(scratch)) =
-                (&chunk.gathered, self.source_window, &self.scratch)
-            {
-                for g in gathers {
-                    let first = g.window * window;
-                    let n = window.min(src.vertex_count() - first);
-                    let bind_group = self.bind_group(
-                        ctx,
-                        [&g.config, &g.offsets, &g.indices, &g.weights],
-                        part(4, src.raw(), vertex_bytes(first), vertex_bytes(n)),
-                        part(5, scratch, vertex_bytes(g.first), vertex_bytes(g.rows)),
-                        g.rows as u32,
-                        stride_u32,
-                    );
-                    dispatches.push(bind_group);
+            let chunk_source = match (&chunk.gathered, self.source_window, &self.scratch) {
+                (Some((inputs, gathers)), Some(window), Some(scratch)) => {
+                    for g in gathers {
+                        let first = g.window * window;
+                        let n = window.min(src.vertex_count() - first);
+                        dispatches.push(self.bind_group(
+                            ctx,
+                            [&g.config, &g.offsets, &g.indices, &g.weights],
+                            part(4, src.raw(), vertex_bytes(first), vertex_bytes(n)),
+                            part(5, scratch, vertex_bytes(g.first), vertex_bytes(g.rows)),
+                            g.rows as u32,
+                            stride_u32,
+                        ));
+                    }
+                    part(4, scratch, 0, vertex_bytes(*inputs))
                 }
-                let bind_group = self.bind_group(
-                    ctx,
-                    [
-                        &chunk.config,
-                        &chunk.offsets,
-                        &chunk.indices,
-                        &chunk.weights,
-                    ],
-                    part(4, scratch, 0, vertex_bytes(*inputs)),
-                    self.destination(dst, chunk, stride_u32)?,
-                    (chunk.range.row_end - chunk.range.row_start) as u32,
-                    stride_u32,
-                );
-                dispatches.push(bind_group);
-            } else {
-                let bind_group = self.bind_group(
-                    ctx,
-                    [
-                        &chunk.config,
-                        &chunk.offsets,
-                        &chunk.indices,
-                        &chunk.weights,
-                    ],
-                    source.clone(),
-                    self.destination(dst, chunk, stride_u32)?,
-                    (chunk.range.row_end - chunk.range.row_start) as u32,
-                    stride_u32,
-                );
-                dispatches.push(bind_group);
-            }
+                _ => source.clone(),
+            };
+            dispatches.push(self.bind_group(
+                ctx,
+                [
+                    &chunk.config,
+                    &chunk.offsets,
+                    &chunk.indices,
+                    &chunk.weights,
+                ],
+                chunk_source,
+                self.destination(dst, chunk, stride_u32)?,
+                (chunk.range.row_end - chunk.range.row_start) as u32,
+                stride_u32,
+            ));
         }
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("stencil_apply"),
@@ -530,17 +515,6 @@ impl StencilKernel {
             ],
         });
         (bind_group, gx, gy)
-    }
-}
-
-fn part(binding: u32, buffer: &wgpu::Buffer, offset: u64, size: u64) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-            buffer,
-            offset,
-            size: wgpu::BufferSize::new(size.max(WORD)),
-        }),
     }
 }
 

@@ -105,3 +105,8 @@ pub fn assert_close_to_twin(t: &RandomTable, src: &[f32], stride: usize, gpu: &[
         );
     }
 }
+
+/// The bit patterns of `v`, for comparisons that must be exact.
+pub fn bits(v: &[f32]) -> Vec<u32> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
