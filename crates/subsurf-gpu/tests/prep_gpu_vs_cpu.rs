@@ -154,7 +154,8 @@ fn one_sub_problem_is_the_mesh() {
     }
 }
 
-/// The closed test meshes and the torus refined twice (512 quads).
+/// The closed test meshes, the torus refined twice (512 quads), and the lefthanded mesh with
+/// two vertices used by no face (first and last).
 fn meshes_and_a_refined_torus() -> Vec<(String, Mesh)> {
     let mut out = meshes();
     let base = out[3].1.clone();
@@ -162,6 +163,19 @@ fn meshes_and_a_refined_torus() -> Vec<(String, Mesh)> {
     out.push((
         "catmark_torus level 2".to_string(),
         refiner.to_mesh(2, refiner.refine_positions(&base.positions)),
+    ));
+    let lh = &out[1].1;
+    let mut positions = vec![[9.0, 9.0, 9.0]];
+    positions.extend(&lh.positions);
+    positions.push([-9.0, 0.0, 0.0]);
+    let faces: Vec<Vec<u32>> = lh
+        .face_indices
+        .chunks_exact(4)
+        .map(|f| f.iter().map(|&v| v + 1).collect())
+        .collect();
+    out.push((
+        "catmark_lefthanded with unused vertices".to_string(),
+        Mesh::from_faces(positions, &faces),
     ));
     out
 }
@@ -353,27 +367,29 @@ fn chunked_passes_match_cpu() {
         max_workgroups_per_dimension: 2,
         max_stride: 6,
     };
-    let (name, mesh) = meshes_and_a_refined_torus().swap_remove(4);
-    let p = PrepPatches::<f32>::build(&mesh).unwrap();
-    let gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
-    let whole = GpuPrep::new(&ctx, &p.topology).unwrap();
-    assert!(gpu.chunks().chunks.len() > 2 && whole.chunks().chunks.len() == 1);
-    gpu.update(&ctx, &mesh.positions).unwrap();
-    whole.update(&ctx, &mesh.positions).unwrap();
-    let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
-    let (wvd, wpd) = whole.download_coefficients(&ctx).unwrap();
-    assert_eq!(bits(&vd), bits(&wvd), "{name}: vertex data");
-    assert_eq!(bits(&pd), bits(&wpd), "{name}: patch data");
-    let diag = bbox_diagonal(&mesh.positions);
-    for n in [2, 9] {
-        let grid = gpu.grid(&ctx, n).unwrap();
-        assert!(gpu.num_dispatches() > 2 && grid.num_dispatches() > 4);
-        gpu.eval_grid(&ctx, &grid).unwrap();
-        let t = grid.download(&ctx).unwrap();
-        compare_tessellation(&format!("{name} chunked n={n}"), &t, &p.tessellate(n), diag);
-        let wgrid = whole.grid(&ctx, n).unwrap();
-        whole.eval_grid(&ctx, &wgrid).unwrap();
-        let w = wgrid.download(&ctx).unwrap();
-        assert_same_bits(&format!("{name} n={n}, split vs whole"), &t, &w);
+    // The refined torus, and a mesh with vertices used by no face.
+    for (name, mesh) in meshes_and_a_refined_torus().split_off(4) {
+        let p = PrepPatches::<f32>::build(&mesh).unwrap();
+        let gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
+        let whole = GpuPrep::new(&ctx, &p.topology).unwrap();
+        assert!(gpu.chunks().chunks.len() > 2 && whole.chunks().chunks.len() == 1);
+        gpu.update(&ctx, &mesh.positions).unwrap();
+        whole.update(&ctx, &mesh.positions).unwrap();
+        let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
+        let (wvd, wpd) = whole.download_coefficients(&ctx).unwrap();
+        assert_eq!(bits(&vd), bits(&wvd), "{name}: vertex data");
+        assert_eq!(bits(&pd), bits(&wpd), "{name}: patch data");
+        let diag = bbox_diagonal(&mesh.positions);
+        for n in [2, 9] {
+            let grid = gpu.grid(&ctx, n).unwrap();
+            assert!(gpu.num_dispatches() > 2 && grid.num_dispatches() > 4);
+            gpu.eval_grid(&ctx, &grid).unwrap();
+            let t = grid.download(&ctx).unwrap();
+            compare_tessellation(&format!("{name} chunked n={n}"), &t, &p.tessellate(n), diag);
+            let wgrid = whole.grid(&ctx, n).unwrap();
+            whole.eval_grid(&ctx, &wgrid).unwrap();
+            let w = wgrid.download(&ctx).unwrap();
+            assert_same_bits(&format!("{name} n={n}, split vs whole"), &t, &w);
+        }
     }
 }
