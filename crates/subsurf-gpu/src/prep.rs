@@ -16,6 +16,7 @@
 //! buffers, the largest by far, are bound per dispatch from the aligned offset at or before
 //! its first item. Only the adapter's `max_buffer_size` bounds those two buffers.
 
+use crate::buffers::VertexBuffer;
 use crate::buffers::{read_back, storage_buffer_init};
 use crate::context::GpuContext;
 use crate::cpu::prep_eval_grid::{
@@ -25,12 +26,13 @@ use crate::cpu::prep_patch_pass::{prep_patch_pass, PatchInputs};
 use crate::cpu::prep_vertex_pass::prep_vertex_pass;
 use crate::error::{GpuError, Result};
 use crate::kernels::chunked_pass::{
-    empty_storage, pass, submit, upload_u32, Bind, Pass, PassLimits,
+    empty_storage, encode_passes, pass, submit, upload_u32, Bind, Pass, PassLimits,
 };
-use crate::kernels::stencil::ChunkLimits;
+use crate::kernels::stencil::{ChunkLimits, StencilKernel};
 use crate::prep_chunks::PrepChunks;
 use crate::shaders;
 use crate::shared::PrepConfig;
+use crate::table::StencilTable;
 use std::sync::Arc;
 use subsurf::prep::{PrepTopology, Tessellation};
 
@@ -185,7 +187,10 @@ pub(crate) fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
 /// One sub-problem's resident buffers.
 #[derive(Debug)]
 struct ChunkBuffers {
-    positions: wgpu::Buffer,
+    positions: VertexBuffer,
+    /// Gathers the local positions from a global position buffer on the GPU (unit weights;
+    /// only when there is more than one sub-problem).
+    gather: Option<StencilKernel>,
     vertex_data: wgpu::Buffer,
     patch_data: wgpu::Buffer,
     edge_corner: wgpu::Buffer,
@@ -283,12 +288,23 @@ impl GpuPrep {
         for t in &plan.chunks {
             let nv = t.config.num_vertices as usize;
             let b = ChunkBuffers {
-                positions: empty_storage(
-                    ctx,
-                    "prep positions",
-                    (3 * t.vertex_ids.len()) as u64 * WORD,
-                    true,
-                )?,
+                positions: VertexBuffer::zeroed(ctx, t.vertex_ids.len(), 3)?,
+                gather: if plan.chunks.len() > 1 {
+                    let n = t.vertex_ids.len() as u32;
+                    let offsets: Vec<u32> = (0..=n).collect();
+                    let weights = vec![1.0; n as usize];
+                    let table = StencilTable::new(&offsets, &t.vertex_ids, &weights)?;
+                    Some(StencilKernel::with_limits(
+                        ctx,
+                        &table,
+                        ChunkLimits {
+                            max_stride: 3,
+                            ..lim.limits
+                        },
+                    )?)
+                } else {
+                    None
+                },
                 vertex_data: empty_storage(
                     ctx,
                     "prep vertex data",
@@ -316,7 +332,7 @@ impl GpuPrep {
                 "main",
                 t.config_for(nv, 0),
                 &[
-                    Bind::Whole(1, &b.positions),
+                    Bind::Whole(1, b.positions.raw()),
                     Bind::Whole(2, &ring_offsets),
                     Bind::Whole(3, &ring_indices),
                     Bind::Whole(4, &consts),
@@ -372,18 +388,54 @@ impl GpuPrep {
             )));
         }
         if let [b] = &self.buffers[..] {
-            if nv > 0 {
-                ctx.queue
-                    .write_buffer(&b.positions, 0, bytemuck::cast_slice(positions));
-            }
+            b.positions.write(ctx, positions.as_flattened())?;
         } else {
             for (k, b) in self.buffers.iter().enumerate() {
                 let local = self.plan.gather_positions(k, positions);
-                ctx.queue
-                    .write_buffer(&b.positions, 0, bytemuck::cast_slice(&local));
+                b.positions.write(ctx, local.as_flattened())?;
             }
         }
         submit(ctx, "prep passes", &self.passes)
+    }
+
+    /// [`Self::update`] from positions already on the GPU (3 floats per vertex of the
+    /// p-rep; for example [`crate::GpuRefiner::output`] after refining a base mesh on the
+    /// GPU): copied, or gathered per sub-problem by unit-weight `stencil_apply`, then both
+    /// passes, in one submission. Nothing goes through the host.
+    pub fn update_from(&mut self, ctx: &GpuContext, positions: &VertexBuffer) -> Result<()> {
+        let nv = self.plan.num_vertices;
+        if positions.vertex_count() != nv || positions.stride() != 3 {
+            return Err(GpuError::BufferMismatch(format!(
+                "{} vertices of stride {} for a p-rep of {nv} vertices of stride 3",
+                positions.vertex_count(),
+                positions.stride()
+            )));
+        }
+        ctx.scoped(|| {
+            let mut encoder = ctx
+                .device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("prep passes"),
+                });
+            for b in &mut self.buffers {
+                match &b.gather {
+                    Some(gather) => {
+                        gather.encode(ctx, &mut encoder, positions, &mut b.positions)?
+                    }
+                    None if nv > 0 => encoder.copy_buffer_to_buffer(
+                        positions.raw(),
+                        0,
+                        b.positions.raw(),
+                        0,
+                        (3 * nv) as u64 * WORD,
+                    ),
+                    None => {}
+                }
+            }
+            encode_passes(&mut encoder, "prep passes", &self.passes);
+            ctx.queue.submit([encoder.finish()]);
+            Ok(())
+        })
     }
 
     /// Reads back `(vertex_data, patch_data)` in the global layouts of [`PrepConfig`].

@@ -393,3 +393,52 @@ fn chunked_passes_match_cpu() {
         }
     }
 }
+
+/// Positions refined on the GPU feed the p-rep without a trip through the host: the same
+/// bits as uploading them, whole and split into sub-problems.
+#[test]
+fn update_from_gpu_positions_matches_update() {
+    let Some(ctx) = context_or_skip("update_from_gpu_positions_matches_update") else {
+        return;
+    };
+    let (_, base) = meshes().swap_remove(1);
+    let refiner = subsurf::Refiner::new(Topology::new(&base).unwrap(), 1).unwrap();
+    let gpu_refiner = subsurf_gpu::GpuRefiner::new(&ctx, &refiner).unwrap();
+    gpu_refiner.update(&ctx, &base.positions).unwrap();
+    let refined = gpu_refiner.download(&ctx).unwrap();
+    let mesh = refiner.to_mesh(1, refined.clone());
+    let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
+    let split = ChunkLimits {
+        max_binding_bytes: 1 << 15,
+        ..ChunkLimits::from_context(&ctx)
+    };
+    for limits in [ChunkLimits::from_context(&ctx), split] {
+        let mut from_gpu = GpuPrep::with_limits(&ctx, &topo, limits).unwrap();
+        let uploaded = GpuPrep::with_limits(&ctx, &topo, limits).unwrap();
+        let chunks = from_gpu.chunks().chunks.len();
+        assert_eq!(chunks > 1, limits == split, "{chunks} sub-problems");
+        from_gpu.update_from(&ctx, gpu_refiner.output()).unwrap();
+        uploaded.update(&ctx, &refined).unwrap();
+        let (vd, pd) = from_gpu.download_coefficients(&ctx).unwrap();
+        let (wvd, wpd) = uploaded.download_coefficients(&ctx).unwrap();
+        assert_eq!(bits(&vd), bits(&wvd), "{chunks} sub-problems: vertex data");
+        assert_eq!(bits(&pd), bits(&wpd), "{chunks} sub-problems: patch data");
+        let (g, w) = (
+            from_gpu.grid(&ctx, 5).unwrap(),
+            uploaded.grid(&ctx, 5).unwrap(),
+        );
+        from_gpu.eval_grid(&ctx, &g).unwrap();
+        uploaded.eval_grid(&ctx, &w).unwrap();
+        assert_same_bits(
+            &format!("{chunks} sub-problems"),
+            &g.download(&ctx).unwrap(),
+            &w.download(&ctx).unwrap(),
+        );
+    }
+    let wrong = subsurf_gpu::VertexBuffer::zeroed(&ctx, topo.num_vertices, 4).unwrap();
+    let mut gpu = GpuPrep::new(&ctx, &topo).unwrap();
+    assert!(matches!(
+        gpu.update_from(&ctx, &wrong),
+        Err(subsurf_gpu::GpuError::BufferMismatch(_))
+    ));
+}

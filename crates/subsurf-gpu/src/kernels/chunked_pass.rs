@@ -216,20 +216,27 @@ pub(crate) fn submit(ctx: &GpuContext, label: &'static str, passes: &[Pass]) -> 
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(label) });
-        {
-            let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some(label),
-                timestamp_writes: None,
-            });
-            for p in passes {
-                cp.set_pipeline(&p.pipeline);
-                for (bind_group, (gx, gy)) in &p.dispatches {
-                    cp.set_bind_group(0, bind_group, &[]);
-                    cp.dispatch_workgroups(*gx, *gy, 1);
-                }
-            }
-        }
+        encode_passes(&mut encoder, label, passes);
         ctx.queue.submit([encoder.finish()]);
         Ok(())
     })
+}
+
+/// Records `passes`' dispatches, in order, into one compute pass of `encoder`.
+pub(crate) fn encode_passes(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &'static str,
+    passes: &[Pass],
+) {
+    let mut cp = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes: None,
+    });
+    for p in passes {
+        cp.set_pipeline(&p.pipeline);
+        for (bind_group, (gx, gy)) in &p.dispatches {
+            cp.set_bind_group(0, bind_group, &[]);
+            cp.dispatch_workgroups(*gx, *gy, 1);
+        }
+    }
 }
