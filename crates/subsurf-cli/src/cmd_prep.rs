@@ -40,14 +40,16 @@ pub struct PrepArgs {
 pub fn run(args: &PrepArgs) -> anyhow::Result<()> {
     let mut mesh = subsurf::io::read_path(&args.input)
         .with_context(|| format!("reading {}", args.input.display()))?;
-    if args.quadrangulate && mesh.face_counts.iter().any(|&c| c != 4) {
+    let needs_quads = args.quadrangulate && mesh.face_counts.iter().any(|&c| c != 4);
+    if args.backend == Backend::Gpu {
+        anyhow::ensure!(!args.f64, "--backend gpu computes in f32 only; drop --f64");
+        return convert_gpu(args, &mesh, needs_quads);
+    }
+    if needs_quads {
         mesh = quadrangulate(&mesh)?;
         eprintln!("quadrangulated: {} quads", mesh.num_faces());
     }
-    if args.backend == Backend::Gpu {
-        anyhow::ensure!(!args.f64, "--backend gpu computes in f32 only; drop --f64");
-        convert_gpu(args, &mesh)
-    } else if args.f64 {
+    if args.f64 {
         convert::<f64>(args, &mesh)
     } else {
         convert::<f32>(args, &mesh)
@@ -97,20 +99,41 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The GPU path: vertex and patch pass and the watertight tessellation as compute kernels.
-fn convert_gpu(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
+/// The GPU path: vertex and patch pass and the watertight tessellation as compute kernels;
+/// with `quadrangulate`, the Catmull-Clark step to quads runs on the GPU too and its
+/// positions feed the p-rep without leaving the GPU.
+fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Result<()> {
     use subsurf::prep::{bezier::face_bezier, npy, PrepTopology};
+    let ctx = gpu_context()?;
+    let mut refined = None;
+    let quads;
+    let mesh = if quadrangulate {
+        let refiner = subsurf::Refiner::new(subsurf::Topology::new(mesh)?, 1)?;
+        let gpu = subsurf_gpu::GpuRefiner::new(&ctx, &refiner)
+            .context("--backend gpu: uploading the quadrangulation step")?;
+        gpu.update(&ctx, &mesh.positions)
+            .context("--backend gpu: quadrangulating")?;
+        // The refined connectivity; its positions stay on the GPU.
+        quads = refiner.to_mesh(1, vec![[0.0; 3]; refiner.last().num_vertices()]);
+        eprintln!("quadrangulated (GPU): {} quads", quads.num_faces());
+        refined = Some(gpu);
+        &quads
+    } else {
+        mesh
+    };
     let topo = PrepTopology::new(&subsurf::Topology::new(mesh)?).with_context(|| {
         format!(
             "building the p-rep of {} (use --quadrangulate for non-quad input)",
             args.input.display()
         )
     })?;
-    let ctx = gpu_context()?;
-    let gpu =
+    let mut gpu =
         subsurf_gpu::GpuPrep::new(&ctx, &topo).context("--backend gpu: uploading the p-rep")?;
-    gpu.update(&ctx, &mesh.positions)
-        .context("--backend gpu: vertex and patch pass")?;
+    match &refined {
+        Some(r) => gpu.update_from(&ctx, r.output()),
+        None => gpu.update(&ctx, &mesh.positions),
+    }
+    .context("--backend gpu: vertex and patch pass")?;
     let nf = topo.num_faces();
     eprintln!(
         "p-rep (f32, GPU): {nf} patches, {} perturbed, max valence {}",

@@ -94,6 +94,19 @@ fn prep_gpu_matches_cpu() {
     compare_backends("prep", &input, &["--tess", "5"], "torus");
 }
 
+/// Non-quad input: the quadrangulation step runs on the GPU and feeds the p-rep there.
+#[test]
+fn prep_quadrangulated_on_the_gpu_matches_cpu() {
+    // A closed pyramid of four triangles and a quad.
+    let input = repo("testdata/shapes/catmark_pyramid.obj");
+    compare_backends(
+        "prep",
+        &input,
+        &["--quadrangulate", "--tess", "4"],
+        "pyramid",
+    );
+}
+
 #[test]
 fn refine_uvs_gpu_match_cpu() {
     let input = repo("testdata/shapes/catmark_fvar_bound1.obj");
