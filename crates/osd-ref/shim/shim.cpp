@@ -270,6 +270,20 @@ int osd_uniform_limit(const osd_uniform *u, const float *last_level, float *limi
     });
 }
 
+int osd_uniform_limit_fvar(const osd_uniform *u, const float *last_level, float *limit) {
+    return guarded([&] {
+        if (u->refiner->GetNumFVarChannels() < 1) {
+            set_error("mesh has no face-varying channel");
+            return -1;
+        }
+        Far::PrimvarRefiner pr(*u->refiner);
+        const Vec2 *src = reinterpret_cast<const Vec2 *>(last_level);
+        Vec2 *dst = reinterpret_cast<Vec2 *>(limit);
+        pr.LimitFaceVarying(src, dst, 0);
+        return 0;
+    });
+}
+
 osd_stencils *osd_stencils_new(const osd_uniform *u) {
     try {
         Far::StencilTableFactory::Options opts;

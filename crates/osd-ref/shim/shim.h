@@ -69,6 +69,8 @@ int osd_uniform_interpolate_last(osd_uniform *u, const float *coarse, float *las
 int osd_uniform_interpolate_fvar_all(const osd_uniform *u, const float *coarse, float *all);
 /* last_level: 3 * V(max level) floats, limit: same size. */
 int osd_uniform_limit(const osd_uniform *u, const float *last_level, float *limit);
+/* last_level: 2 * fvar values of the max level, limit: same size (LimitFaceVarying). */
+int osd_uniform_limit_fvar(const osd_uniform *u, const float *last_level, float *limit);
 
 /* ---- stencil table (last level only, intermediate levels factorized) --- */
 typedef struct osd_stencils osd_stencils;

@@ -96,6 +96,11 @@ extern "C" {
         last_level: *const c_float,
         limit: *mut c_float,
     ) -> c_int;
+    pub(crate) fn osd_uniform_limit_fvar(
+        u: *const Uniform,
+        last_level: *const c_float,
+        limit: *mut c_float,
+    ) -> c_int;
 
     pub(crate) fn osd_stencils_new(u: *const Uniform) -> *mut Stencils;
     pub(crate) fn osd_stencils_free(s: *mut Stencils);
@@ -189,6 +194,13 @@ mod stubs {
         -1
     }
     pub(crate) unsafe fn osd_uniform_limit(
+        _: *const Uniform,
+        _: *const c_float,
+        _: *mut c_float,
+    ) -> c_int {
+        -1
+    }
+    pub(crate) unsafe fn osd_uniform_limit_fvar(
         _: *const Uniform,
         _: *const c_float,
         _: *mut c_float,

@@ -179,6 +179,31 @@ impl OsdRefiner {
         Ok(out)
     }
 
+    /// Moves the last level's face-varying `values` (channel 0) to the limit surface
+    /// (`PrimvarRefiner::LimitFaceVarying`).
+    pub fn limit_fvar(&self, values: &[[f32; 2]]) -> Result<Vec<[f32; 2]>> {
+        let n = self
+            .num_fvar
+            .as_ref()
+            .ok_or_else(|| Error::Invalid("the mesh has no face-varying channel".into()))?
+            [self.max_level];
+        if values.len() != n || !self.full_last {
+            return Err(Error::Invalid(
+                "limit_fvar needs the last level's values and full topology".into(),
+            ));
+        }
+        let mut out = vec![[0.0f32; 2]; n];
+        // SAFETY: both buffers hold the last level's face-varying value count.
+        check(unsafe {
+            ffi::osd_uniform_limit_fvar(
+                self.raw.as_ptr(),
+                values.as_ptr().cast(),
+                out.as_mut_ptr().cast(),
+            )
+        })?;
+        Ok(out)
+    }
+
     /// Topology of one level, without positions.
     fn level_topology(&self, level: usize) -> Result<OsdLevel> {
         let s = self.level_sizes(level)?;

@@ -214,3 +214,61 @@ fn random_uv_topologies_match_opensubdiv() {
         failures.join("\n")
     );
 }
+
+/// Face-varying limit values (`PrimvarRefiner::LimitFaceVarying`) at levels 1-2 of every
+/// shape with UVs, in every mode, corner for corner.
+#[test]
+fn limit_uvs_match_opensubdiv() {
+    require_osd!();
+    let shapes = shapes_with_uvs();
+    let mut failures = Vec::new();
+    let mut worst = 0.0f32;
+    let mut moved = 0usize;
+    for (name, mesh) in &shapes {
+        for (&(mode, code), level) in MODES.iter().flat_map(|m| (1..=2).map(move |l| (m, l))) {
+            let fv = mesh.uvs.as_ref().expect("shape has UVs");
+            let extent = uv_extent(&fv.values);
+            let m = osd_mesh(mesh, code);
+            let osd_levels = osd_ref::refine_uniform(&m, level).unwrap();
+            let (values, indices) = osd_levels[level].uvs.clone().expect("OpenSubdiv UVs");
+            let osd = osd_ref::OsdRefiner::new(&m, level)
+                .and_then(|r| r.limit_fvar(&values))
+                .unwrap();
+            let refiner = Refiner::new(Topology::new(mesh).unwrap(), level).unwrap();
+            let fr = refiner
+                .fvar_refinement(&fv.indices, fv.values.len(), mode)
+                .unwrap();
+            let refined = fr.refine(&fv.values).unwrap();
+            let ours = refiner
+                .limit_face_varying(&fr, &refined[level].values)
+                .unwrap();
+            let ours_idx = &refined[level].indices;
+            assert_eq!(ours_idx.len(), indices.len(), "{name} {mode:?}");
+            for (c, (&i, &j)) in ours_idx.iter().zip(&indices).enumerate() {
+                let (a, b) = (ours[i as usize], osd[j as usize]);
+                let d = (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) / extent;
+                // The limit moved the value (the comparison is not of refined values).
+                let r = refined[level].values[i as usize];
+                moved += usize::from((a[0] - r[0]).abs().max((a[1] - r[1]).abs()) > 1e-6 * extent);
+                if d > 1e-5 {
+                    failures.push(format!(
+                        "{name} {mode:?} level {level} corner {c}: subsurf {a:?} OpenSubdiv {b:?} ({d:e})"
+                    ));
+                    break;
+                }
+                worst = worst.max(d);
+            }
+        }
+    }
+    eprintln!(
+        "{} shapes x 6 modes x levels 1-2: worst {worst:.2e} of the UV extent, {moved} corners moved by the limit",
+        shapes.len()
+    );
+    assert!(moved > 1000, "the limit left the values in place");
+    assert!(
+        failures.is_empty(),
+        "{} differ:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}

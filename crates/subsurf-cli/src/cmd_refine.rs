@@ -17,7 +17,8 @@ pub struct RefineArgs {
     /// Output file (.obj or .ply, by extension).
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Move the last level's vertices to their limit positions.
+    /// Move the last level's vertices to their limit positions, and its UVs to their
+    /// face-varying limit (OpenSubdiv `Limit` and `LimitFaceVarying`).
     #[arg(long)]
     pub limit: bool,
     /// Face-varying (UV) interpolation; default: the mesh's own option (linear unless tagged).
@@ -93,18 +94,16 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         let mode = a
             .uv_interp
             .map_or(mesh.options.fvar_interpolation, Into::into);
-        let last = match &ctx {
-            None => refiner
-                .refine_uvs(fv, mode)?
-                .pop()
-                .expect("base level present"),
-            Some(ctx) => {
-                let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-                subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
-                    .and_then(|mut g| g.refine(ctx, &fv.values))
-                    .context("--backend gpu: refining UVs on the GPU")?
-            }
+        let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
+        let mut last = match &ctx {
+            None => fvar.refine(&fv.values)?.pop().expect("base level present"),
+            Some(ctx) => subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
+                .and_then(|mut g| g.refine(ctx, &fv.values))
+                .context("--backend gpu: refining UVs on the GPU")?,
         };
+        if a.limit {
+            last.values = refiner.limit_face_varying(&fvar, &last.values)?;
+        }
         let corner: Vec<[f32; 2]> = last
             .indices
             .iter()

@@ -308,3 +308,43 @@ fn linear_mode_equals_per_corner_linear_refinement() {
         }
     }
 }
+
+/// Without seams, face-varying data takes the vertex limit masks: UVs equal to the
+/// positions' x and y limit exactly as the positions do. In the linear mode they stay put.
+#[test]
+fn seamless_uvs_limit_like_positions() {
+    let mesh = torus(5, 7);
+    let values: Vec<[f32; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
+    let uvs = FaceVarying {
+        values,
+        indices: mesh.face_indices.clone(),
+    };
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    let limit = refiner.limit(&refiner.refine_positions(&mesh.positions));
+    let t = &refiner.levels[2];
+    for mode in MODES {
+        let fvar = refiner
+            .fvar_refinement(&uvs.indices, uvs.values.len(), mode)
+            .unwrap();
+        let last = fvar.refine(&uvs.values).unwrap().pop().unwrap();
+        let got = refiner.limit_face_varying(&fvar, &last.values).unwrap();
+        for (c, &x) in last.indices.iter().enumerate() {
+            let (g, r) = (got[x as usize], last.values[x as usize]);
+            let want = if mode == Mode::All {
+                r
+            } else {
+                let p = limit[t.face_verts[c] as usize];
+                [p[0], p[1]]
+            };
+            assert!(
+                close(g, want),
+                "{mode:?} corner {c}: {g:?} vs {want:?} (refined {r:?})"
+            );
+        }
+    }
+    // The limit needs the last level's values.
+    let fvar = refiner
+        .fvar_refinement(&uvs.indices, uvs.values.len(), Mode::None)
+        .unwrap();
+    assert!(refiner.limit_face_varying(&fvar, &uvs.values).is_err());
+}
