@@ -340,6 +340,27 @@ impl GpuLimit {
             ctx.queue
                 .write_buffer(self.points.raw(), 0, bytemuck::cast_slice(positions));
         }
+        self.rebuild(ctx, None)
+    }
+
+    /// [`Self::update`] from base positions already on the GPU (3 floats per base vertex;
+    /// for example deformed by a compute pass of the caller's): copied into the point array
+    /// in the same submission, nothing goes through the host.
+    pub fn update_from(&mut self, ctx: &GpuContext, positions: &VertexBuffer) -> Result<()> {
+        if positions.vertex_count() != self.num_base || positions.stride() != 3 {
+            return Err(GpuError::BufferMismatch(format!(
+                "{} vertices of stride {} for a patch table of {} base vertices of stride 3",
+                positions.vertex_count(),
+                positions.stride(),
+                self.num_base
+            )));
+        }
+        self.rebuild(ctx, Some(positions))
+    }
+
+    /// Records the refinement, copies and end-cap points (after copying `base` into the
+    /// point array, if given) and submits them.
+    fn rebuild(&mut self, ctx: &GpuContext, base: Option<&VertexBuffer>) -> Result<()> {
         let points = &self.points;
         let level_offsets = &self.level_offsets;
         let levels = &mut self.levels;
@@ -350,6 +371,10 @@ impl GpuLimit {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("limit update"),
                 });
+            if let Some(base) = base.filter(|b| b.len_floats() > 0) {
+                let bytes = base.len_floats() as u64 * WORD;
+                encoder.copy_buffer_to_buffer(base.raw(), 0, points.raw(), 0, bytes);
+            }
             for (d, (gather, refiner)) in levels.iter_mut().enumerate() {
                 gather.encode(ctx, &mut encoder, points, refiner.input_mut())?;
                 refiner.encode(&mut encoder);

@@ -363,3 +363,45 @@ fn bad_requests_are_errors() {
     assert!(gpu.samples(&ctx, &[(0, f32::NAN, 0.5)], false).is_err());
     assert!(gpu.tessellation(&ctx, &table, 1).is_err());
 }
+
+/// Base positions produced on the GPU (here by a `GpuRefiner`) feed the limit surface
+/// without a trip through the host: the same point array and samples, bit for bit, as
+/// uploading them.
+#[test]
+fn update_from_gpu_positions_matches_update() {
+    let Some(ctx) = context_or_skip("update_from_gpu_positions_matches_update") else {
+        return;
+    };
+    let (base, _) = load("catmark_gregory_test1", 1);
+    let refiner = subsurf::Refiner::new(Topology::new(&base).unwrap(), 1).unwrap();
+    let gpu_refiner = subsurf_gpu::GpuRefiner::new(&ctx, &refiner).unwrap();
+    gpu_refiner.update(&ctx, &base.positions).unwrap();
+    let refined = gpu_refiner.download(&ctx).unwrap();
+    let mesh = refiner.to_mesh(1, refined.clone());
+    let options = PatchOptions {
+        isolation_level: 3,
+        ..Default::default()
+    };
+    let table = PatchTable::build(&Topology::new(&mesh).unwrap(), &options).unwrap();
+    let mut from_gpu = GpuLimit::new(&ctx, &table).unwrap();
+    let mut uploaded = GpuLimit::new(&ctx, &table).unwrap();
+    from_gpu.update_from(&ctx, gpu_refiner.output()).unwrap();
+    uploaded.update(&ctx, &refined).unwrap();
+    let (a, b) = (
+        from_gpu.download_points(&ctx).unwrap(),
+        uploaded.download_points(&ctx).unwrap(),
+    );
+    assert_eq!(bits(a.as_flattened()), bits(b.as_flattened()));
+    let (ta, tb) = (
+        from_gpu.tessellation(&ctx, &table, 5).unwrap(),
+        uploaded.tessellation(&ctx, &table, 5).unwrap(),
+    );
+    from_gpu.eval(&ctx, &ta.samples).unwrap();
+    uploaded.eval(&ctx, &tb.samples).unwrap();
+    assert_eq!(
+        bits(&ta.samples.download(&ctx).unwrap()),
+        bits(&tb.samples.download(&ctx).unwrap())
+    );
+    let wrong = subsurf_gpu::VertexBuffer::zeroed(&ctx, refined.len() + 1, 3).unwrap();
+    assert!(from_gpu.update_from(&ctx, &wrong).is_err());
+}
