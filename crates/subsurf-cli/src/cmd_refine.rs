@@ -3,7 +3,7 @@
 use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::refine::{level_mesh, refine_once};
+use subsurf::refine::{fvar_limit_stencils, level_mesh, limit_stencils, refine_once, StencilTable};
 use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
@@ -80,30 +80,58 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         return finish(a, &mesh, out);
     }
     let refiner = Refiner::with_options(topo, a.level, options)?;
-    let mut positions = match &ctx {
+    let positions = match &ctx {
+        None if a.limit => refiner.limit(&refiner.refine_positions(&mesh.positions)),
         None => refiner.refine_positions(&mesh.positions),
-        Some(ctx) => subsurf_gpu::GpuRefiner::new(ctx, &refiner)
-            .and_then(|g| g.refine(ctx, &mesh.positions))
-            .context("--backend gpu: refining on the GPU")?,
+        // Refinement and the limit step on the GPU, read back once.
+        Some(ctx) => {
+            let gpu = subsurf_gpu::GpuRefiner::new(ctx, &refiner)
+                .context("--backend gpu: refining on the GPU")?;
+            gpu.update(ctx, &mesh.positions)
+                .context("--backend gpu: refining on the GPU")?;
+            let flat = if a.limit {
+                let table = limit_stencils(refiner.last());
+                apply_on_gpu(ctx, &table, gpu.output())
+            } else {
+                gpu.output().download(ctx)
+            }
+            .context("--backend gpu: refining on the GPU")?;
+            flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+        }
     };
-    if a.limit {
-        positions = refiner.limit(&positions);
-    }
     let mut out = refiner.to_mesh(a.level, positions);
     if let Some(fv) = &mesh.uvs {
         let mode = a
             .uv_interp
             .map_or(mesh.options.fvar_interpolation, Into::into);
         let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-        let mut last = match &ctx {
-            None => fvar.refine(&fv.values)?.pop().expect("base level present"),
-            Some(ctx) => subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
-                .and_then(|mut g| g.refine(ctx, &fv.values))
-                .context("--backend gpu: refining UVs on the GPU")?,
+        let last = match &ctx {
+            None => {
+                let mut last = fvar.refine(&fv.values)?.pop().expect("base level present");
+                if a.limit {
+                    last.values = refiner.limit_face_varying(&fvar, &last.values)?;
+                }
+                last
+            }
+            Some(ctx) => {
+                let mut gpu = subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
+                    .context("--backend gpu: refining UVs on the GPU")?;
+                gpu.update(ctx, &fv.values)
+                    .context("--backend gpu: refining UVs on the GPU")?;
+                let levels = &fvar.levels;
+                let flat = if a.limit {
+                    let table = fvar_limit_stencils(refiner.last(), &levels[levels.len() - 1]);
+                    apply_on_gpu(ctx, &table, gpu.output())
+                } else {
+                    gpu.output().download(ctx)
+                }
+                .context("--backend gpu: refining UVs on the GPU")?;
+                FaceVarying {
+                    values: flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
+                    indices: levels[levels.len() - 1].corner_values.clone(),
+                }
+            }
         };
-        if a.limit {
-            last.values = refiner.limit_face_varying(&fvar, &last.values)?;
-        }
         let corner: Vec<[f32; 2]> = last
             .indices
             .iter()
@@ -121,6 +149,19 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         out.uvs = Some(FaceVarying { values, indices });
     }
     finish(a, &mesh, out)
+}
+
+/// `table` applied on the GPU to `src` (the limit step), read back.
+fn apply_on_gpu(
+    ctx: &subsurf_gpu::GpuContext,
+    table: &StencilTable,
+    src: &subsurf_gpu::VertexBuffer,
+) -> Result<Vec<f32>, subsurf_gpu::GpuError> {
+    let kernel =
+        subsurf_gpu::StencilKernel::new(ctx, &table.offsets, &table.indices, &table.weights)?;
+    let mut dst = subsurf_gpu::VertexBuffer::zeroed(ctx, table.num_rows(), src.stride())?;
+    kernel.apply(ctx, src, &mut dst)?;
+    dst.download(ctx)
 }
 
 /// Writes the refined mesh and reports what was made.

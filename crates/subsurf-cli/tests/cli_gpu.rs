@@ -107,32 +107,52 @@ fn prep_quadrangulated_on_the_gpu_matches_cpu() {
     );
 }
 
+/// Positions and UVs, refined (and with `--limit` moved to the limit) on both backends.
 #[test]
 fn refine_uvs_gpu_match_cpu() {
     let input = repo("testdata/shapes/catmark_fvar_bound1.obj");
-    let (g, c) = (tmp("uv_gpu.obj"), tmp("uv_cpu.obj"));
-    if !run_both("refine", &input, &["--level", "2"], &g, &c) {
-        return;
-    }
-    assert_same_mesh(&g, &c);
-    let (gu, cu) = (
-        subsurf::io::read_path(&g)
-            .unwrap()
-            .uvs
-            .expect("GPU output has UVs"),
-        subsurf::io::read_path(&c)
-            .unwrap()
-            .uvs
-            .expect("CPU output has UVs"),
-    );
-    assert_eq!(gu.indices, cu.indices);
-    assert_eq!(gu.values.len(), cu.values.len());
-    for (a, b) in gu.values.iter().zip(&cu.values) {
-        assert!(
-            (a[0] - b[0]).abs() <= 1e-5 && (a[1] - b[1]).abs() <= 1e-5,
-            "{a:?} vs {b:?}"
+    for (extra, stem) in [
+        (&["--level", "2"][..], "uv"),
+        (&["--level", "2", "--limit"][..], "uv_limit"),
+    ] {
+        let (g, c) = (
+            tmp(&format!("{stem}_gpu.obj")),
+            tmp(&format!("{stem}_cpu.obj")),
         );
+        if !run_both("refine", &input, extra, &g, &c) {
+            return;
+        }
+        assert_same_mesh(&g, &c);
+        let (gu, cu) = (
+            subsurf::io::read_path(&g)
+                .unwrap()
+                .uvs
+                .expect("GPU output has UVs"),
+            subsurf::io::read_path(&c)
+                .unwrap()
+                .uvs
+                .expect("CPU output has UVs"),
+        );
+        assert_eq!(gu.indices, cu.indices);
+        assert_eq!(gu.values.len(), cu.values.len());
+        for (a, b) in gu.values.iter().zip(&cu.values) {
+            assert!(
+                (a[0] - b[0]).abs() <= 1e-5 && (a[1] - b[1]).abs() <= 1e-5,
+                "{stem}: {a:?} vs {b:?}"
+            );
+        }
     }
+}
+
+/// `--limit` on the GPU: refinement and the limit step both there.
+#[test]
+fn refine_limit_gpu_matches_cpu() {
+    compare_backends(
+        "refine",
+        &repo("examples/car.obj"),
+        &["--level", "2", "--limit"],
+        "car_limit",
+    );
 }
 
 #[test]
