@@ -94,6 +94,17 @@ impl PrepChunks {
         if 3 * 16 * (t.num_faces() + t.perturbed_faces.len()) >= u32::MAX as usize {
             return Err(too_big("patch coefficients"));
         }
+        let whole = Load {
+            local: t.num_vertices as u64,
+            core: t.num_vertices as u64,
+            sectors: s as u64,
+            faces: t.num_faces() as u64,
+            perturbed: t.perturbed_faces.len() as u64,
+            edges: t.num_edges() as u64,
+        };
+        if whole.largest_binding() <= max_binding_bytes {
+            return Ok(Self::whole(t));
+        }
         let ranges = partition(t, max_binding_bytes)?;
         let mut owner = vec![0u32; t.num_vertices];
         let mut seen = vec![false; t.num_vertices];
@@ -122,6 +133,43 @@ impl PrepChunks {
             face_edges: t.face_edges.clone(),
             num_perturbed: t.perturbed_faces.len(),
         })
+    }
+
+    /// The whole mesh as one sub-problem, numbered as the mesh.
+    fn whole(t: &PrepTopology) -> Self {
+        let iota = |n: usize| (0..n as u32).collect::<Vec<_>>();
+        let tables = PrepTables {
+            config: PrepConfig {
+                num_vertices: t.num_vertices as u32,
+                num_sectors: t.sector_vertex.len() as u32,
+                num_faces: t.num_faces() as u32,
+                num_edges: t.num_edges() as u32,
+                owned_vertices: t.num_vertices as u32,
+                ..Default::default()
+            },
+            ring_offsets: t.ring_offsets.clone(),
+            ring_indices: t.ring_indices.clone(),
+            valence_consts: valence_consts(t.max_valence.max(3)),
+            face_verts: t.face_verts.clone(),
+            corner_sector: t.corner_sector.clone(),
+            edge_corner: t.edge_corner.clone(),
+            h_index: t.h_index.clone(),
+            num_perturbed: t.perturbed_faces.len(),
+            vertex_ids: iota(t.num_vertices),
+            edge_ids: iota(t.num_edges()),
+            first_face: 0,
+            first_h: 0,
+        };
+        Self {
+            chunks: vec![tables],
+            num_vertices: t.num_vertices,
+            num_edges: t.num_edges(),
+            num_faces: t.num_faces(),
+            ring_offsets: t.ring_offsets.clone(),
+            face_verts: t.face_verts.clone(),
+            face_edges: t.face_edges.clone(),
+            num_perturbed: t.perturbed_faces.len(),
+        }
     }
 
     /// Positions of sub-problem `k`'s local vertices (core, then halo).

@@ -97,7 +97,15 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
     let mut cpu =
         PrepPatches::<f32>::from_prep_topology(topo.clone(), &mesh.positions).expect("p-rep");
     let nf = topo.num_faces();
+    let t0 = Instant::now();
     let gpu = ctx.map(|c| GpuPrep::new(c, &topo).expect("GPU p-rep upload"));
+    if let Some(g) = &gpu {
+        println!(
+            "prep {nf} faces | GpuPrep::new (tables, {} sub-problems, upload) | {:9.3} ms",
+            g.chunks().chunks.len(),
+            ms(t0.elapsed())
+        );
+    }
     for &n in sizes {
         let mut grid = Grid::default();
         let t_grid = median(|| {
