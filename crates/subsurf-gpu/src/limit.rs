@@ -48,13 +48,15 @@
 //! | 17 | 403,717 | 16.9 ms (23.9 M/s) | 38.5 ms (10.5 M/s) | 28.5 ms (14.2 M/s) | 31.0 ms | 22.7 ms (17.8 M/s) |
 //! | 33 | 1,613,797 | 91.7 ms (17.6 M/s) | 152 ms (10.6 M/s) | 98.2 ms (16.4 M/s) | 152 ms | 93.7 ms (17.2 M/s) |
 //!
-//! Compacted inputs (the same run with `with_limits` bindings of 256 KiB, so the car's
-//! tables split into 8 chunks at N = 5 and 12 at N = 9; a busier machine than the table
-//! above, best of two runs of same-run medians): `eval` 5.6 ms against 3.4 ms whole at N = 5
-//! and 12.0 ms against 11.6 ms at N = 9, `update` + `eval` 16.1 ms against 11.2 ms and
-//! 20.1 ms against 20.6 ms: the per-frame gather of the chunks' points costs about 2 ms at
-//! N = 5 and is lost in the noise at N = 9.
-//!
+//! Compacted inputs (the same example with `with_limits` bindings of 256 KiB, so the car's
+//! tables split into 8 chunks at N = 5 and 12 at N = 9; two runs): `eval` 15–20 ms against
+//! 2.2 ms whole at N = 5 and 21 ms against 8.5 ms at N = 9, `update` + `eval` 22 ms against
+//! 7.3 ms and 28–35 ms against 13.7 ms. At these forced limits the 800 KB point array itself
+//! exceeds a binding, so the chunks' per-frame point gathers, the level gathers and the
+//! end-cap stencils first gather their sources window by window ([`crate::gather`]); at the
+//! real 128 MiB that happens only past about 11 million points. (Before sources were split,
+//! the same forced run bound the point array whole: `eval` 5.6 ms at N = 5.)
+
 //! The software rasterizer runs the kernel as 8-wide SIMD lanes on the same two cores, so
 //! evaluation alone is about as fast as the rayon CPU path; `update` (gathers and refinement
 //! of the sparse levels, end-cap stencils, copies) adds 3–5 ms. One gather loop serves every

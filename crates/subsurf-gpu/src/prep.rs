@@ -3,9 +3,9 @@
 //! [`subsurf::prep::PrepTopology`], each with its CPU twin in [`crate::cpu`].
 //!
 //! [`GpuPrep::new`] uploads the connectivity once; per frame [`GpuPrep::update`] writes the
-//! positions and runs both passes, and [`GpuPrep::eval_grid`] fills a [`GpuGrid`] (vertex
-//! buffer of position + normal, index buffer of triangles) allocated once per `n`. All data
-//! stays on the GPU until read back.
+//! positions (or [`GpuPrep::update_from`] takes them from a GPU buffer) and runs both passes,
+//! and [`GpuPrep::eval_grid`] fills a [`GpuGrid`] (vertex buffer of position + normal, index
+//! buffer of triangles) allocated once per `n`. All data stays on the GPU until read back.
 //!
 //! Nothing is bound past the adapter's `max_storage_buffer_binding_size`. The mesh is split
 //! into sub-problems ([`crate::prep_chunks`]: ranges of faces with their corners' rings,
@@ -16,8 +16,7 @@
 //! buffers, the largest by far, are bound per dispatch from the aligned offset at or before
 //! its first item. Only the adapter's `max_buffer_size` bounds those two buffers.
 
-use crate::buffers::VertexBuffer;
-use crate::buffers::{read_back, storage_buffer_init};
+use crate::buffers::{read_back, storage_buffer_init, VertexBuffer};
 use crate::context::GpuContext;
 use crate::cpu::prep_eval_grid::{
     grid_params, prep_eval_grid_invocation, prep_grid_indices_invocation, EvalInputs,

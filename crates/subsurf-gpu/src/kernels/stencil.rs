@@ -207,18 +207,11 @@ impl StencilKernel {
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         let b = limits.max_binding_bytes;
         let max_stride = limits.max_stride as u64;
-        // Gather the source when the vertices the table reads exceed one binding; chunks are
-        // then planned so that their inputs (at most one per entry) fill at most half of the
-        // scratch binding, leaving the rest for the alignment padding between gathers.
+        // Gather the source when the vertices the table reads exceed one binding. Windows are
+        // as large as a binding allows; chunks are then planned so that their inputs (at most
+        // one per entry) plus the alignment padding of one gather per window fill at most the
+        // scratch binding.
         let gathered = table.min_source_vertices() as u64 * max_stride * WORD > b;
-        let plan_limits = if gathered {
-            ChunkLimits {
-                max_binding_bytes: b / (2 * max_stride),
-                ..limits
-            }
-        } else {
-            limits
-        };
         let window = (b / (max_stride * WORD)) as usize / row_align * row_align;
         if gathered && window == 0 {
             return Err(GpuError::TooLarge {
@@ -227,6 +220,16 @@ impl StencilKernel {
                 limit: b,
             });
         }
+        let plan_limits = if gathered {
+            let windows = table.min_source_vertices().div_ceil(window) as u64;
+            let padding = windows * row_align as u64 * max_stride * WORD;
+            ChunkLimits {
+                max_binding_bytes: b.saturating_sub(padding) / max_stride,
+                ..limits
+            }
+        } else {
+            limits
+        };
         let ranges = plan_chunks(table, &plan_limits, row_align)?;
         let offsets = table.offsets();
         let mut chunks = Vec::with_capacity(ranges.len());
