@@ -234,3 +234,25 @@ fn gpu_errors_are_clear() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("f32 only"));
 }
+
+/// `subsurf bench --backend gpu` times the GPU refiner on the adapter it names.
+#[test]
+fn bench_runs_on_the_gpu() {
+    let input = repo("testdata/shapes/catmark_cube.obj");
+    let Some(out) = common::run_gpu(bin().arg("bench").arg(&input).args([
+        "--level",
+        "3",
+        "--runs",
+        "2",
+        "--backend",
+        "gpu",
+    ])) else {
+        return;
+    };
+    let text = String::from_utf8_lossy(&out.stdout);
+    // 6 quads refined 3 times: 386 vertices.
+    assert!(
+        text.contains("386 vertices on") && text.contains("with read-back"),
+        "{text}"
+    );
+}
