@@ -123,7 +123,12 @@ impl PrepChunks {
             .enumerate()
             .map(|(k, r)| build_chunk(t, k as u32, r.clone(), &owner, &mut local_id, &consts))
             .collect();
-        Ok(Self {
+        Ok(Self::with_chunks(t, chunks))
+    }
+
+    /// `chunks` with the global tables of `t` their outputs are placed by.
+    fn with_chunks(t: &PrepTopology, chunks: Vec<PrepTables>) -> Self {
+        Self {
             chunks,
             num_vertices: t.num_vertices,
             num_edges: t.num_edges(),
@@ -132,7 +137,7 @@ impl PrepChunks {
             face_verts: t.face_verts.clone(),
             face_edges: t.face_edges.clone(),
             num_perturbed: t.perturbed_faces.len(),
-        })
+        }
     }
 
     /// The whole mesh as one sub-problem, numbered as the mesh.
@@ -160,16 +165,7 @@ impl PrepChunks {
             first_face: 0,
             first_h: 0,
         };
-        Self {
-            chunks: vec![tables],
-            num_vertices: t.num_vertices,
-            num_edges: t.num_edges(),
-            num_faces: t.num_faces(),
-            ring_offsets: t.ring_offsets.clone(),
-            face_verts: t.face_verts.clone(),
-            face_edges: t.face_edges.clone(),
-            num_perturbed: t.perturbed_faces.len(),
-        }
+        Self::with_chunks(t, vec![tables])
     }
 
     /// Positions of sub-problem `k`'s local vertices (core, then halo).
