@@ -2,7 +2,9 @@
 //!
 //! The table mimics one Catmull-Clark refinement level: 4 destination vertices per source
 //! vertex, 4 to 9 entries per row referencing nearby source vertices. The GPU timing covers
-//! the dispatch and waiting for it (data stays on the GPU, no read-back).
+//! the dispatch and waiting for it (data stays on the GPU, no read-back). `gathered source`
+//! runs the same table with 256 KiB bindings, so that its source (750 KiB at 250,000 rows) is
+//! gathered per chunk, window by window: the cost of a source past one binding.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use subsurf_gpu::cpu::stencil_apply::stencil_apply;
@@ -78,12 +80,29 @@ fn bench(c: &mut Criterion) {
             let src_buf = VertexBuffer::upload(ctx, &src, stride).expect("source uploads");
             let mut dst_buf = VertexBuffer::zeroed(ctx, rows, stride).expect("destination");
             let name = format!("gpu ({})", ctx.adapter_info().name);
-            group.bench_with_input(BenchmarkId::new(name, rows), &rows, |b, _| {
+            group.bench_with_input(BenchmarkId::new(name.clone(), rows), &rows, |b, _| {
                 b.iter(|| {
                     kernel.apply(ctx, &src_buf, &mut dst_buf).expect("apply");
                     ctx.wait_idle().expect("wait");
                 })
             });
+            let table = subsurf_gpu::StencilTable::new(&t.offsets, &t.indices, &t.weights)
+                .expect("valid table");
+            let limits = subsurf_gpu::ChunkLimits {
+                max_binding_bytes: 256 << 10,
+                max_stride: stride,
+                ..subsurf_gpu::ChunkLimits::from_context(ctx)
+            };
+            let split = StencilKernel::with_limits(ctx, &table, limits).expect("table uploads");
+            if split.gathers_source() {
+                let name = format!("{name}, gathered source");
+                group.bench_with_input(BenchmarkId::new(name, rows), &rows, |b, _| {
+                    b.iter(|| {
+                        split.apply(ctx, &src_buf, &mut dst_buf).expect("apply");
+                        ctx.wait_idle().expect("wait");
+                    })
+                });
+            }
         }
     }
     group.finish();
