@@ -271,8 +271,11 @@ impl Refiner {
     /// `fvar.levels[max_level]`, as [`FVarRefinement::refine`] gives them) to the limit
     /// surface, as OpenSubdiv's `PrimvarRefiner::LimitFaceVarying` ([`fvar_limit_stencils`];
     /// tested against it at levels 1–2 on every regression shape with UVs in all six modes).
-    /// Refine at least once: on the unrefined level a value shared by several vertices (as
-    /// OBJ files often share texture coordinates) gets only one of their limits.
+    /// On the unrefined level the two differ where value numbers are not vertex sibling slots:
+    /// OpenSubdiv 3.5 looks a value's tags up by its value index in the per-slot tag array
+    /// (`FVarLevel::getValueTag`), which is the value's own slot only after refinement; and a
+    /// value shared by several vertices (as OBJ files often share texture coordinates) can
+    /// hold only one of their limits. Refine at least once for a well-defined limit.
     pub fn limit_face_varying<const N: usize>(
         &self,
         fvar: &FVarRefinement,
