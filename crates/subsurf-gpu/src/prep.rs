@@ -3,7 +3,8 @@
 //! [`subsurf::prep::PrepTopology`], each with its CPU twin in [`crate::cpu`].
 //!
 //! [`GpuPrep::new`] uploads the connectivity once; per frame [`GpuPrep::update`] writes the
-//! positions (or [`GpuPrep::update_from`] takes them from a GPU buffer) and runs both passes,
+//! positions (or [`GpuPrep::update_from`] takes them from a GPU buffer; a split mesh gathers
+//! each sub-problem's vertices from them on the GPU) and runs both passes,
 //! and [`GpuPrep::eval_grid`] fills a [`GpuGrid`] (vertex buffer of position + normal, index
 //! buffer of triangles) allocated once per `n`. All data stays on the GPU until read back.
 //!
@@ -183,12 +184,45 @@ pub(crate) fn unpack(vertices: &[f32], indices: &[u32]) -> Tessellation<f32> {
     }
 }
 
+/// Fills every sub-problem's positions from `positions` (all vertices: copied for one
+/// sub-problem, gathered for several) and runs `passes`, in one submission.
+fn record_update(
+    ctx: &GpuContext,
+    buffers: &mut [ChunkBuffers],
+    passes: &[Pass],
+    positions: &VertexBuffer,
+) -> Result<()> {
+    ctx.scoped(|| {
+        let mut encoder = ctx
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                label: Some("prep passes"),
+            });
+        for b in buffers {
+            match &b.gather {
+                Some(gather) => gather.encode(ctx, &mut encoder, positions, &mut b.positions)?,
+                None if positions.len_floats() > 0 => encoder.copy_buffer_to_buffer(
+                    positions.raw(),
+                    0,
+                    b.positions.raw(),
+                    0,
+                    positions.len_floats() as u64 * WORD,
+                ),
+                None => {}
+            }
+        }
+        encode_passes(&mut encoder, "prep passes", passes);
+        ctx.queue.submit([encoder.finish()]);
+        Ok(())
+    })
+}
+
 /// One sub-problem's resident buffers.
 #[derive(Debug)]
 struct ChunkBuffers {
     positions: VertexBuffer,
-    /// Gathers the local positions from a global position buffer on the GPU (unit weights;
-    /// only when there is more than one sub-problem).
+    /// Gathers the local positions from the positions of every vertex on the GPU (unit
+    /// weights; only when there is more than one sub-problem).
     gather: Option<StencilKernel>,
     vertex_data: wgpu::Buffer,
     patch_data: wgpu::Buffer,
@@ -201,6 +235,9 @@ struct ChunkBuffers {
 #[derive(Debug)]
 pub struct GpuPrep {
     plan: Arc<PrepChunks>,
+    /// The positions of every vertex, written by [`Self::update`] when there is more than
+    /// one sub-problem (each sub-problem gathers its local vertices from it on the GPU).
+    input: Option<VertexBuffer>,
     buffers: Vec<ChunkBuffers>,
     /// Vertex then patch pass of every sub-problem.
     passes: Vec<Pass>,
@@ -357,8 +394,14 @@ impl GpuPrep {
             )?);
             buffers.push(b);
         }
+        let input = if plan.chunks.len() > 1 {
+            Some(VertexBuffer::zeroed(ctx, plan.num_vertices, 3)?)
+        } else {
+            None
+        };
         Ok(Self {
             plan,
+            input,
             buffers,
             passes,
             lim,
@@ -376,9 +419,10 @@ impl GpuPrep {
         &self.plan
     }
 
-    /// Writes `positions` (each sub-problem's local vertices, gathered on the CPU when
-    /// there is more than one) and submits the vertex and patch passes.
-    pub fn update(&self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
+    /// Writes `positions` and submits the vertex and patch passes (with more than one
+    /// sub-problem, after each sub-problem's gather of its local vertices, as
+    /// [`Self::update_from`] does).
+    pub fn update(&mut self, ctx: &GpuContext, positions: &[[f32; 3]]) -> Result<()> {
         let nv = self.plan.num_vertices;
         if positions.len() != nv {
             return Err(GpuError::BufferMismatch(format!(
@@ -386,15 +430,18 @@ impl GpuPrep {
                 positions.len()
             )));
         }
-        if let [b] = &self.buffers[..] {
-            b.positions.write(ctx, positions.as_flattened())?;
-        } else {
-            for (k, b) in self.buffers.iter().enumerate() {
-                let local = self.plan.gather_positions(k, positions);
-                b.positions.write(ctx, local.as_flattened())?;
+        match &self.input {
+            Some(input) => {
+                input.write(ctx, positions.as_flattened())?;
+                record_update(ctx, &mut self.buffers, &self.passes, input)
+            }
+            None => {
+                self.buffers[0]
+                    .positions
+                    .write(ctx, positions.as_flattened())?;
+                submit(ctx, "prep passes", &self.passes)
             }
         }
-        submit(ctx, "prep passes", &self.passes)
     }
 
     /// [`Self::update`] from positions already on the GPU (3 floats per vertex of the
@@ -410,31 +457,7 @@ impl GpuPrep {
                 positions.stride()
             )));
         }
-        ctx.scoped(|| {
-            let mut encoder = ctx
-                .device
-                .create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("prep passes"),
-                });
-            for b in &mut self.buffers {
-                match &b.gather {
-                    Some(gather) => {
-                        gather.encode(ctx, &mut encoder, positions, &mut b.positions)?
-                    }
-                    None if nv > 0 => encoder.copy_buffer_to_buffer(
-                        positions.raw(),
-                        0,
-                        b.positions.raw(),
-                        0,
-                        (3 * nv) as u64 * WORD,
-                    ),
-                    None => {}
-                }
-            }
-            encode_passes(&mut encoder, "prep passes", &self.passes);
-            ctx.queue.submit([encoder.finish()]);
-            Ok(())
-        })
+        record_update(ctx, &mut self.buffers, &self.passes, positions)
     }
 
     /// Reads back `(vertex_data, patch_data)` in the global layouts of [`PrepConfig`].

@@ -291,7 +291,7 @@ fn gpu_coefficients_match_cpu() {
     };
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
+        let mut gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
         gpu.update(&ctx, &mesh.positions).unwrap();
         let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
         let (want_vd, want_pd) = cpu_flat(&p);
@@ -310,7 +310,7 @@ fn gpu_tessellation_is_watertight_and_matches_cpu() {
     };
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
+        let mut gpu = GpuPrep::new(&ctx, &p.topology).unwrap();
         gpu.update(&ctx, &mesh.positions).unwrap();
         let diag = bbox_diagonal(&mesh.positions);
         for n in [2, 3, 5, 9] {
@@ -329,7 +329,7 @@ fn gpu_update_follows_a_deformation() {
     };
     let (_, mesh) = meshes().swap_remove(1);
     let topo = PrepTopology::new(&Topology::new(&mesh).unwrap()).unwrap();
-    let gpu = GpuPrep::new(&ctx, &topo).unwrap();
+    let mut gpu = GpuPrep::new(&ctx, &topo).unwrap();
     let grid = gpu.grid(&ctx, 4).unwrap();
     for frame in 1..3 {
         let t = frame as f32;
@@ -370,8 +370,8 @@ fn chunked_passes_match_cpu() {
     // The refined torus, and a mesh with vertices used by no face.
     for (name, mesh) in meshes_and_a_refined_torus().split_off(4) {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
-        let whole = GpuPrep::new(&ctx, &p.topology).unwrap();
+        let mut gpu = GpuPrep::with_limits(&ctx, &p.topology, limits).unwrap();
+        let mut whole = GpuPrep::new(&ctx, &p.topology).unwrap();
         assert!(gpu.chunks().chunks.len() > 2 && whole.chunks().chunks.len() == 1);
         gpu.update(&ctx, &mesh.positions).unwrap();
         whole.update(&ctx, &mesh.positions).unwrap();
@@ -414,7 +414,7 @@ fn update_from_gpu_positions_matches_update() {
     };
     for limits in [ChunkLimits::from_context(&ctx), split] {
         let mut from_gpu = GpuPrep::with_limits(&ctx, &topo, limits).unwrap();
-        let uploaded = GpuPrep::with_limits(&ctx, &topo, limits).unwrap();
+        let mut uploaded = GpuPrep::with_limits(&ctx, &topo, limits).unwrap();
         let chunks = from_gpu.chunks().chunks.len();
         assert_eq!(chunks > 1, limits == split, "{chunks} sub-problems");
         from_gpu.update_from(&ctx, gpu_refiner.output()).unwrap();

@@ -98,7 +98,7 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
         PrepPatches::<f32>::from_prep_topology(topo.clone(), &mesh.positions).expect("p-rep");
     let nf = topo.num_faces();
     let t0 = Instant::now();
-    let gpu = ctx.map(|c| GpuPrep::new(c, &topo).expect("GPU p-rep upload"));
+    let mut gpu = ctx.map(|c| GpuPrep::new(c, &topo).expect("GPU p-rep upload"));
     if let Some(g) = &gpu {
         println!(
             "prep {nf} faces | GpuPrep::new (tables, {} sub-problems, upload) | {:9.3} ms",
@@ -124,7 +124,7 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
                 1.0 / t.as_secs_f64()
             );
         }
-        if let (Some(ctx), Some(gpu)) = (ctx, &gpu) {
+        if let (Some(ctx), Some(gpu)) = (ctx, gpu.as_mut()) {
             let grid = gpu.grid(ctx, n).expect("grid buffers");
             let t = median(|| {
                 gpu.update(ctx, &mesh.positions).expect("update");
