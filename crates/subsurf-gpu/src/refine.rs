@@ -19,7 +19,7 @@ use crate::cpu::refine_level::{level_dispatches, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::gather::plan_gather;
 use crate::kernels::stencil::{plan_chunks, ChunkLimits};
-use crate::kernels::{grid_2d, part};
+use crate::kernels::{grid_2d, part, whole};
 use crate::shaders;
 use crate::shared::RefineConfig;
 use crate::table::StencilTable;
@@ -389,13 +389,6 @@ impl GpuRefiner {
         })?;
         let flat = buf.download(ctx)?;
         Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
-    }
-}
-
-fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: buffer.as_entire_binding(),
     }
 }
 

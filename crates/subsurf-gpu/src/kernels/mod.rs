@@ -5,6 +5,14 @@
 pub(crate) mod chunked_pass;
 pub mod stencil;
 
+/// Binding `binding` to the whole of `buffer`.
+pub(crate) fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry {
+        binding,
+        resource: buffer.as_entire_binding(),
+    }
+}
+
 /// Binding `binding` to `size` bytes of `buffer` from `offset` (at least one word: empty
 /// bindings are invalid).
 pub(crate) fn part(

@@ -20,7 +20,7 @@ use crate::context::GpuContext;
 use crate::cpu::stencil_apply::WORKGROUP_SIZE;
 use crate::error::{GpuError, Result};
 use crate::gather::plan_gather;
-use crate::kernels::{grid_2d, part};
+use crate::kernels::{grid_2d, part, whole};
 use crate::shaders;
 use crate::shared::StencilConfig;
 use crate::table::StencilTable;
@@ -122,47 +122,55 @@ pub fn plan_chunks(
     Ok(chunks)
 }
 
+/// One dispatch's table on the GPU (`offsets` rebased to 0) and its uniform.
+#[derive(Debug)]
+struct Rows {
+    rows: u32,
+    offsets: wgpu::Buffer,
+    indices: wgpu::Buffer,
+    weights: wgpu::Buffer,
+    config: wgpu::Buffer,
+}
+
+impl Rows {
+    fn upload(ctx: &GpuContext, offsets: &[u32], indices: &[u32], weights: &[f32]) -> Result<Self> {
+        Ok(Rows {
+            rows: (offsets.len() - 1) as u32,
+            offsets: storage_buffer_init(ctx, "stencil offsets", bytemuck::cast_slice(offsets))?,
+            indices: storage_buffer_init(ctx, "stencil indices", bytemuck::cast_slice(indices))?,
+            weights: storage_buffer_init(ctx, "stencil weights", bytemuck::cast_slice(weights))?,
+            config: ctx.scoped(|| {
+                Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("stencil config"),
+                    size: std::mem::size_of::<StencilConfig>() as u64,
+                    usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                }))
+            })?,
+        })
+    }
+
+    /// Unit-weight rows copying source vertex `rel[i]` to row `i` (a gather, exact).
+    fn gather(ctx: &GpuContext, rel: &[u32]) -> Result<Self> {
+        let offsets: Vec<u32> = (0..=rel.len() as u32).collect();
+        Self::upload(ctx, &offsets, rel, &vec![1.0; rel.len()])
+    }
+}
+
 #[derive(Debug)]
 struct Chunk {
     range: ChunkRange,
-    offsets: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    weights: wgpu::Buffer,
-    config: wgpu::Buffer,
+    table: Rows,
     /// Gathered source: the chunk's scratch rows and its gathers.
-    gathered: Option<(usize, Vec<GatherDispatch>)>,
+    gathered: Option<(usize, Vec<SourceGather>)>,
 }
 
-/// Unit-weight rows copying `rows` source vertices of window `window` to scratch rows
-/// `first..`.
+/// Rows copying source vertices of window `window` to scratch rows `first..`.
 #[derive(Debug)]
-struct GatherDispatch {
+struct SourceGather {
     window: usize,
     first: usize,
-    rows: usize,
-    offsets: wgpu::Buffer,
-    indices: wgpu::Buffer,
-    weights: wgpu::Buffer,
-    config: wgpu::Buffer,
-}
-
-fn config_buffer(ctx: &GpuContext) -> Result<wgpu::Buffer> {
-    ctx.scoped(|| {
-        Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("stencil config"),
-            size: std::mem::size_of::<StencilConfig>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        }))
-    })
-}
-
-fn upload<T: bytemuck::Pod>(
-    ctx: &GpuContext,
-    label: &'static str,
-    data: &[T],
-) -> Result<wgpu::Buffer> {
-    storage_buffer_init(ctx, label, bytemuck::cast_slice(data))
+    rows: Rows,
 }
 
 /// A stencil table uploaded to the GPU with the `stencil_apply` pipeline.
@@ -257,21 +265,12 @@ impl StencilKernel {
                 indices = plan.local;
                 let gathers = plan
                     .gathers
-                    .into_iter()
+                    .iter()
                     .map(|g| {
-                        let n = g.rel.len();
-                        Ok(GatherDispatch {
+                        Ok(SourceGather {
                             window: g.window,
                             first: g.first as usize,
-                            rows: n,
-                            offsets: upload(
-                                ctx,
-                                "gather offsets",
-                                &(0..=n as u32).collect::<Vec<_>>(),
-                            )?,
-                            indices: upload(ctx, "gather indices", &g.rel)?,
-                            weights: upload(ctx, "gather weights", &vec![1.0f32; n])?,
-                            config: config_buffer(ctx)?,
+                            rows: Rows::gather(ctx, &g.rel)?,
                         })
                     })
                     .collect::<Result<Vec<_>>>()?;
@@ -281,10 +280,7 @@ impl StencilKernel {
             };
             chunks.push(Chunk {
                 range,
-                offsets: upload(ctx, "stencil offsets", &local)?,
-                indices: upload(ctx, "stencil indices", &indices)?,
-                weights: upload(ctx, "stencil weights", &table.weights()[e0..e1])?,
-                config: config_buffer(ctx)?,
+                table: Rows::upload(ctx, &local, &indices, &table.weights()[e0..e1])?,
                 gathered,
             });
         }
@@ -409,27 +405,29 @@ impl StencilKernel {
             }
             _ => {}
         }
-        let source = wgpu::BindGroupEntry {
-            binding: 4,
-            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                buffer: src.raw(),
-                offset: 0,
-                size: wgpu::BufferSize::new(src_bytes.max(WORD)),
-            }),
-        };
+        let source = part(4, src.raw(), 0, src_bytes);
         let mut dispatches = Vec::new();
         for chunk in &self.chunks {
             let chunk_source = match (&chunk.gathered, self.source_window, &self.scratch) {
                 (Some((inputs, gathers)), Some(window), Some(scratch)) => {
-                    for g in gathers {
-                        let first = g.window * window;
-                        let n = window.min(src.vertex_count() - first);
+                    for SourceGather {
+                        window: w,
+                        first,
+                        rows,
+                    } in gathers
+                    {
+                        let from = w * window;
+                        let n = window.min(src.vertex_count() - from);
                         dispatches.push(self.bind_group(
                             ctx,
-                            [&g.config, &g.offsets, &g.indices, &g.weights],
-                            part(4, src.raw(), vertex_bytes(first), vertex_bytes(n)),
-                            part(5, scratch, vertex_bytes(g.first), vertex_bytes(g.rows)),
-                            g.rows as u32,
+                            rows,
+                            part(4, src.raw(), vertex_bytes(from), vertex_bytes(n)),
+                            part(
+                                5,
+                                scratch,
+                                vertex_bytes(*first),
+                                vertex_bytes(rows.rows as usize),
+                            ),
                             stride_u32,
                         ));
                     }
@@ -439,15 +437,9 @@ impl StencilKernel {
             };
             dispatches.push(self.bind_group(
                 ctx,
-                [
-                    &chunk.config,
-                    &chunk.offsets,
-                    &chunk.indices,
-                    &chunk.weights,
-                ],
+                &chunk.table,
                 chunk_source,
                 self.destination(dst, chunk, stride_u32)?,
-                (chunk.range.row_end - chunk.range.row_start) as u32,
                 stride_u32,
             ));
         }
@@ -483,48 +475,41 @@ impl StencilKernel {
         Ok(part(5, dst.raw(), offset, dst_bytes))
     }
 
-    /// Writes the uniform of a dispatch of `rows` rows and returns its bind group and grid.
+    /// Writes the uniform of a dispatch of `rows` and returns its bind group and grid.
     fn bind_group(
         &self,
         ctx: &GpuContext,
-        [config, offsets, indices, weights]: [&wgpu::Buffer; 4],
+        rows: &Rows,
         source: wgpu::BindGroupEntry<'_>,
         destination: wgpu::BindGroupEntry<'_>,
-        rows: u32,
         stride: u32,
     ) -> (wgpu::BindGroup, u32, u32) {
         let (gx, gy) = grid_2d(
-            rows,
+            rows.rows,
             WORKGROUP_SIZE,
             self.limits.max_workgroups_per_dimension,
         );
         let c = StencilConfig {
-            row_count: rows,
+            row_count: rows.rows,
             stride,
             grid_width: gx * WORKGROUP_SIZE,
             _pad: 0,
         };
-        ctx.queue.write_buffer(config, 0, bytemuck::bytes_of(&c));
+        ctx.queue
+            .write_buffer(&rows.config, 0, bytemuck::bytes_of(&c));
         let bind_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("stencil_apply"),
             layout: &self.layout,
             entries: &[
-                whole(0, config),
-                whole(1, offsets),
-                whole(2, indices),
-                whole(3, weights),
+                whole(0, &rows.config),
+                whole(1, &rows.offsets),
+                whole(2, &rows.indices),
+                whole(3, &rows.weights),
                 source,
                 destination,
             ],
         });
         (bind_group, gx, gy)
-    }
-}
-
-fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry {
-        binding,
-        resource: buffer.as_entire_binding(),
     }
 }
 
