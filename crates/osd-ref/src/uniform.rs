@@ -159,24 +159,11 @@ impl OsdRefiner {
 
     /// Moves the last level's `points` to the limit surface (`PrimvarRefiner::Limit`).
     pub fn limit(&self, points: &[[f32; 3]]) -> Result<Vec<[f32; 3]>> {
-        if points.len() != self.num_vertices(self.max_level) {
-            return Err(Error::Invalid("limit needs the last level's points".into()));
-        }
-        if !self.full_last {
-            return Err(Error::Invalid(
-                "limit needs the last level's full topology".into(),
-            ));
-        }
-        let mut out = vec![[0.0f32; 3]; points.len()];
-        // SAFETY: both buffers hold the last level's vertex count.
-        check(unsafe {
-            ffi::osd_uniform_limit(
-                self.raw.as_ptr(),
-                points.as_ptr().cast(),
-                out.as_mut_ptr().cast(),
-            )
-        })?;
-        Ok(out)
+        let n = self.num_vertices(self.max_level);
+        // SAFETY: both buffers hold the last level's vertex count (checked by `last_level`).
+        self.last_level("limit", points, n, |src, dst| unsafe {
+            ffi::osd_uniform_limit(self.raw.as_ptr(), src, dst)
+        })
     }
 
     /// Moves the last level's face-varying `values` (channel 0) to the limit surface
@@ -187,20 +174,34 @@ impl OsdRefiner {
             .as_ref()
             .ok_or_else(|| Error::Invalid("the mesh has no face-varying channel".into()))?
             [self.max_level];
-        if values.len() != n || !self.full_last {
-            return Err(Error::Invalid(
-                "limit_fvar needs the last level's values and full topology".into(),
-            ));
+        // SAFETY: both buffers hold the last level's value count (checked by `last_level`).
+        self.last_level("limit_fvar", values, n, |src, dst| unsafe {
+            ffi::osd_uniform_limit_fvar(self.raw.as_ptr(), src, dst)
+        })
+    }
+
+    /// `run(input, output)` over `n` elements of the last level, which must be refined with
+    /// its full topology.
+    fn last_level<const N: usize>(
+        &self,
+        what: &str,
+        input: &[[f32; N]],
+        n: usize,
+        run: impl FnOnce(*const f32, *mut f32) -> i32,
+    ) -> Result<Vec<[f32; N]>> {
+        if input.len() != n {
+            return Err(Error::Invalid(format!(
+                "{what} needs the last level's {n} elements, got {}",
+                input.len()
+            )));
         }
-        let mut out = vec![[0.0f32; 2]; n];
-        // SAFETY: both buffers hold the last level's face-varying value count.
-        check(unsafe {
-            ffi::osd_uniform_limit_fvar(
-                self.raw.as_ptr(),
-                values.as_ptr().cast(),
-                out.as_mut_ptr().cast(),
-            )
-        })?;
+        if !self.full_last {
+            return Err(Error::Invalid(format!(
+                "{what} needs the last level's full topology"
+            )));
+        }
+        let mut out = vec![[0.0f32; N]; n];
+        check(run(input.as_ptr().cast(), out.as_mut_ptr().cast()))?;
         Ok(out)
     }
 

@@ -56,7 +56,7 @@
 //! end-cap stencils first gather their sources window by window ([`crate::gather`]); at the
 //! real 128 MiB that happens only past about 11 million points. (Before sources were split,
 //! the same forced run bound the point array whole: `eval` 5.6 ms at N = 5.)
-
+//!
 //! The software rasterizer runs the kernel as 8-wide SIMD lanes on the same two cores, so
 //! evaluation alone is about as fast as the rayon CPU path; `update` (gathers and refinement
 //! of the sparse levels, end-cap stencils, copies) adds 3–5 ms. One gather loop serves every

@@ -27,6 +27,13 @@ fn ms(d: Duration) -> f64 {
     d.as_secs_f64() * 1e3
 }
 
+/// Largest coordinate difference between `got` and `want`, relative to the bounding-box
+/// diagonal of `mesh`.
+fn max_rel_diff(got: &[[f32; 3]], want: &[[f32; 3]], mesh: &Mesh) -> f32 {
+    let d = got.iter().zip(want).flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs())).fold(0.0f32, f32::max);
+    d / subsurf::mesh::bbox_diagonal(&mesh.positions)
+}
+
 /// `binding`: a binding limit forced below the adapter's (the split paths), or `None`.
 fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, level: usize, binding: Option<u64>) {
     let refiner = match Refiner::new(Topology::new(mesh).expect("topology"), level) {
@@ -82,12 +89,11 @@ fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh,
         // Levels past one binding are refined from gathered inputs: check them.
         let got = gpu.refine(ctx, &mesh.positions).expect("refine");
         let want = refiner.refine_positions(&mesh.positions);
-        let diff = got.iter().zip(&want).flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs())).fold(0.0f32, f32::max);
         println!(
             "refine {name} L{level} | last level {} MiB > {} MiB binding | GPU vs CPU max |dp| = {:.2e} of the diagonal",
             last_bytes >> 20,
             binding >> 20,
-            diff / subsurf::mesh::bbox_diagonal(&mesh.positions)
+            max_rel_diff(&got, &want, mesh)
         );
     }
 }
@@ -145,10 +151,9 @@ fn prep_case(ctx: Option<&GpuContext>, adapter: &str, mesh: &Mesh, sizes: &[usiz
                 cpu.update(&mesh.positions).expect("update");
                 let want = cpu.tessellate(n);
                 assert_eq!(got.triangles, want.triangles, "GPU index buffer differs");
-                let diff = got.positions.iter().zip(&want.positions).flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs())).fold(0.0f32, f32::max);
                 println!(
                     "prep {nf} faces N={n:2} | GPU vs CPU: triangles identical, max |dp| = {:.2e} of the diagonal",
-                    diff / subsurf::mesh::bbox_diagonal(&mesh.positions)
+                    max_rel_diff(&got.positions, &want.positions, mesh)
                 );
             }
         }
