@@ -3,7 +3,7 @@
 use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::refine::{fvar_limit_stencils, level_mesh, limit_stencils, refine_once, StencilTable};
+use subsurf::refine::{level_mesh, refine_once, StencilTable};
 use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
@@ -90,8 +90,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
             gpu.update(ctx, &mesh.positions)
                 .context("--backend gpu: refining on the GPU")?;
             let flat = if a.limit {
-                let table = limit_stencils(refiner.last());
-                apply_on_gpu(ctx, &table, gpu.output())
+                apply_on_gpu(ctx, refiner.limit_table(), gpu.output())
             } else {
                 gpu.output().download(ctx)
             }
@@ -120,8 +119,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
                     .context("--backend gpu: refining UVs on the GPU")?;
                 let levels = &fvar.levels;
                 let flat = if a.limit {
-                    let table = fvar_limit_stencils(refiner.last(), &levels[levels.len() - 1]);
-                    apply_on_gpu(ctx, &table, gpu.output())
+                    apply_on_gpu(ctx, &refiner.fvar_limit_table(&fvar)?, gpu.output())
                 } else {
                     gpu.output().download(ctx)
                 }

@@ -256,15 +256,39 @@ impl Refiner {
         acc
     }
 
+    /// The stencils moving the last level's vertices to the limit surface ([`limit_stencils`]),
+    /// built on first use and kept: an animated mesh applies them every frame, on the CPU
+    /// ([`Self::limit`]) or uploaded to a GPU.
+    pub fn limit_table(&self) -> &StencilTable {
+        self.limit_table
+            .get_or_init(|| limit_stencils(&self.full_level(self.max_level())))
+    }
+
     /// Moves last-level vertex data to the limit surface.
     pub fn limit<const N: usize>(&self, last: &[[f32; N]]) -> Vec<[f32; N]> {
-        // Built once: an animated mesh calls this every frame.
-        let t = self
-            .limit_table
-            .get_or_init(|| limit_stencils(&self.full_level(self.max_level())));
+        let t = self.limit_table();
         let mut out = vec![[0.0; N]; t.num_rows()];
         t.apply(last, &mut out);
         out
+    }
+
+    /// The stencils moving the last level's face-varying values of `fvar` (a refinement of
+    /// this refiner's levels) to the limit surface ([`fvar_limit_stencils`]).
+    pub fn fvar_limit_table(&self, fvar: &FVarRefinement) -> Result<StencilTable> {
+        if fvar.levels.len() != self.levels.len() {
+            return Err(MeshError::FaceVarying {
+                reason: format!(
+                    "a face-varying refinement of {} levels for a refiner of {}",
+                    fvar.levels.len(),
+                    self.levels.len()
+                ),
+            }
+            .into());
+        }
+        Ok(fvar_limit_stencils(
+            &self.full_level(self.max_level()),
+            &fvar.levels[fvar.levels.len() - 1],
+        ))
     }
 
     /// Moves the last level's face-varying values (`last`, one per value of
@@ -281,20 +305,17 @@ impl Refiner {
         fvar: &FVarRefinement,
         last: &[[f32; N]],
     ) -> Result<Vec<[f32; N]>> {
-        let fv = &fvar.levels[fvar.levels.len() - 1];
-        if fvar.levels.len() != self.levels.len() || last.len() != fv.num_values {
+        let t = self.fvar_limit_table(fvar)?;
+        if last.len() != t.num_rows() {
             return Err(MeshError::FaceVarying {
                 reason: format!(
-                    "{} values for a last level of {} face-varying values ({} of {} levels)",
+                    "{} values for a last level of {} face-varying values",
                     last.len(),
-                    fv.num_values,
-                    fvar.levels.len(),
-                    self.levels.len()
+                    t.num_rows()
                 ),
             }
             .into());
         }
-        let t = fvar_limit_stencils(&self.full_level(self.max_level()), fv);
         let mut out = vec![[0.0; N]; t.num_rows()];
         t.apply(last, &mut out);
         Ok(out)
