@@ -13,71 +13,69 @@
 //!   but seam creases still take the crease limit (as OpenSubdiv does).
 
 use super::fvar_topology::{FVarTopology, V_CREASE, V_MISMATCH};
+use super::masks::build_rows;
 use super::stencil::StencilTable;
 use crate::options::{FVarLinearInterpolation, Scheme};
-use crate::rules::catmark::{limit_mask, VertexMask};
+use crate::rules::catmark::limit_mask;
 use crate::topology::Topology;
 
 /// Stencils moving each face-varying value of level `t` (value topology `fv`) to the limit.
 pub fn fvar_limit_stencils(t: &Topology, fv: &FVarTopology) -> StencilTable {
     let n = fv.num_values;
-    // Identity unless a vertex below says otherwise.
-    let mut rows: Vec<Vec<(u32, f32)>> = (0..n as u32).map(|x| vec![(x, 1.0)]).collect();
     let linear = fv.mode == FVarLinearInterpolation::All;
     let bilinear = t.options.scheme == Scheme::Bilinear;
-    let mut mask = VertexMask::default();
-    let (mut sharpness, mut edge_values) = (Vec::new(), Vec::new());
+    // The vertex and sibling each value is computed at: after refinement every value has
+    // one; a base value several vertices share takes the last one's (OpenSubdiv's loop).
+    let mut at = vec![(u32::MAX, 0u32); n];
     for v in 0..t.num_vertices() {
-        let edges = t.vertex_edges(v);
-        let values = fv.vertex_values(v);
-        if linear || edges.is_empty() || values.is_empty() {
-            continue;
+        for (sib, &x) in fv.vertex_values(v).iter().enumerate() {
+            at[x as usize] = (v as u32, sib as u32);
+        }
+    }
+    build_rows(n, n, |x, b, s| {
+        let (v, sib) = at[x];
+        let (v, sib) = (v as usize, sib as usize);
+        let keep = linear || v == u32::MAX as usize || t.vertex_edges(v).is_empty();
+        if keep {
+            b.add(x as u32, 1.0);
+            return;
         }
         let tags = fv.vertex_value_tags(v);
-        if tags[0] & V_MISMATCH == 0 && bilinear {
-            continue;
-        } else if tags[0] & V_MISMATCH == 0 {
-            sharpness.clear();
-            sharpness.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
-            let faces = t.vertex_faces(v);
-            limit_mask(t.vert_rule[v], &sharpness, faces.len(), &mut mask);
-            let mut row = Vec::with_capacity(1 + mask.edges.len() + mask.faces.len());
-            for (&w, (&f, &k)) in mask
-                .faces
-                .iter()
-                .zip(faces.iter().zip(t.vertex_faces_local(v)))
-            {
-                let (s, m) = (t.face_offsets[f as usize] as usize, t.face_size(f as usize));
-                row.push((fv.corner_values[s + (k as usize + 2) % m], w));
+        if tags[0] & V_MISMATCH != 0 {
+            if tags[sib] & V_CREASE != 0 {
+                let [e0, e1] = fv.crease_end_values(t, v, sib);
+                b.add(e0, 1.0 / 6.0);
+                b.add(e1, 1.0 / 6.0);
+                b.add(x as u32, 2.0 / 3.0);
+            } else {
+                b.add(x as u32, 1.0);
             }
-            if !mask.edges.is_empty() {
-                fv.vertex_edge_values(t, v, &mut edge_values);
-                row.extend(edge_values.iter().copied().zip(mask.edges.iter().copied()));
-            }
-            row.push((values[0], mask.vertex));
-            rows[values[0] as usize] = row;
-        } else {
-            for (sib, (&x, &tag)) in values.iter().zip(tags).enumerate() {
-                if tag & V_CREASE != 0 {
-                    let [a, b] = fv.crease_end_values(t, v, sib);
-                    rows[x as usize] = vec![(a, 1.0 / 6.0), (b, 1.0 / 6.0), (x, 2.0 / 3.0)];
-                }
+            return;
+        }
+        if bilinear {
+            b.add(x as u32, 1.0);
+            return;
+        }
+        let edges = t.vertex_edges(v);
+        s.pe.clear();
+        s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
+        let faces = t.vertex_faces(v);
+        limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
+        for (&w, (&f, &k)) in s
+            .mask
+            .faces
+            .iter()
+            .zip(faces.iter().zip(t.vertex_faces_local(v)))
+        {
+            let (o, m) = (t.face_offsets[f as usize] as usize, t.face_size(f as usize));
+            b.add(fv.corner_values[o + (k as usize + 2) % m], w);
+        }
+        if !s.mask.edges.is_empty() {
+            fv.vertex_edge_values(t, v, &mut s.values);
+            for (&e, &w) in s.values.iter().zip(&s.mask.edges) {
+                b.add(e, w);
             }
         }
-    }
-    let mut table = StencilTable {
-        offsets: Vec::with_capacity(n + 1),
-        indices: Vec::new(),
-        weights: Vec::new(),
-        num_inputs: n,
-    };
-    table.offsets.push(0);
-    for row in rows {
-        for (x, w) in row {
-            table.indices.push(x);
-            table.weights.push(w);
-        }
-        table.offsets.push(table.indices.len() as u32);
-    }
-    table
+        b.add(x as u32, s.mask.vertex);
+    })
 }

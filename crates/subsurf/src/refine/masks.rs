@@ -61,10 +61,12 @@ where
 /// Per-thread scratch buffers.
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
-    mask: VertexMask,
+    pub(crate) mask: VertexMask,
     child_mask: VertexMask,
-    pe: Vec<f32>,
+    pub(crate) pe: Vec<f32>,
     ce: Vec<f32>,
+    /// Face-varying values around a vertex.
+    pub(crate) values: Vec<u32>,
 }
 
 impl Scratch {
