@@ -530,8 +530,7 @@ impl GpuPrep {
             )?);
             let slots = upload_u32(ctx, "prep corner slots", &slots)?;
             let face_cells = t.config.num_faces as usize * (n - 1) * (n - 1);
-            let m = n - 2;
-            let face_slot_base = start + region - t.config.num_faces as usize * m * m;
+            let face_slot_base = plan.face_slot_base(k, start, n);
             index.push(pass(
                 ctx,
                 &self.lim,

@@ -190,6 +190,13 @@ impl PrepChunks {
         c.owned_vertices as usize + c.num_edges as usize * m + c.num_faces as usize * m * m
     }
 
+    /// Slot of sub-problem `k`'s first face-interior sample, given its region's `start`
+    /// (after its owned vertices' and owned edges' samples).
+    pub fn face_slot_base(&self, k: usize, start: usize, n: usize) -> usize {
+        let c = &self.chunks[k].config;
+        start + c.owned_vertices as usize + c.num_edges as usize * (n - 2)
+    }
+
     /// First slot of each sub-problem's region.
     pub fn region_starts(&self, n: usize) -> Vec<usize> {
         let mut start = 0;
@@ -341,9 +348,8 @@ impl PrepChunks {
             let (vd, pd) = ch.run_passes_cpu(&self.gather_positions(k, positions));
             let region = &mut vertices[6 * starts[k]..6 * (starts[k] + self.region_len(k, n))];
             ch.eval_region_cpu(n, &vd, &pd, region);
-            let base = starts[k] + self.region_len(k, n)
-                - ch.config.num_faces as usize * (n - 2) * (n - 2);
-            indices.extend(ch.indices_cpu(n, &slots[k], base as u32));
+            let base = self.face_slot_base(k, starts[k], n) as u32;
+            indices.extend(ch.indices_cpu(n, &slots[k], base));
         }
         self.to_canonical(n, crate::prep::unpack(&vertices, &indices))
     }
