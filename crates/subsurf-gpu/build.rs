@@ -54,7 +54,7 @@ fn main() {
             Some(size) => {
                 let _ = writeln!(
                     consts,
-                    "pub const {}_WORKGROUP_SIZE: u32 = {size};",
+                    "/// `WORKGROUP_SIZE` of `shaders/{name}.wgsl`.\npub const {}_WORKGROUP_SIZE: u32 = {size};",
                     name.to_uppercase()
                 );
             }

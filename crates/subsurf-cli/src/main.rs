@@ -1,5 +1,6 @@
 //! The `subsurf` command-line tool.
 
+#![warn(missing_docs)]
 mod cmd_bench;
 mod cmd_compare;
 mod cmd_eval;

@@ -35,6 +35,7 @@
 //! bytes of patch coefficients per face), a refined level from about 11 million vertices,
 //! a limit point array from about 11 million points.
 
+#![warn(missing_docs)]
 pub mod buffers;
 pub mod context;
 pub mod cpu;

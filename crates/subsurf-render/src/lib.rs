@@ -21,6 +21,7 @@
 //! Without a GPU, Mesa's software Vulkan driver (lavapipe, `mesa-vulkan-drivers`) works
 //! with `WGPU_BACKEND=vulkan`.
 
+#![warn(missing_docs)]
 mod camera;
 mod device;
 mod gpu_pass;

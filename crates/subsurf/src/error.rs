@@ -6,43 +6,84 @@
 pub enum MeshError {
     /// A face has fewer than three vertices.
     #[error("face {face} has {count} vertices (at least 3 are needed)")]
-    FaceTooSmall { face: usize, count: u32 },
+    FaceTooSmall {
+        /// The face.
+        face: usize,
+        /// Its number of vertices.
+        count: u32,
+    },
     /// A face refers to a vertex that does not exist.
     #[error("face {face}, corner {corner}: vertex index {index} is out of range (the mesh has {count} vertices)")]
     VertexIndexOutOfRange {
+        /// The face.
         face: usize,
+        /// The corner within the face.
         corner: usize,
+        /// The vertex index given.
         index: u32,
+        /// The number of vertices of the mesh.
         count: usize,
     },
     /// `face_counts` and `face_indices` disagree.
     #[error("face counts add up to {expected} indices but {found} are given")]
-    FaceIndexCountMismatch { expected: usize, found: usize },
+    FaceIndexCountMismatch {
+        /// The sum of the face counts.
+        expected: usize,
+        /// The length of the index list.
+        found: usize,
+    },
     /// A position is NaN or infinite.
     #[error("vertex {vertex} has a non-finite coordinate {value}")]
-    NonFiniteCoordinate { vertex: usize, value: f32 },
+    NonFiniteCoordinate {
+        /// The vertex.
+        vertex: usize,
+        /// The offending coordinate.
+        value: f32,
+    },
     /// A face-varying index is out of range, or the index buffer has the wrong length.
     #[error("face-varying data: {reason}")]
-    FaceVarying { reason: String },
+    FaceVarying {
+        /// What is wrong.
+        reason: String,
+    },
     /// A crease tag names vertices that are not joined by an edge.
     #[error("crease tag {tag}: vertices {v0} and {v1} are not joined by an edge")]
-    CreaseEdgeMissing { tag: usize, v0: u32, v1: u32 },
+    CreaseEdgeMissing {
+        /// The crease's index in [`crate::Mesh::creases`].
+        tag: usize,
+        /// First vertex of the pair.
+        v0: u32,
+        /// Second vertex of the pair.
+        v1: u32,
+    },
     /// A tag refers to an element that does not exist.
     #[error("{kind} tag {tag}: index {index} is out of range (there are {count})")]
     TagIndexOutOfRange {
+        /// The tag's kind: `crease`, `corner` or `hole`.
         kind: &'static str,
+        /// The tag's index in the mesh's list of that kind (`creases`, `corners`, `holes`).
         tag: usize,
+        /// The index given.
         index: u32,
+        /// How many elements the index may name (vertices, or faces for a hole).
         count: usize,
     },
     /// A tag has a NaN sharpness.
     #[error("{kind} tag {tag}: sharpness is NaN")]
-    NanSharpness { kind: &'static str, tag: usize },
+    NanSharpness {
+        /// The tag's kind: `crease` or `corner`.
+        kind: &'static str,
+        /// The tag's index in the mesh's `creases` or `corners`.
+        tag: usize,
+    },
     /// A construction needs a clean, closed quad manifold and the mesh is not one.
     #[error("{construction} needs {requirement}: {details}")]
     Unsupported {
+        /// The construction refused (e.g. the p-rep).
         construction: &'static str,
+        /// What it needs of the mesh.
         requirement: &'static str,
+        /// Where the mesh falls short.
         details: String,
     },
     /// The requested output would not fit in memory.
@@ -50,9 +91,13 @@ pub enum MeshError {
         "{what} would need about {bytes} bytes ({human}), more than the limit of {limit_human}"
     )]
     TooLarge {
+        /// The output asked for.
         what: String,
+        /// Its estimated size in bytes.
         bytes: u64,
+        /// The same size, human-readable.
         human: String,
+        /// The limit, human-readable.
         limit_human: String,
     },
 }
@@ -62,7 +107,12 @@ pub enum MeshError {
 pub enum Error {
     /// A malformed file: line number (1-based) and what is wrong with it.
     #[error("line {line}: {reason}")]
-    Parse { line: usize, reason: String },
+    Parse {
+        /// The line (1-based).
+        line: usize,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// Bad mesh content.
     #[error(transparent)]
     Mesh(#[from] MeshError),

@@ -13,7 +13,62 @@
 //!
 //! Every table is a flat array (`u32` indices, counts + offsets, one value per element) so
 //! that a GPU backend can upload the very same vectors.
+//!
+//! # Example
+//!
+//! Refine a cube twice, check the first level against the Catmull-Clark vertex rule, move
+//! the last level to the limit surface and write it as OBJ text:
+//!
+//! ```
+//! use subsurf::{io, shapes, Refiner, Topology};
+//!
+//! let cube = shapes::cube(); // [-1, 1]^3, 8 vertices, 6 quads
+//! let topology = Topology::new(&cube)?;
+//! let refiner = Refiner::new(topology, 2)?;
+//! // Every quad splits into four: 24 faces at level 1, 96 at level 2.
+//! assert_eq!(refiner.levels[1].num_faces(), 24);
+//! assert_eq!(refiner.last().num_faces(), 96);
+//!
+//! let levels = refiner.refine_all(&cube.positions);
+//! // Vertex 0 keeps its index. Its valence-3 rule (Q + 2R) / 3, with Q the mean of the face
+//! // centres and R the mean of the edge midpoints, moves (-1, -1, 1) to (-5/9, -5/9, 5/9).
+//! let p = levels[1][0];
+//! for (got, want) in p.iter().zip([-5.0f32 / 9.0, -5.0 / 9.0, 5.0 / 9.0]) {
+//!     assert!((got - want).abs() < 1e-6);
+//! }
+//!
+//! // Limit positions: at a smooth vertex of valence n the limit mask is
+//! // (n² p + 4 Σ edge neighbours + Σ face-diagonal neighbours) / (n (n + 5)).
+//! let (t, last) = (refiner.last(), &levels[2]);
+//! let limit = refiner.limit(last);
+//! let n = t.valence(0) as f32; // 3: still the cube's corner
+//! let mut want = last[0].map(|x| n * n * x);
+//! for &e in t.vertex_edges(0) {
+//!     let q = last[t.other_vertex(e as usize, 0) as usize];
+//!     (0..3).for_each(|c| want[c] += 4.0 * q[c]);
+//! }
+//! for (&f, &k) in t.vertex_faces(0).iter().zip(t.vertex_faces_local(0)) {
+//!     let q = last[t.face_vertices(f as usize)[(k as usize + 2) % 4] as usize];
+//!     (0..3).for_each(|c| want[c] += q[c]);
+//! }
+//! for c in 0..3 {
+//!     assert!((limit[0][c] - want[c] / (n * (n + 5.0))).abs() < 1e-6);
+//! }
+//!
+//! // Output: a mesh of the last level, written and read back.
+//! let mesh = refiner.to_mesh(2, limit);
+//! let mut obj = Vec::new();
+//! io::obj::write(&mesh, &mut obj)?;
+//! let back = io::obj::read(std::str::from_utf8(&obj).expect("OBJ is text"))?;
+//! assert_eq!((back.num_vertices(), back.num_faces()), (98, 96));
+//! # Ok::<(), subsurf::Error>(())
+//! ```
+//!
+//! Module by module: [`io`] (files), [`Topology`] (validated tables), [`Refiner`] (uniform
+//! refinement of positions and UVs), [`StencilTable`] (the tables a GPU uploads),
+//! [`limit`] (patch tables and limit evaluation), [`prep`] (the p-rep and its Bezier form).
 
+#![warn(missing_docs)]
 pub mod error;
 pub mod io;
 pub mod limit;

@@ -7,6 +7,38 @@
 //!
 //! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault; no
 //! input makes a reader panic.
+//!
+//! # Example
+//!
+//! An OBJ quad with UVs and a crease tag, parsed, written as binary PLY and OBJ files (the
+//! format chosen by the extension) and read back; a bad index is a typed error:
+//!
+//! ```
+//! use subsurf::{io, Error};
+//!
+//! let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+//!             vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+//!             f 1/1 2/2 3/3 4/4\nt crease 2/1/0 0 1 2.5\n";
+//! let mesh = io::obj::read(text)?;
+//! assert_eq!((mesh.num_vertices(), mesh.num_faces()), (4, 1));
+//! assert_eq!(mesh.creases[0].sharpness, 2.5);
+//! assert_eq!(mesh.uvs.as_ref().map(|uv| uv.values.len()), Some(4));
+//!
+//! let dir = std::env::temp_dir().join(format!("subsurf-io-doc-{}", std::process::id()));
+//! std::fs::create_dir_all(&dir)?;
+//! for name in ["quad.ply", "quad.obj"] {
+//!     let path = dir.join(name);
+//!     io::write_path(&path, &mesh, None)?;
+//!     let back = io::read_path(&path)?;
+//!     assert_eq!(back.positions, mesh.positions);
+//!     assert_eq!(back.face_indices, mesh.face_indices);
+//! }
+//! std::fs::remove_dir_all(&dir)?;
+//!
+//! let err = io::obj::read("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n").unwrap_err();
+//! assert!(matches!(err, Error::Parse { line: 4, .. }), "{err}");
+//! # Ok::<(), subsurf::Error>(())
+//! ```
 
 pub mod gltf;
 pub mod obj;

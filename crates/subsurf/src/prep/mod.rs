@@ -40,6 +40,61 @@ use constants::ValenceTable;
 use scalar::{zero3, V3};
 
 /// A p-rep surface: one patch per quad.
+///
+/// # Example
+///
+/// The cube (valence 3 everywhere): every patch carries a bi-5 perturbation, the surface
+/// interpolates the Catmull-Clark limit points, its tessellation is closed, and its Bezier
+/// form starts at the same corners; on a torus (valence 4 everywhere) no patch is perturbed
+/// and the surface is the bicubic B-spline limit surface itself:
+///
+/// ```
+/// use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+/// use subsurf::prep::PrepPatches;
+/// use subsurf::{shapes, Mesh, Topology};
+///
+/// let limit = |mesh: &Mesh| -> subsurf::Result<LimitSurface> {
+///     let table = PatchTable::build(&Topology::new(mesh)?, &PatchOptions::default())?;
+///     Ok(LimitSurface::new(table, &mesh.positions))
+/// };
+/// let close = |a: [f64; 3], b: [f32; 3]| (0..3).all(|c| (a[c] - b[c] as f64).abs() < 1e-5);
+///
+/// let cube = shapes::cube();
+/// let prep = PrepPatches::<f64>::build(&cube)?;
+/// assert_eq!(prep.num_faces(), 6);
+/// assert!((0..6).all(|f| prep.face_h(f).is_some()));
+/// let cc = limit(&cube)?;
+/// for f in 0..6 {
+///     let corner = prep.eval(f, 0.0, 0.0).position; // at the face's first vertex
+///     assert!(close(corner, cc.eval(f, 0.0, 0.0).expect("face").p));
+/// }
+///
+/// // Watertight: 8 + 12·2 + 6·2² shared vertices, 108 triangles, Euler characteristic 2.
+/// let t = prep.tessellate(4);
+/// assert_eq!((t.positions.len(), t.triangles.len()), (56, 108));
+/// assert_eq!(t.positions.len() as i64 - 3 * 108 / 2 + 108, 2);
+///
+/// // Bezier form: 6×6 bi-5 control points per face, the first one at the patch corner.
+/// let b = prep.to_bezier();
+/// assert_eq!(b.len(), 36 * 6);
+/// assert!((0..6).all(|f| b[36 * f] == prep.eval(f, 0.0, 0.0).position));
+/// let mut npy = Vec::new();
+/// prep.write_bezier_npy(&mut npy)?; // shape (6, 6, 6, 3), little-endian f64
+/// assert!(npy.starts_with(b"\x93NUMPY"));
+/// let last = f64::from_le_bytes(npy[npy.len() - 8..].try_into().expect("8 bytes"));
+/// assert_eq!(last, b[36 * 6 - 1][2]);
+///
+/// let torus = shapes::torus(8, 6, 2.0, 0.5);
+/// let prep = PrepPatches::<f64>::build(&torus)?;
+/// let cc = limit(&torus)?;
+/// for f in [0, 17, 47] {
+///     assert!(prep.face_h(f).is_none());
+///     for (u, v) in [(0.3, 0.6), (1.0, 0.5)] {
+///         assert!(close(prep.eval(f, u, v).position, cc.eval(f, u as f32, v as f32).expect("face").p));
+///     }
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct PrepPatches<T> {
     /// Connectivity tables (reusable for new positions with [`PrepPatches::update`]).

@@ -77,6 +77,48 @@ impl RefineOptions {
 }
 
 /// Refined topology of every level and the stencils between consecutive levels.
+///
+/// # Example
+///
+/// Positions and UVs of a unit square refined once; the UVs linearly (OpenSubdiv's default
+/// face-varying mode), so the level-1 values are the 3×3 lattice of corners, edge midpoints
+/// and centre, and their limit is themselves:
+///
+/// ```
+/// use subsurf::{shapes, FVarLinearInterpolation, FaceVarying, Refiner, Topology};
+///
+/// let mut square = shapes::grid(1, 1);
+/// let uvs = FaceVarying {
+///     values: square.positions.iter().map(|p| [p[0], p[1]]).collect(),
+///     indices: square.face_indices.clone(),
+/// };
+/// square.uvs = Some(uvs.clone());
+/// let refiner = Refiner::new(Topology::new(&square)?, 1)?;
+///
+/// // Positions: children of the 4 vertices, then the face point, then 4 edge points.
+/// let positions = refiner.refine_positions(&square.positions);
+/// assert_eq!(positions.len(), 9);
+/// assert_eq!(positions[4], [0.5, 0.5, 0.0]);
+///
+/// // UVs: one value per distinct (vertex, UV) pair, one index per face corner.
+/// let fvar = refiner.fvar_refinement(&uvs.indices, uvs.values.len(), FVarLinearInterpolation::All)?;
+/// let last = fvar.refine(&uvs.values)?.pop().expect("levels 0 and 1");
+/// assert_eq!(last.indices.len(), 16); // 4 quads
+/// let mut lattice: Vec<[f32; 2]> = last.values.clone();
+/// lattice.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+/// let want: Vec<[f32; 2]> = (0..9).map(|k| [(k / 3) as f32 / 2.0, (k % 3) as f32 / 2.0]).collect();
+/// assert_eq!(lattice, want);
+/// // The corner at the face point has the centre UV in every child face.
+/// let t = refiner.last();
+/// for (corner, &v) in t.face_verts.iter().enumerate() {
+///     if v == 4 {
+///         assert_eq!(last.values[last.indices[corner] as usize], [0.5, 0.5]);
+///     }
+/// }
+/// // Linear UVs are their own limit.
+/// assert_eq!(refiner.limit_face_varying(&fvar, &last.values)?, last.values);
+/// # Ok::<(), subsurf::Error>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct Refiner {
     /// `levels[0]` is the base; `levels[k]` the result of `k` refinement steps. Under

@@ -7,6 +7,35 @@
 use rayon::prelude::*;
 
 /// A sparse row-major matrix from input vertices to output vertices.
+///
+/// # Example
+///
+/// The composed table of a two-level refinement maps base positions straight to level 2,
+/// as the per-level tables do one after the other; every row is an affine combination:
+///
+/// ```
+/// use subsurf::{shapes, Refiner, StencilTable, Topology};
+///
+/// let torus = shapes::torus(6, 4, 2.0, 0.5);
+/// let refiner = Refiner::new(Topology::new(&torus)?, 2)?;
+/// let table: StencilTable = refiner.stencil_table();
+/// assert_eq!(table.num_inputs, torus.num_vertices());
+/// assert_eq!(table.num_rows(), refiner.last().num_vertices());
+/// assert_eq!(table.offsets.len(), table.num_rows() + 1);
+///
+/// let mut direct = vec![[0.0f32; 3]; table.num_rows()];
+/// table.apply(&torus.positions, &mut direct);
+/// let stepwise = refiner.refine_positions(&torus.positions);
+/// for (a, b) in direct.iter().zip(&stepwise) {
+///     assert!((0..3).all(|c| (a[c] - b[c]).abs() < 1e-5));
+/// }
+/// for r in 0..table.num_rows() {
+///     let (lo, hi) = (table.offsets[r] as usize, table.offsets[r + 1] as usize);
+///     let sum: f32 = table.weights[lo..hi].iter().sum();
+///     assert!((sum - 1.0).abs() < 1e-5);
+/// }
+/// # Ok::<(), subsurf::Error>(())
+/// ```
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct StencilTable {
     /// `rows + 1` offsets into `indices` / `weights`.

@@ -23,6 +23,37 @@ use crate::options::Options;
 /// `vertex_edges(v)[i + 1]` is that face's other edge at `v`. An interior vertex has as many
 /// edges as faces (cyclic); a boundary vertex has one more, its first and last edges being the
 /// boundary edges.
+///
+/// # Example
+///
+/// A 2×2 grid of quads with one semi-sharp crease; the mesh's tags become per-edge
+/// sharpness, boundaries are infinitely sharp, and bad input is a typed error:
+///
+/// ```
+/// use subsurf::{shapes, Crease, Error, MeshError, Topology, SHARPNESS_INFINITE};
+///
+/// let mut mesh = shapes::grid(2, 2); // 9 vertices, vertex 4 in the middle
+/// mesh.creases.push(Crease { v0: 1, v1: 4, sharpness: 2.5 });
+/// let t = Topology::new(&mesh)?;
+/// assert_eq!((t.num_vertices(), t.num_edges(), t.num_faces()), (9, 12, 4));
+/// assert_eq!((t.valence(4), t.valence(0)), (4, 2));
+/// assert!(!t.is_boundary_vertex(4) && t.is_boundary_vertex(1));
+/// assert_eq!(t.boundary_edges().len(), 8);
+/// assert!(t.is_manifold() && !t.is_closed() && t.is_all_quads());
+///
+/// let crease = t.find_edge(1, 4).expect("1 and 4 are joined") as usize;
+/// assert_eq!(t.edge_sharpness[crease], 2.5);
+/// assert_eq!(t.edge_faces(crease).len(), 2);
+/// let boundary = t.find_edge(0, 1).expect("0 and 1 are joined") as usize;
+/// assert_eq!(t.edge_sharpness[boundary], SHARPNESS_INFINITE);
+///
+/// mesh.face_indices[0] = 99;
+/// assert!(matches!(
+///     Topology::new(&mesh),
+///     Err(Error::Mesh(MeshError::VertexIndexOutOfRange { face: 0, index: 99, .. }))
+/// ));
+/// # Ok::<(), subsurf::Error>(())
+/// ```
 #[derive(Debug, Clone, Default)]
 pub struct Topology {
     /// The options the surface is built with.
