@@ -15,6 +15,51 @@
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
 //! patches, `limit_eval`) and [`GpuUvRefiner`] (face-varying refinement of UVs).
 //!
+//! # Example
+//!
+//! Refinement and the limit surface of a cube on the GPU, checked against the CPU; without
+//! an adapter [`GpuContext::new`] fails with [`GpuError::NoAdapter`] and the CPU results
+//! stand alone:
+//!
+//! ```
+//! use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+//! use subsurf::{shapes, Refiner, Topology};
+//! use subsurf_gpu::{GpuContext, GpuError, GpuLimit, GpuRefiner};
+//!
+//! let cube = shapes::cube();
+//! let topology = Topology::new(&cube)?;
+//! let refiner = Refiner::new(topology.clone(), 2)?;
+//! let cpu = refiner.refine_positions(&cube.positions);
+//! let table = PatchTable::build(&topology, &PatchOptions { isolation_level: 2, ..Default::default() })?;
+//! let cpu_limit = LimitSurface::new(table.clone(), &cube.positions).tessellate(3)?;
+//!
+//! let ctx = match GpuContext::new() {
+//!     Ok(ctx) => ctx,
+//!     Err(GpuError::NoAdapter { detail }) => {
+//!         eprintln!("no GPU adapter ({detail}): CPU results only");
+//!         return Ok(());
+//!     }
+//!     Err(e) => return Err(e.into()),
+//! };
+//! let close = |a: &[f32; 3], b: &[f32; 3]| (0..3).all(|c| (a[c] - b[c]).abs() < 1e-5);
+//!
+//! // Uniform refinement: tables uploaded once, then one call per frame of base positions.
+//! let gpu_refiner = GpuRefiner::new(&ctx, &refiner)?;
+//! let gpu = gpu_refiner.refine(&ctx, &cube.positions)?;
+//! assert_eq!(gpu.len(), 98);
+//! assert!(gpu.iter().zip(&cpu).all(|(a, b)| close(a, b)));
+//!
+//! // Limit surface: the CPU's watertight index buffer, samples evaluated on the GPU.
+//! let mut limit = GpuLimit::new(&ctx, &table)?;
+//! limit.update(&ctx, &cube.positions)?;
+//! let tess = limit.tessellation(&ctx, &table, 3)?;
+//! limit.eval(&ctx, &tess.samples)?;
+//! let gpu_limit = tess.download(&ctx)?;
+//! assert_eq!(gpu_limit.quads, cpu_limit.quads);
+//! assert!(gpu_limit.positions.iter().zip(&cpu_limit.positions).all(|(a, b)| close(a, b)));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
 //! # Adapter limits
 //!
 //! Work is split against the adapter's `max_storage_buffer_binding_size` (128 MiB on

@@ -232,6 +232,40 @@ struct ChunkBuffers {
 
 /// A p-rep resident on the GPU: connectivity tables, positions and both passes' outputs, per
 /// sub-problem.
+///
+/// # Example
+///
+/// The p-rep of a cube, deformed and re-evaluated on the GPU, against the CPU's watertight
+/// tessellation (same triangles, positions within f32 rounding); without an adapter only the
+/// CPU surface is built:
+///
+/// ```
+/// use subsurf::prep::PrepPatches;
+/// use subsurf::shapes;
+/// use subsurf_gpu::{GpuContext, GpuError, GpuPrep};
+///
+/// let mut cube = shapes::cube();
+/// let mut cpu = PrepPatches::<f32>::build(&cube)?;
+/// let ctx = match GpuContext::new() {
+///     Ok(ctx) => ctx,
+///     Err(GpuError::NoAdapter { .. }) => return Ok(()), // CPU only: `cpu.tessellate(n)`
+///     Err(e) => return Err(e.into()),
+/// };
+/// let mut gpu = GpuPrep::new(&ctx, &cpu.topology)?;
+/// let grid = gpu.grid(&ctx, 5)?; // 5 samples per patch side, shared along edges
+/// for frame in 0..2 {
+///     cube.positions[0][2] += 0.25 * frame as f32; // animate one vertex
+///     cpu.update(&cube.positions)?;
+///     gpu.update(&ctx, &cube.positions)?;
+///     gpu.eval_grid(&ctx, &grid)?;
+///     let (got, want) = (grid.download(&ctx)?, cpu.tessellate(5));
+///     assert_eq!(got.triangles, want.triangles);
+///     for (a, b) in got.positions.iter().zip(&want.positions) {
+///         assert!((0..3).all(|c| (a[c] - b[c]).abs() < 1e-5));
+///     }
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug)]
 pub struct GpuPrep {
     plan: Arc<PrepChunks>,

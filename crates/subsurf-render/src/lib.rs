@@ -5,17 +5,31 @@
 //! optional wireframe overlay (the control cage), automatic perspective framing of the
 //! bounding box and 4x multisampling.
 //!
-//! ```no_run
-//! use subsurf_render::{render, RenderMesh, RenderOptions};
+//! ```
+//! use subsurf_render::{render, RenderError, RenderMesh, RenderOptions, View};
+//! // A unit square facing +z, seen from the front.
 //! let mesh = RenderMesh {
-//!     positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-//!     normals: vec![[0.0, 0.0, 1.0]; 3],
-//!     indices: vec![0, 1, 2],
+//!     positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]],
+//!     normals: vec![[0.0, 0.0, 1.0]; 4],
+//!     indices: vec![0, 1, 2, 0, 2, 3],
 //!     ..Default::default()
 //! };
-//! let image = render(&mesh, &RenderOptions::default())?;
-//! image.save_png("triangle.png")?;
-//! # Ok::<(), subsurf_render::RenderError>(())
+//! let options = RenderOptions { width: 64, height: 48, view: View::Front, ..Default::default() };
+//! let image = match render(&mesh, &options) {
+//!     Ok(image) => image,
+//!     Err(RenderError::NoAdapter(why)) => {
+//!         eprintln!("no GPU adapter, nothing rendered: {why}");
+//!         return Ok(());
+//!     }
+//!     Err(e) => return Err(e),
+//! };
+//! assert_eq!((image.width, image.height), (64, 48));
+//! assert_ne!(image.pixel(32, 24), options.background); // the square fills the centre
+//! assert_eq!(image.pixel(0, 0), options.background); // and misses the corners
+//! let mut png = Vec::new();
+//! image.write_png(&mut png)?; // or image.save_png("square.png")
+//! assert!(png.starts_with(b"\x89PNG"));
+//! # Ok::<(), RenderError>(())
 //! ```
 //!
 //! Without a GPU, Mesa's software Vulkan driver (lavapipe, `mesa-vulkan-drivers`) works
