@@ -5,7 +5,9 @@
 //! - With `EdgeAndCorner`, a topological corner (one face, two edges) becomes an infinitely
 //!   sharp vertex; a non-manifold vertex does too, unless it lies on an interior non-manifold
 //!   crease (two non-manifold edges, no boundary, more faces than edges).
-//! - With boundary interpolation `None`, every face at a boundary vertex becomes a hole.
+//! - With boundary interpolation `None`, every face at a boundary vertex becomes a hole unless
+//!   all the vertex's boundary edges were tagged infinitely sharp (OpenSubdiv
+//!   `makeBoundaryFacesHoles`: decided on the user's tags, before boundary sharpening).
 
 use super::tags::{self, rule};
 use super::Topology;
@@ -20,6 +22,10 @@ pub(super) fn apply_tags_and_boundary_sharpness(t: &mut Topology) {
         Scheme::Loop => (6, 3),
         _ => (4, 2),
     };
+
+    if make_holes {
+        mark_boundary_holes(t);
+    }
 
     for e in 0..t.num_edges() {
         let mut tag = t.edge_tags[e] & tags::E_NON_MANIFOLD;
@@ -82,16 +88,6 @@ pub(super) fn apply_tags_and_boundary_sharpness(t: &mut Topology) {
             vt |= tags::V_XORDINARY;
         }
         t.vert_tags[v] = vt;
-        if make_holes && boundary > 0 {
-            let (s, e) = (
-                t.vert_face_offsets[v] as usize,
-                t.vert_face_offsets[v + 1] as usize,
-            );
-            for i in s..e {
-                let f = t.vert_faces[i] as usize;
-                t.face_is_hole[f] = true;
-            }
-        }
     }
     for f in 0..t.num_faces() {
         if t.face_is_hole[f] {
@@ -99,6 +95,33 @@ pub(super) fn apply_tags_and_boundary_sharpness(t: &mut Topology) {
             for c in s..e {
                 let v = t.face_verts[c] as usize;
                 t.vert_tags[v] |= tags::V_INCIDENT_HOLE;
+            }
+        }
+    }
+}
+
+/// Boundary interpolation `None`: the faces of every boundary (or non-manifold) vertex with a
+/// boundary edge not tagged infinitely sharp by the user become holes. Runs before boundary
+/// edges are sharpened, so it sees the tags as given.
+fn mark_boundary_holes(t: &mut Topology) {
+    for v in 0..t.num_vertices {
+        let manifold_interior = t.vertex_edges(v).len() == t.vertex_faces(v).len()
+            && t.vert_tags[v] & tags::V_NON_MANIFOLD == 0;
+        if manifold_interior {
+            continue;
+        }
+        let exclude = t.vertex_edges(v).iter().any(|&e| {
+            let e = e as usize;
+            t.edge_faces(e).len() == 1 && t.edge_sharpness[e] < SHARPNESS_INFINITE
+        });
+        if exclude {
+            let (s, e) = (
+                t.vert_face_offsets[v] as usize,
+                t.vert_face_offsets[v + 1] as usize,
+            );
+            for i in s..e {
+                let f = t.vert_faces[i] as usize;
+                t.face_is_hole[f] = true;
             }
         }
     }

@@ -4,6 +4,7 @@ use crate::error::{Error, MeshError};
 use crate::mesh::{Corner, Crease, Mesh};
 use crate::options::BoundaryInterpolation;
 use crate::shapes;
+use crate::SHARPNESS_INFINITE;
 
 /// Structural invariants that hold for every topology.
 pub(crate) fn check_invariants(t: &Topology) {
@@ -224,6 +225,40 @@ fn boundary_none_makes_boundary_faces_holes() {
         "only the centre face of a 3x3 grid touches no boundary vertex"
     );
     assert!(!t.face_is_hole[4]);
+}
+
+#[test]
+fn boundary_none_keeps_faces_of_vertices_with_all_boundary_edges_infinitely_sharp() {
+    let mut m = shapes::grid(3, 3);
+    m.options.boundary = BoundaryInterpolation::None;
+    // The bottom row's boundary edges (vertices 0..=3) infinitely sharp, one semi-sharp.
+    for i in 0..3u32 {
+        let sharpness = if i == 2 { 5.0 } else { SHARPNESS_INFINITE };
+        m.creases.push(crate::Crease {
+            v0: i,
+            v1: i + 1,
+            sharpness,
+        });
+    }
+    let t = Topology::new(&m).unwrap();
+    // Vertex 1 has both boundary edges tagged, but its faces 0 and 1 touch vertex 0 (edge
+    // 0-4 untagged) and vertex 2 (edge 2-3 only semi-sharp): all 8 boundary faces are holes.
+    assert_eq!(t.face_is_hole.iter().filter(|&&h| h).count(), 8);
+    m.creases.push(crate::Crease {
+        v0: 0,
+        v1: 4,
+        sharpness: SHARPNESS_INFINITE,
+    });
+    m.creases.push(crate::Crease {
+        v0: 4,
+        v1: 8,
+        sharpness: SHARPNESS_INFINITE,
+    });
+    let t = Topology::new(&m).unwrap();
+    // With the left column's lower edges tagged, vertices 0, 1 and 4 have only tagged
+    // boundary edges: face 0 (corners 0, 1, 5, 4) is kept.
+    let kept: Vec<usize> = (0..9).filter(|&f| !t.face_is_hole[f]).collect();
+    assert_eq!(kept, vec![0, 4]);
 }
 
 #[test]
