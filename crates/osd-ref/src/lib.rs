@@ -14,6 +14,7 @@
 //!
 //! This crate is not published and is not a dependency of the library.
 
+#![warn(missing_docs)]
 #![allow(unsafe_code)] // the FFI boundary; every `unsafe` block states its invariant
 
 mod adaptive;
