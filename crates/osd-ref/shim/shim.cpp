@@ -55,6 +55,15 @@ typedef Vec<2> Vec2;
 static_assert(sizeof(Vec3) == 3 * sizeof(float), "Vec3 must be packed");
 static_assert(sizeof(Vec2) == 2 * sizeof(float), "Vec2 must be packed");
 
+// Double-precision position for the double-precision evaluation path.
+struct Vec3d {
+    double v[3];
+    void Clear() { v[0] = v[1] = v[2] = 0.0; }
+    void AddWithWeight(const Vec3d &src, double w) {
+        for (int k = 0; k < 3; ++k) v[k] += w * src.v[k];
+    }
+};
+
 Far::TopologyRefiner *create_refiner(const osd_mesh_desc &m) {
     Sdc::Options sdc;
     sdc.SetVtxBoundaryInterpolation((Sdc::Options::VtxBoundaryInterpolation)m.boundary);
@@ -435,6 +444,96 @@ int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *o
                     for (int k = 0; k < 3; ++k) s.p[k] = s.du[k] = s.dv[k] = 0.0f;
                     for (int c = 0; c < cvs.size(); ++c) {
                         const Vec3 &x = a->points[cvs[c]];
+                        for (int k = 0; k < 3; ++k) {
+                            s.p[k] += wP[c] * x.v[k];
+                            s.du[k] += dscale * wDu[c] * x.v[k];
+                            s.dv[k] += dscale * wDv[c] * x.v[k];
+                        }
+                    }
+                }
+            }
+        }
+        return (int64_t)count;
+    } catch (const std::exception &e) {
+        set_error(e.what());
+    } catch (...) {
+        set_error("unknown C++ exception");
+    }
+    return -1;
+}
+
+int64_t osd_adaptive_eval_grid_f64(const osd_mesh_desc *mesh, int isolation, int single_crease,
+                                   int inf_sharp, int end_cap, int n, osd_limit_sample_f64 *out,
+                                   size_t cap) {
+    install_callbacks();
+    try {
+        if (n < 2) {
+            set_error("need at least 2 samples per side");
+            return -1;
+        }
+        std::unique_ptr<Far::TopologyRefiner> refiner(create_refiner(*mesh));
+        if (!refiner) return -1;
+        Far::PatchTableFactory::Options popts(isolation);
+        popts.useSingleCreasePatch = single_crease != 0;
+        popts.useInfSharpPatch = inf_sharp != 0;
+        popts.SetEndCapType((Far::PatchTableFactory::Options::EndCapType)end_cap);
+        popts.SetPatchPrecision<double>();
+        refiner->RefineAdaptive(popts.GetRefineAdaptiveOptions());
+        std::unique_ptr<Far::PatchTable> pt(Far::PatchTableFactory::Create(*refiner, popts));
+        if (!pt) {
+            set_error("PatchTableFactory::Create failed");
+            return -1;
+        }
+        Far::PatchMap map(*pt);
+        int num_ptex = Far::PtexIndices(*refiner).GetNumFaces();
+
+        int nref = refiner->GetNumVerticesTotal();
+        int nlocal = pt->GetNumLocalPoints();
+        std::vector<Vec3d> points(nref + nlocal);
+        for (int i = 0; i < mesh->num_vertices; ++i)
+            for (int k = 0; k < 3; ++k) points[i].v[k] = (double)mesh->positions[3 * i + k];
+        Far::PrimvarRefinerReal<double> pr(*refiner);
+        Vec3d *src = points.data();
+        for (int level = 1; level <= refiner->GetMaxLevel(); ++level) {
+            Vec3d *dst = src + refiner->GetLevel(level - 1).GetNumVertices();
+            pr.Interpolate(level, src, dst);
+            src = dst;
+        }
+        // ComputeLocalPointValues is float-only in 3.5; the double table is reached directly.
+        if (nlocal > 0)
+            pt->GetLocalPointStencilTable<double>()->UpdateValues(points.data(), &points[nref]);
+
+        bool triangles = mesh->scheme == Sdc::SCHEME_LOOP;
+        double wP[20], wDu[20], wDv[20];
+        size_t count = 0;
+        for (int face = 0; face < num_ptex; ++face) {
+            for (int j = 0; j < n; ++j) {
+                for (int i = 0; i < n; ++i) {
+                    float u = (float)i / (float)(n - 1), v = (float)j / (float)(n - 1);
+                    if (triangles && i + j > n - 1) continue;
+                    const Far::PatchTable::PatchHandle *h = map.FindPatch(face, u, v);
+                    if (!h) continue;
+                    Far::PatchDescriptor::Type t = pt->GetPatchDescriptor(*h).GetType();
+                    if (t == Far::PatchDescriptor::GREGORY ||
+                        t == Far::PatchDescriptor::GREGORY_BOUNDARY) {
+                        set_error("legacy Gregory patches cannot be evaluated on the CPU");
+                        return -1;
+                    }
+                    if (count >= cap) {
+                        set_error("sample buffer too small");
+                        return -1;
+                    }
+                    // As osd_adaptive_eval_grid: derivatives w.r.t. the ptex face's (u, v).
+                    pt->EvaluateBasis(*h, (double)u, (double)v, wP, wDu, wDv);
+                    double dscale = pt->GetPatchParam(*h).NonQuadRoot() ? 0.5 : 1.0;
+                    Far::ConstIndexArray cvs = pt->GetPatchVertices(*h);
+                    osd_limit_sample_f64 &s = out[count++];
+                    s.face = (uint32_t)face;
+                    s.u = u;
+                    s.v = v;
+                    for (int k = 0; k < 3; ++k) s.p[k] = s.du[k] = s.dv[k] = 0.0;
+                    for (int c = 0; c < cvs.size(); ++c) {
+                        const Vec3d &x = points[cvs[c]];
                         for (int k = 0; k < 3; ++k) {
                             s.p[k] += wP[c] * x.v[k];
                             s.du[k] += dscale * wDu[c] * x.v[k];

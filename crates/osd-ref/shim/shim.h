@@ -48,6 +48,13 @@ typedef struct osd_limit_sample {
     float p[3], du[3], dv[3];
 } osd_limit_sample;
 
+/* The same in double precision (OpenSubdiv's double-precision path). */
+typedef struct osd_limit_sample_f64 {
+    uint32_t face;
+    float u, v;
+    double p[3], du[3], dv[3];
+} osd_limit_sample_f64;
+
 size_t osd_last_error(char *buf, size_t len);
 
 /* ---- uniform refinement ------------------------------------------------ */
@@ -97,6 +104,14 @@ int osd_patch_table_only(const osd_mesh_desc *mesh, int isolation, int single_cr
 /* Samples an n x n grid on every ptex face with a patch; returns the count written
  * (at most cap) or -1. */
 int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *out, size_t cap);
+
+/* osd_adaptive_new + osd_adaptive_eval_grid in double precision throughout: the positions
+ * (widened from float), every refined level (PrimvarRefinerReal<double>), the end-cap
+ * local points (double stencils, SetPatchPrecision<double>) and the basis
+ * (EvaluateBasis<double>). Same samples as osd_adaptive_eval_grid. */
+int64_t osd_adaptive_eval_grid_f64(const osd_mesh_desc *mesh, int isolation, int single_crease,
+                                   int inf_sharp, int end_cap, int n, osd_limit_sample_f64 *out,
+                                   size_t cap);
 
 #ifdef __cplusplus
 }

@@ -22,7 +22,7 @@ pub enum EndCap {
 }
 
 impl EndCap {
-    fn raw(self) -> i32 {
+    pub(crate) fn raw(self) -> i32 {
         match self {
             EndCap::BSpline => 2,
             EndCap::Gregory => 3,

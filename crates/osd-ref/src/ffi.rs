@@ -6,6 +6,7 @@
 use std::os::raw::{c_char, c_float, c_int};
 
 use crate::adaptive::LimitSample;
+use crate::adaptive_f64::LimitSampleF64;
 
 /// `osd_mesh_desc`: a mesh borrowed for one call.
 #[repr(C)]
@@ -134,6 +135,17 @@ extern "C" {
         out: *mut LimitSample,
         cap: usize,
     ) -> i64;
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn osd_adaptive_eval_grid_f64(
+        mesh: *const MeshDesc,
+        isolation: c_int,
+        single_crease: c_int,
+        inf_sharp: c_int,
+        end_cap: c_int,
+        n: c_int,
+        out: *mut LimitSampleF64,
+        cap: usize,
+    ) -> i64;
 }
 
 #[cfg(osd_missing)]
@@ -248,6 +260,19 @@ mod stubs {
         _: *const Adaptive,
         _: c_int,
         _: *mut LimitSample,
+        _: usize,
+    ) -> i64 {
+        -1
+    }
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) unsafe fn osd_adaptive_eval_grid_f64(
+        _: *const MeshDesc,
+        _: c_int,
+        _: c_int,
+        _: c_int,
+        _: c_int,
+        _: c_int,
+        _: *mut LimitSampleF64,
         _: usize,
     ) -> i64 {
         -1

@@ -18,6 +18,7 @@
 #![allow(unsafe_code)] // the FFI boundary; every `unsafe` block states its invariant
 
 mod adaptive;
+mod adaptive_f64;
 mod ffi;
 mod from_subsurf;
 mod mesh;
@@ -27,6 +28,7 @@ pub use adaptive::{
     eval_limit_grid, eval_limit_grid_with, patch_counts, patch_stats, patch_table_only, EndCap,
     LimitSample, PatchOptions, PatchStats, PatchTableBuild,
 };
+pub use adaptive_f64::{eval_limit_grid_f64, LimitSampleF64};
 pub use mesh::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
 pub use uniform::{
     limit_stencil_positions, refine_uniform, OsdLevel, OsdRefiner, OsdStencils, MAX_LEVEL,

@@ -102,8 +102,11 @@ fn osd_like_eval(s: &LimitSurface, f: usize, u: f32, v: f32) -> Option<LimitPoin
 /// face, so samples fall inside the small end caps too): the same number of patches as OpenSubdiv,
 /// positions within 1e-5 of the diagonal on B-spline and single-crease patches and within
 /// 5e-5 on Gregory end caps (next to extraordinary vertices; the largest, 1.3e-5, is at the
-/// valence-360 pole, from `f32` weights), first derivatives within 1e-4 everywhere. This
-/// includes the non-manifold shapes, whose patches come from manifold spans.
+/// valence-360 pole, from `f32` weights), first derivatives within 1e-4 (2e-4 on end caps:
+/// OpenSubdiv's `f32` end-cap points of the valence-360 pole are off by 1.5e-4 in the
+/// derivatives, subsurf's, relative to a point of each stencil row, by 2.5e-7 of
+/// OpenSubdiv's double-precision ones; see `limit_normals`). This includes the non-manifold
+/// shapes, whose patches come from manifold spans.
 #[test]
 fn matches_opensubdiv_on_every_catmark_shape() {
     if !osd_or_skip("matches_opensubdiv_on_every_catmark_shape") {
@@ -125,7 +128,7 @@ fn matches_opensubdiv_on_every_catmark_shape() {
             || d.regular > 1e-5
             || d.end_cap > 5e-5
             || d.deriv > 1e-4
-            || d.end_cap_deriv > 1e-4
+            || d.end_cap_deriv > 2e-4
         {
             failures.push(format!("{name}: {d:?}"));
         }

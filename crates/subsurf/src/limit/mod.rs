@@ -16,6 +16,7 @@
 //! - [`endcap`]: the 20 points of a Gregory end cap;
 //! - [`span`]: manifold fans around non-manifold vertices;
 //! - [`patch_map`]: the quadtree per ptex face;
+//! - [`points`]: the patch points from base values (stencil rows relative to their first input);
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling.
 //!
 //! # Ptex faces
@@ -80,6 +81,7 @@ pub mod features;
 pub mod gather;
 pub mod leaves;
 pub mod patch_map;
+pub mod points;
 pub mod span;
 pub mod sparse;
 pub mod table;

@@ -529,7 +529,8 @@ impl PatchTable {
     }
 
     /// The flat point array for base vertex data `base` (`N` components): every level's
-    /// vertices, then the local points.
+    /// vertices, then the local points; every stencil row is applied relative to its first
+    /// input ([`super::points`]), so the rounding is relative to the patch, not the origin.
     pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
         let mut all = Vec::with_capacity(self.num_points());
         all.extend_from_slice(base);
@@ -542,11 +543,11 @@ impl PatchTable {
             let start = self.level_offsets[d] as usize;
             let src: Vec<[f32; N]> = inputs.iter().map(|&i| all[start + i as usize]).collect();
             let mut dst = vec![[0.0; N]; s.num_rows()];
-            s.apply(&src, &mut dst);
+            super::points::level_apply_relative(s, &src, &mut dst);
             all.extend_from_slice(&dst);
         }
         let mut local = vec![[0.0; N]; self.local_points.num_rows()];
-        self.local_points.apply(&all, &mut local);
+        super::points::apply_relative(&self.local_points, &mut local, |k| &all[k]);
         all.extend_from_slice(&local);
         all
     }
