@@ -80,6 +80,7 @@ pub mod real;
 pub mod refine;
 pub mod rules;
 pub mod shapes;
+pub mod surface;
 pub mod topology;
 
 pub use error::{Error, MeshError, Result};
