@@ -10,7 +10,7 @@ use subsurf::{Refiner, Topology};
 /// Time topology refinement, stencil application and the whole pipeline.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Input mesh.
+    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
     pub input: PathBuf,
     /// Refinement level.
     #[arg(short, long, default_value_t = 3)]

@@ -3,7 +3,7 @@
 //! index, `u, v = i/(N−1)`, `v` the outer loop; holes write nothing).
 
 use crate::cmd_limit::SurfaceArgs;
-use crate::common::{gpu_context, Backend};
+use crate::common::{check_output_folder, create_output, gpu_context, shown, Backend};
 use anyhow::Context;
 use std::io::Write;
 use std::path::PathBuf;
@@ -17,12 +17,13 @@ pub struct EvalArgs {
     /// Samples per side of each ptex face (at least 2).
     #[arg(long, default_value_t = 5)]
     pub samples: usize,
-    /// Output text file.
+    /// Output text file (any name; `-` writes standard output).
     #[arg(short, long)]
     pub output: PathBuf,
 }
 
 pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
+    check_output_folder(&a.output)?;
     anyhow::ensure!(
         (2..=4096).contains(&a.samples),
         "--samples {} not in 2..=4096",
@@ -68,9 +69,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
                 .collect::<Vec<Option<LimitPoint>>>()
         }
     };
-    let file = std::fs::File::create(&a.output)
-        .with_context(|| format!("creating {}", a.output.display()))?;
-    let mut w = std::io::BufWriter::new(file);
+    let mut w = create_output(&a.output)?;
     let mut written = 0usize;
     for (&(f, u, v), r) in queries.iter().zip(&results) {
         let Some(r) = r else { continue };
@@ -82,10 +81,10 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         written += 1;
     }
     w.flush()?;
-    eprintln!(
+    crate::say!(
         "{written} samples on {} ptex faces -> {}",
         table.num_ptex_faces(),
-        a.output.display()
+        shown(&a.output, true)
     );
     Ok(())
 }

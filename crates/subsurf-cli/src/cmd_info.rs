@@ -9,7 +9,7 @@ use subsurf::Topology;
 /// Print counts, histograms, features and problems of a mesh.
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// Input mesh (.obj or .ply).
+    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
     pub input: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -60,7 +60,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
     }
     let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [0.0; 3]));
     let info = Info {
-        file: a.input.display().to_string(),
+        file: crate::common::shown(&a.input, false),
         scheme: format!("{:?}", mesh.options.scheme),
         boundary_interpolation: format!("{:?}", mesh.options.boundary),
         crease_method: format!("{:?}", mesh.options.crease_method),

@@ -1,6 +1,6 @@
 //! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
 
-use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
+use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
 use subsurf::refine::{level_mesh, refine_once, StencilTable};
@@ -9,12 +9,13 @@ use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topo
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
 pub struct RefineArgs {
-    /// Input mesh (.obj with OpenSubdiv tags, or .ply).
+    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
     pub input: PathBuf,
     /// Number of refinement steps.
     #[arg(short, long, default_value_t = 2)]
     pub level: usize,
-    /// Output file (.obj or .ply, by extension).
+    /// Output file, format by extension: .obj (with the remaining crease tags), .ply or .glb;
+    /// `-` writes standard output (`--format obj|ply|glb`, OBJ by default).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Move the last level's vertices to their limit positions, and its UVs to their
@@ -62,6 +63,7 @@ impl From<UvInterp> for FVarLinearInterpolation {
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
+    check_mesh_output(&a.output)?;
     let mesh = a.scheme.read(&a.input)?;
     let topo = Topology::new(&mesh)?;
     // The last level's full topology is only read by the limit and face-varying refinement.
@@ -167,13 +169,13 @@ fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, mut out: subsurf::Mesh) -> anyho
     out.creases.clear();
     out.corners.clear();
     write_mesh(&a.output, &out, None)?;
-    eprintln!(
+    crate::say!(
         "refined {} faces to level {}: {} vertices, {} faces -> {}",
         mesh.num_faces(),
         a.level,
         out.positions.len(),
         out.num_faces(),
-        a.output.display()
+        shown(&a.output, true)
     );
     Ok(())
 }

@@ -1,7 +1,10 @@
 //! Options shared by several subcommands.
 
 use anyhow::Context;
+use std::io::{Read, Write};
 use std::path::Path;
+use std::sync::OnceLock;
+use subsurf::io::Format;
 use subsurf::{BoundaryInterpolation, CreaseMethod, Mesh, Scheme, TriangleSubdivision};
 
 /// Scheme and crease options that override what the input file says.
@@ -84,15 +87,129 @@ impl SchemeArgs {
     }
 }
 
-/// Reads a mesh file, with the path in the error.
+/// The path that stands for standard input (as input) or standard output (as `-o`).
+pub const STDIO: &str = "-";
+
+/// Whether `path` is `-` (standard input or output).
+pub fn is_stdio(path: &Path) -> bool {
+    path.as_os_str() == STDIO
+}
+
+/// The format of mesh output to standard output (`--format`, OBJ by default).
+static STDOUT_FORMAT: OnceLock<Format> = OnceLock::new();
+
+/// Mesh formats `--format` accepts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum FormatArg {
+    /// Wavefront OBJ with OpenSubdiv's tags.
+    Obj,
+    /// Binary PLY.
+    Ply,
+    /// Binary glTF 2.0.
+    Glb,
+}
+
+/// Sets the format of `-o -` (the global `--format`).
+pub fn set_stdout_format(f: Option<FormatArg>) {
+    let f = match f {
+        None | Some(FormatArg::Obj) => Format::Obj,
+        Some(FormatArg::Ply) => Format::Ply,
+        Some(FormatArg::Glb) => Format::Glb,
+    };
+    let _ = STDOUT_FORMAT.set(f);
+}
+
+/// How a path is named in messages (`standard input/output` for `-`).
+pub fn shown(path: &Path, output: bool) -> String {
+    match (is_stdio(path), output) {
+        (true, true) => "standard output".into(),
+        (true, false) => "standard input".into(),
+        (false, _) => path.display().to_string(),
+    }
+}
+
+/// Checks, before any work, that a mesh can be written to `path` (its extension names a
+/// format subsurf writes, its folder exists); `-` is standard output.
+pub fn check_mesh_output(path: &Path) -> anyhow::Result<()> {
+    if is_stdio(path) {
+        return Ok(());
+    }
+    Format::from_path(path).with_context(|| format!("output {}", path.display()))?;
+    check_folder(path)
+}
+
+/// Checks, before any work, that `path`'s extension is `ext` (case-insensitive) and its folder
+/// exists; `-` is standard output.
+pub fn check_output_ext(path: &Path, ext: &str) -> anyhow::Result<()> {
+    if is_stdio(path) {
+        return Ok(());
+    }
+    let e = path.extension().and_then(|e| e.to_str()).unwrap_or("");
+    anyhow::ensure!(
+        e.eq_ignore_ascii_case(ext),
+        "output {}: expected a .{ext} file name",
+        path.display()
+    );
+    check_folder(path)
+}
+
+/// Checks, before any work, that the folder of output `path` exists (`-`: standard output).
+pub fn check_output_folder(path: &Path) -> anyhow::Result<()> {
+    if is_stdio(path) {
+        return Ok(());
+    }
+    check_folder(path)
+}
+
+fn check_folder(path: &Path) -> anyhow::Result<()> {
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() && !dir.is_dir() => {
+            anyhow::bail!("output {}: no folder {}", path.display(), dir.display())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Reads a mesh file, with the path in the error. `-` reads standard input: PLY when it starts
+/// with the `ply` magic line, OBJ otherwise.
 pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
+    if is_stdio(path) {
+        let mut bytes = Vec::new();
+        std::io::stdin()
+            .lock()
+            .read_to_end(&mut bytes)
+            .context("reading standard input")?;
+        let format = if bytes.starts_with(b"ply") {
+            Format::Ply
+        } else {
+            Format::Obj
+        };
+        return subsurf::io::read_from(&bytes[..], format).context("reading standard input");
+    }
     subsurf::io::read_path(path).with_context(|| format!("reading {}", path.display()))
 }
 
-/// Writes a mesh file, with the path in the error.
+/// Writes a mesh file, with the path in the error; `-` writes standard output in the
+/// `--format` format.
 pub fn write_mesh(path: &Path, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> anyhow::Result<()> {
+    if is_stdio(path) {
+        let format = *STDOUT_FORMAT.get().unwrap_or(&Format::Obj);
+        let mut w = std::io::BufWriter::new(std::io::stdout().lock());
+        return subsurf::io::write_to(&mut w, format, mesh, normals)
+            .context("writing standard output");
+    }
     subsurf::io::write_path(path, mesh, normals)
         .with_context(|| format!("writing {}", path.display()))
+}
+
+/// Opens an output file (or standard output for `-`) for writing.
+pub fn create_output(path: &Path) -> anyhow::Result<Box<dyn Write>> {
+    if is_stdio(path) {
+        return Ok(Box::new(std::io::BufWriter::new(std::io::stdout())));
+    }
+    let file =
+        std::fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
+    Ok(Box::new(std::io::BufWriter::new(file)))
 }
 
 /// Where the numeric work runs.
@@ -110,6 +227,6 @@ pub fn gpu_context() -> anyhow::Result<subsurf_gpu::GpuContext> {
     let ctx = subsurf_gpu::GpuContext::new().context(
         "--backend gpu: no usable GPU device (run `subsurf gpu-info --all`, or use --backend cpu)",
     )?;
-    eprintln!("GPU backend: {}", ctx.adapter_info().name);
+    crate::say!("GPU backend: {}", ctx.adapter_info().name);
     Ok(ctx)
 }

@@ -12,8 +12,6 @@ mod cmd_refine;
 mod cmd_render;
 mod common;
 mod progress;
-mod render_limit;
-mod render_mesh;
 
 use clap::{Parser, Subcommand};
 
@@ -26,9 +24,13 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 #[derive(Debug, Parser)]
 #[command(name = "subsurf", version, about)]
 struct Cli {
-    /// No progress output or notes on stderr.
+    /// Nothing on stderr but errors: no progress, notes or summary lines.
     #[arg(short, long, global = true)]
     quiet: bool,
+    /// Format of mesh output written to standard output (`-o -`); input from standard input
+    /// (`-`) is PLY when it starts with `ply`, OBJ otherwise.
+    #[arg(long, value_enum, global = true, value_name = "obj|ply|glb")]
+    format: Option<common::FormatArg>,
     #[command(subcommand)]
     command: Command,
 }
@@ -55,9 +57,44 @@ enum Command {
     Eval(cmd_eval::EvalArgs),
 }
 
+/// Restores the default action of `SIGPIPE` (Rust ignores it), so that a closed pipe
+/// (`subsurf info car.obj | head -1`) ends the process quietly, as it ends other Unix tools,
+/// instead of a write error or a panic in whatever is printing.
+#[cfg(unix)]
+#[allow(unsafe_code)]
+fn exit_quietly_on_closed_pipe() {
+    // SAFETY: called once at start-up, before any thread exists; `signal` with `SIG_DFL`
+    // installs no handler code.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
+#[cfg(not(unix))]
+fn exit_quietly_on_closed_pipe() {}
+
+/// Prints an error and its causes, each cause once: a cause whose text the line above already
+/// contains (an I/O error wrapped in a library error, say) is left out.
+fn report(e: &anyhow::Error) {
+    let mut last = e.to_string();
+    eprintln!("error: {last}");
+    for cause in e.chain().skip(1) {
+        let text = cause.to_string();
+        if !last.contains(&text) {
+            eprintln!("  caused by: {text}");
+        }
+        last = text;
+    }
+}
+
 fn main() {
+    exit_quietly_on_closed_pipe();
+    // Before any thread exists: keeps Mesa's display layer from printing a Wayland error on
+    // machines without a display server.
+    subsurf_gpu::headless::disable_display_layers_when_headless();
     let cli = Cli::parse();
     progress::set_quiet(cli.quiet);
+    common::set_stdout_format(cli.format);
     let result = match &cli.command {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),
@@ -70,10 +107,7 @@ fn main() {
         Command::Eval(a) => cmd_eval::run(a),
     };
     if let Err(e) = result {
-        eprintln!("error: {e}");
-        for cause in e.chain().skip(1) {
-            eprintln!("  caused by: {cause}");
-        }
+        report(&e);
         std::process::exit(1);
     }
 }

@@ -26,6 +26,16 @@ pub fn note(msg: impl AsRef<str>) {
     }
 }
 
+/// `eprintln!` unless `--quiet`: the summary lines of a command ("refined ...", "wrote ...").
+#[macro_export]
+macro_rules! say {
+    ($($arg:tt)*) => {
+        if !$crate::progress::quiet() {
+            eprintln!($($arg)*);
+        }
+    };
+}
+
 /// A spinner naming the current stage of a long task. It starts hidden and appears after a
 /// second, so short work leaves no trace; it is cleared when dropped.
 #[derive(Debug)]

@@ -83,6 +83,59 @@ impl Format {
     }
 }
 
+impl Format {
+    /// The format named `name` (`obj`, `ply` or `glb`, case-insensitive), as a command line's
+    /// `--format` gives it.
+    pub fn from_name(name: &str) -> Result<Format> {
+        match name.to_ascii_lowercase().as_str() {
+            "obj" => Ok(Format::Obj),
+            "ply" => Ok(Format::Ply),
+            "glb" => Ok(Format::Glb),
+            other => Err(Error::Unsupported(format!(
+                "mesh format '{other}' (known: obj, ply, glb)"
+            ))),
+        }
+    }
+
+    /// Whether [`read_from`] can read this format.
+    pub fn readable(self) -> bool {
+        self != Format::Glb
+    }
+}
+
+/// Reads a mesh in `format` from `reader` (for example standard input). OBJ input gets the
+/// default (Catmull-Clark) scheme unless its tags say otherwise.
+pub fn read_from(mut reader: impl std::io::Read, format: Format) -> Result<Mesh> {
+    let mut bytes = Vec::new();
+    reader.read_to_end(&mut bytes)?;
+    match format {
+        // As in `obj::read_file`: bytes that are not UTF-8 can only matter inside comments.
+        Format::Obj => obj::read(&String::from_utf8_lossy(&bytes)),
+        Format::Ply => ply::read(&bytes),
+        Format::Glb => Err(Error::Unsupported(
+            "reading glTF; subsurf writes .glb but reads .obj and .ply".into(),
+        )),
+    }
+}
+
+/// Writes a mesh in `format` to `w` (for example standard output); `normals` as in
+/// [`write_path`].
+pub fn write_to(
+    w: &mut impl std::io::Write,
+    format: Format,
+    mesh: &Mesh,
+    normals: Option<&[[f32; 3]]>,
+) -> Result<()> {
+    match (format, normals) {
+        (Format::Obj, None) => obj::write(mesh, w)?,
+        (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,
+        (Format::Ply, n) => ply::write(mesh, n, w)?,
+        (Format::Glb, n) => gltf::write(mesh, n, w)?,
+    }
+    w.flush()?;
+    Ok(())
+}
+
 /// Reads a mesh, choosing the format by extension. OBJ files get their scheme from the file
 /// name prefix (see [`obj::scheme_from_name`]).
 pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
@@ -102,15 +155,7 @@ pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh, normals: Option<&[[f32; 3
     let path = path.as_ref();
     let format = Format::from_path(path)?;
     let file = std::fs::File::create(path)?;
-    let mut w = std::io::BufWriter::new(file);
-    match (format, normals) {
-        (Format::Obj, None) => obj::write(mesh, &mut w)?,
-        (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, &mut w)?,
-        (Format::Ply, n) => ply::write(mesh, n, &mut w)?,
-        (Format::Glb, n) => gltf::write(mesh, n, &mut w)?,
-    }
-    std::io::Write::flush(&mut w)?;
-    Ok(())
+    write_to(&mut std::io::BufWriter::new(file), format, mesh, normals)
 }
 
 /// A [`Error::Parse`] at `line`.
