@@ -5,7 +5,11 @@ use std::path::PathBuf;
 
 use anyhow::Context;
 
-use crate::common::{gpu_context, Backend};
+use crate::common::{
+    check_mesh_output, check_output_ext, create_output, gpu_context, is_stdio, read_mesh, shown,
+    write_mesh, Backend,
+};
+use crate::progress::note;
 use subsurf::prep::quadrangulate::quadrangulate;
 use subsurf::prep::{PrepPatches, Real};
 use subsurf::Mesh;
@@ -13,24 +17,31 @@ use subsurf::Mesh;
 /// Arguments of `subsurf prep`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct PrepArgs {
-    /// Input mesh (.obj or .ply): a closed, oriented quad mesh.
+    /// Input mesh (.obj or .ply; `-` reads OBJ or PLY from standard input): a closed, oriented
+    /// quad mesh.
     pub input: PathBuf,
     /// Samples per patch side of the tessellation (>= 2).
     #[arg(long = "tess", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1025))]
     pub tess: u32,
-    /// Write the watertight tessellated surface (with normals) to this file (.obj or .ply).
+    /// Write the watertight tessellated surface (with normals) to this file: .obj, .ply or .glb
+    /// by extension; `-` writes standard output (`--format obj|ply|glb`).
     #[arg(short = 'o', long = "output")]
     pub output: Option<PathBuf>,
-    /// Write the bi-5 Bézier control points as a (faces, 6, 6, 3) float64 .npy array.
+    /// Write the bi-5 Bézier control points as a (faces, 6, 6, 3) float64 .npy array (built in
+    /// double precision unless --f32; `-` writes standard output).
     #[arg(long = "bezier")]
     pub bezier: Option<PathBuf>,
     /// Split every face into quads first (face centroid + edge midpoints) if the input has
     /// faces that are not quads.
     #[arg(long = "quadrangulate")]
     pub quadrangulate: bool,
-    /// Build and evaluate in double precision (the output files are written from it).
-    #[arg(long = "f64")]
+    /// Build and evaluate in double precision (the output files are written from it); the
+    /// default when --bezier is given on the CPU.
+    #[arg(long = "f64", conflicts_with = "f32")]
     pub f64: bool,
+    /// Build in single precision even with --bezier (the CAD export is then not exact).
+    #[arg(long = "f32")]
+    pub f32: bool,
     /// Where the p-rep is built and tessellated (the GPU backend is f32 only).
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
@@ -38,18 +49,39 @@ pub struct PrepArgs {
 
 /// Runs `subsurf prep`.
 pub fn run(args: &PrepArgs) -> anyhow::Result<()> {
-    let mut mesh = subsurf::io::read_path(&args.input)
-        .with_context(|| format!("reading {}", args.input.display()))?;
+    anyhow::ensure!(
+        !(args.f64 && args.backend == Backend::Gpu),
+        "--backend gpu computes in f32 only; drop --f64"
+    );
+    anyhow::ensure!(
+        args.output.is_some() || args.bezier.is_some(),
+        "nothing to write: give -o OUT (.obj, .ply or .glb) and/or --bezier OUT.npy"
+    );
+    if let Some(out) = &args.output {
+        check_mesh_output(out)?;
+    }
+    if let Some(out) = &args.bezier {
+        check_output_ext(out, "npy")?;
+    }
+    anyhow::ensure!(
+        !(args.output.as_deref().is_some_and(is_stdio)
+            && args.bezier.as_deref().is_some_and(is_stdio)),
+        "-o - and --bezier - would both write standard output; name a file for one of them"
+    );
+    let mut mesh = read_mesh(&args.input)?;
     let needs_quads = args.quadrangulate && mesh.face_counts.iter().any(|&c| c != 4);
     if args.backend == Backend::Gpu {
-        anyhow::ensure!(!args.f64, "--backend gpu computes in f32 only; drop --f64");
+        if args.bezier.is_some() && !args.f32 {
+            note("--backend gpu builds in f32: the --bezier export is not exact (the CPU builds it in f64)");
+        }
         return convert_gpu(args, &mesh, needs_quads);
     }
     if needs_quads {
         mesh = quadrangulate(&mesh)?;
-        eprintln!("quadrangulated: {} quads", mesh.num_faces());
+        crate::say!("quadrangulated: {} quads", mesh.num_faces());
     }
-    if args.f64 {
+    // The Bezier form is the CAD export: exact (f64) unless f32 is asked for.
+    if args.f64 || (args.bezier.is_some() && !args.f32) {
         convert::<f64>(args, &mesh)
     } else {
         convert::<f32>(args, &mesh)
@@ -65,7 +97,7 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
     })?;
     let nf = p.num_faces();
     let bquads = nf - p.topology.perturbed_faces.len();
-    eprintln!(
+    crate::say!(
         "p-rep ({}): {nf} patches, {bquads} B-quads ({:.1}%), max valence {}",
         T::NAME,
         100.0 * bquads as f64 / nf.max(1) as f64,
@@ -78,23 +110,20 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
         };
         let tri = Mesh::from_faces(to32(&t.positions), &t.triangles);
         let normals = to32(&t.normals);
-        subsurf::io::write_path(out, &tri, Some(&normals))
-            .with_context(|| format!("writing {}", out.display()))?;
-        eprintln!(
+        write_mesh(out, &tri, Some(&normals))?;
+        crate::say!(
             "wrote {}: {} vertices, {} triangles",
-            out.display(),
+            shown(out, true),
             t.positions.len(),
             t.triangles.len()
         );
     }
     if let Some(out) = &args.bezier {
-        let file =
-            std::fs::File::create(out).with_context(|| format!("creating {}", out.display()))?;
-        let mut w = std::io::BufWriter::new(file);
+        let mut w = create_output(out)?;
         p.write_bezier_npy(&mut w)
             .and_then(|_| std::io::Write::flush(&mut w))
-            .with_context(|| format!("writing {}", out.display()))?;
-        eprintln!("wrote {}: ({nf}, 6, 6, 3) float64", out.display());
+            .with_context(|| format!("writing {}", shown(out, true)))?;
+        crate::say!("wrote {}: ({nf}, 6, 6, 3) float64", shown(out, true));
     }
     Ok(())
 }
@@ -115,7 +144,7 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
             .context("--backend gpu: quadrangulating")?;
         // The refined connectivity; its positions stay on the GPU.
         quads = refiner.to_mesh(1, vec![[0.0; 3]; refiner.last().num_vertices()]);
-        eprintln!("quadrangulated (GPU): {} quads", quads.num_faces());
+        crate::say!("quadrangulated (GPU): {} quads", quads.num_faces());
         refined = Some(gpu);
         &quads
     } else {
@@ -135,7 +164,7 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
     }
     .context("--backend gpu: vertex and patch pass")?;
     let nf = topo.num_faces();
-    eprintln!(
+    crate::say!(
         "p-rep (f32, GPU): {nf} patches, {} perturbed, max valence {}",
         topo.perturbed_faces.len(),
         topo.max_valence
@@ -146,11 +175,10 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
             .and_then(|g| gpu.eval_grid(&ctx, &g).and_then(|_| g.download(&ctx)))
             .context("--backend gpu: tessellating")?;
         let tri = Mesh::from_faces(grid.positions.clone(), &grid.triangles);
-        subsurf::io::write_path(out, &tri, Some(&grid.normals))
-            .with_context(|| format!("writing {}", out.display()))?;
-        eprintln!(
+        write_mesh(out, &tri, Some(&grid.normals))?;
+        crate::say!(
             "wrote {}: {} vertices, {} triangles",
-            out.display(),
+            shown(out, true),
             grid.positions.len(),
             grid.triangles.len()
         );
@@ -173,13 +201,11 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
                 data.extend(b.map(f64::from));
             }
         }
-        let file =
-            std::fs::File::create(out).with_context(|| format!("creating {}", out.display()))?;
-        let mut w = std::io::BufWriter::new(file);
+        let mut w = create_output(out)?;
         npy::write_f64(&mut w, &data, &[nf, 6, 6, 3])
             .and_then(|_| std::io::Write::flush(&mut w))
-            .with_context(|| format!("writing {}", out.display()))?;
-        eprintln!("wrote {}: ({nf}, 6, 6, 3) float64", out.display());
+            .with_context(|| format!("writing {}", shown(out, true)))?;
+        crate::say!("wrote {}: ({nf}, 6, 6, 3) float64", shown(out, true));
     }
     Ok(())
 }
