@@ -68,7 +68,7 @@ fn bench(c: &mut Criterion) {
             row_count: rows as u32,
             stride: stride as u32,
             grid_width: rows as u32,
-            _pad: 0,
+            relative: 0,
         };
         let mut dst = vec![0.0f32; rows * stride];
         group.bench_with_input(BenchmarkId::new("cpu_twin", rows), &rows, |b, _| {

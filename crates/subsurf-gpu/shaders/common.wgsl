@@ -12,7 +12,8 @@ struct StencilConfig {
     // Invocations along x of the dispatch grid (workgroups_x * WORKGROUP_SIZE);
     // the row of an invocation is `gid.y * grid_width + gid.x`.
     grid_width: u32,
-    _pad: u32,
+    // 1: rows relative to their first input, x0 + sum w (x - x0) (rows summing to 1).
+    relative: u32,
 }
 
 // Per-dispatch parameters of `refine_level` (one uniform per chunk of one table).

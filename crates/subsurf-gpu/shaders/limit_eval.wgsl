@@ -3,7 +3,8 @@
 //
 //   patch  = patch_map walk of (ptex, u, v)                (OpenSubdiv Far::PatchMap)
 //   (s, t) = (u 2^l - U, v 2^l - V),  l = depth - non_quad  (PatchParam::normalize)
-//   P      = sum_k w_k(s, t) points[cvs[k]],  dP/du, dP/dv with weights scaled by 2^l
+//   P      = x0 + sum_k w_k(s, t) (points[cvs[k]] - x0),  x0 = points[cvs[0]];
+//            dP/du, dP/dv likewise (without x0) with weights scaled by 2^l
 //   n      = (dP/du x dP/dv) / |...|, or the same a little inside the face where it vanishes
 //
 // Bases: regular bicubic B-spline with boundary phantom points folded into the weights;
@@ -210,6 +211,9 @@ fn gather(first: u32, gregory: bool, wu: Curve, wv: Curve, g: vec4<f32>, scale: 
     r.dv = vec3<f32>(0.0);
     r.found = true;
     let count = select(16u, 20u, gregory);
+    // Relative to the first control point: the weights sum to 1 (derivatives: 0), and the
+    // rounding is then of the patch's size, not of its distance from the origin.
+    let x0 = point(first);
     for (var k = 0u; k < count; k++) {
         var i = k % 4u;
         var j = k / 4u;
@@ -224,11 +228,12 @@ fn gather(first: u32, gregory: bool, wu: Curve, wv: Curve, g: vec4<f32>, scale: 
                 gk = 1.0 - g[k / 5u];
             }
         }
-        let x = point(first + k);
+        let x = point(first + k) - x0;
         r.p += (wu.p[i] * wv.p[j] * gk) * x;
         r.du += (wu.d[i] * gk * wv.p[j] * scale) * x;
         r.dv += (wv.d[j] * gk * wu.p[i] * scale) * x;
     }
+    r.p += x0;
     return r;
 }
 

@@ -2,7 +2,10 @@
 //
 //   dst[i*stride + k] = sum_{j in offsets[i]..offsets[i+1]} weights[j] * src[indices[j]*stride + k]
 //
-// accumulated in f32 in index order. The CPU twin is src/cpu/stencil_apply.rs (same
+// accumulated in f32 in index order; with config.relative = 1 (rows summing to 1),
+//   dst[i*stride + k] = x0 + sum_j weights[j] * (src[indices[j]*stride + k] - x0),
+//   x0 = src[indices[offsets[i]]*stride + k],
+// whose rounding is of the row's neighbourhood instead of the distance from the origin. The CPU twin is src/cpu/stencil_apply.rs (same
 // binding order, same WORKGROUP_SIZE, same loop structure).
 //
 // The table is uploaded in chunks of rows; `offsets` of a chunk are rebased so that the
@@ -31,16 +34,23 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     for (var k0 = 0u; k0 < stride; k0 += BLOCK) {
         let width = min(BLOCK, stride - k0);
         var acc = array<f32, 4>(0.0, 0.0, 0.0, 0.0);
+        var x0 = array<f32, 4>(0.0, 0.0, 0.0, 0.0);
+        if config.relative != 0u && begin < end {
+            let base0 = indices[begin] * stride + k0;
+            for (var c = 0u; c < width; c++) {
+                x0[c] = src[base0 + c];
+            }
+        }
         for (var j = begin; j < end; j++) {
             let w = weights[j];
             let base = indices[j] * stride + k0;
             for (var c = 0u; c < width; c++) {
-                acc[c] += w * src[base + c];
+                acc[c] += w * (src[base + c] - x0[c]);
             }
         }
         let out = row * stride + k0;
         for (var c = 0u; c < width; c++) {
-            dst[out + c] = acc[c];
+            dst[out + c] = select(acc[c], acc[c] + x0[c], config.relative != 0u);
         }
     }
 }

@@ -252,6 +252,7 @@ impl GpuLimit {
         let lp = &table.local_points;
         let local = if lp.num_rows() > 0 {
             let t = StencilTable::new(&lp.offsets, &lp.indices, &lp.weights)?;
+            // Relative rows, as `PatchTable::points` (long rows at high-valence vertices).
             let kernel = StencilKernel::with_limits(
                 ctx,
                 &t,
@@ -259,7 +260,8 @@ impl GpuLimit {
                     max_stride: 3,
                     ..limits
                 },
-            )?;
+            )?
+            .relative(true);
             Some((kernel, VertexBuffer::zeroed(ctx, lp.num_rows(), 3)?))
         } else {
             None

@@ -16,8 +16,10 @@ pub struct StencilConfig {
     /// Invocations along x of the dispatch grid (`workgroups_x * WORKGROUP_SIZE`); the row
     /// of invocation `gid` is `gid.y * grid_width + gid.x`.
     pub grid_width: u32,
-    /// Padding to 16 bytes.
-    pub _pad: u32,
+    /// 1: each row is applied relative to its first input, `x_0 + Σ w (x − x_0)` (for
+    /// tables whose rows sum to 1: the rounding is then relative to the row's
+    /// neighbourhood, not to the distance from the origin); 0: `Σ w x`.
+    pub relative: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<StencilConfig>() == 16);

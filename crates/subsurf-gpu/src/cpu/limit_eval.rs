@@ -6,8 +6,12 @@
 //! the basis of the patch kind gives one weight per control point,
 //!
 //! ```text
-//! P = Σ_k w_k(s, t) x_k        ∂P/∂u = 2^l Σ_k ∂w_k/∂s x_k        (likewise ∂P/∂v)
+//! P = x_0 + Σ_k w_k(s, t) (x_k − x_0)        ∂P/∂u = 2^l Σ_k ∂w_k/∂s (x_k − x_0)
 //! ```
+//!
+//! (likewise `∂P/∂v`), relative to the patch's first control point `x_0` — exact, as the
+//! weights sum to 1 and their derivatives to 0, and rounded relative to the patch instead
+//! of its distance from the origin ([`subsurf::limit::eval`]). The bases:
 //!
 //! - regular: bicubic B-spline, phantom points `2 P_edge − P_inner` of boundary edges folded
 //!   into the curve weights ([`subsurf::patch::bspline`]);
@@ -272,6 +276,8 @@ fn gather(
         ..Default::default()
     };
     let count = if gregory { 20 } else { 16 };
+    // Relative to the first control point (see the module documentation).
+    let x0 = point(inp, first);
     for k in 0..count {
         let (mut i, mut j, mut gk) = ((k % 4) as usize, (k / 4) as usize, 1.0f32);
         if gregory {
@@ -283,11 +289,13 @@ fn gather(
                 _ => {}
             }
         }
-        let x = point(inp, first + k);
+        let xk = point(inp, first + k);
+        let x: V = std::array::from_fn(|c| xk[c] - x0[c]);
         axpy(&mut r.p, wu.p[i] * wv.p[j] * gk, x);
         axpy(&mut r.du, wu.d[i] * gk * wv.p[j] * scale, x);
         axpy(&mut r.dv, wv.d[j] * gk * wu.p[i] * scale, x);
     }
+    axpy(&mut r.p, 1.0, x0);
     r
 }
 

@@ -48,15 +48,27 @@ pub fn stencil_apply_invocation(
     while k0 < stride {
         let width = block.min(stride - k0);
         let mut acc = [0.0f32; 4];
+        // Relative rows: x0 + Σ w (x − x0) (x0 = 0 otherwise: exactly Σ w x).
+        let mut x0 = [0.0f32; 4];
+        if config.relative != 0 && begin < end {
+            let base0 = indices[begin] as usize * stride + k0;
+            x0[..width].copy_from_slice(&src[base0..base0 + width]);
+        }
         for j in begin..end {
             let w = weights[j];
             let base = indices[j] as usize * stride + k0;
             for c in 0..width {
-                acc[c] += w * src[base + c];
+                acc[c] += w * (src[base + c] - x0[c]);
             }
         }
         let out = row * stride + k0;
-        dst[out..out + width].copy_from_slice(&acc[..width]);
+        for c in 0..width {
+            dst[out + c] = if config.relative != 0 {
+                acc[c] + x0[c]
+            } else {
+                acc[c]
+            };
+        }
         k0 += block;
     }
 }
@@ -102,7 +114,7 @@ pub fn apply_stencil_table(
         row_count: rows,
         stride: stride as u32,
         grid_width: rows,
-        _pad: 0,
+        relative: 0,
     };
     let mut dst = vec![0.0; table.rows() * stride];
     stencil_apply(

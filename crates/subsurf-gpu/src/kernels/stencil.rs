@@ -188,6 +188,8 @@ pub struct StencilKernel {
     chunks: Vec<Chunk>,
     layout: wgpu::BindGroupLayout,
     pipeline: wgpu::ComputePipeline,
+    /// Rows applied relative to their first input ([`StencilKernel::relative`]).
+    relative: bool,
 }
 
 impl StencilKernel {
@@ -308,7 +310,17 @@ impl StencilKernel {
             chunks,
             layout,
             pipeline,
+            relative: false,
         })
+    }
+
+    /// Applies every row relative to its first input, `x_0 + Σ w (x − x_0)`: for tables
+    /// whose rows sum to 1 (patch points, end caps), the rounding is then that of the row's
+    /// neighbourhood, not of its distance from the origin (as
+    /// `subsurf::limit::points::apply_relative`).
+    pub fn relative(mut self, on: bool) -> Self {
+        self.relative = on;
+        self
     }
 
     /// Number of rows (destination vertices).
@@ -493,7 +505,7 @@ impl StencilKernel {
             row_count: rows.rows,
             stride,
             grid_width: gx * WORKGROUP_SIZE,
-            _pad: 0,
+            relative: u32::from(self.relative),
         };
         ctx.queue
             .write_buffer(&rows.config, 0, bytemuck::bytes_of(&c));
