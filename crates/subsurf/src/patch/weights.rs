@@ -114,12 +114,26 @@ impl<T: Real, const N: usize> PatchWeights<T, N> {
         }
     }
 
-    /// Applies the weights to `N` control points of dimension `D`.
+    /// The point the sums are taken relative to: the first of non-zero position weight (0
+    /// if there is none).
+    pub fn origin(&self) -> usize {
+        self.p.iter().position(|&w| w != T::ZERO).unwrap_or(0)
+    }
+
+    /// Applies the weights to `N` control points of dimension `D`, relative to one of them:
+    /// `P = x_0 + Σ_k w_k (x_k − x_0)` and `∂P = Σ_k ∂w_k (x_k − x_0)`, which is the plain sum
+    /// for the weights of a patch basis (position weights summing to 1, derivative weights
+    /// to 0) and rounds relative to the patch, not to its distance from the origin. `x_0` is
+    /// the first point of non-zero position weight ([`PatchWeights::origin`]), never a
+    /// phantom point whose weights a boundary mask made zero.
     pub fn eval<const D: usize>(&self, points: &[[T; D]; N]) -> PatchEval<T, D> {
         let mut r = PatchEval::<T, D>::default();
+        let Some(&x0) = points.get(self.origin()) else {
+            return r;
+        };
         for (k, pt) in points.iter().enumerate() {
             for c in 0..D {
-                let x = pt[c];
+                let x = pt[c] - x0[c];
                 r.p[c] += self.p[k] * x;
                 r.du[c] += self.du[k] * x;
                 r.dv[c] += self.dv[k] * x;
@@ -128,6 +142,9 @@ impl<T: Real, const N: usize> PatchWeights<T, N> {
                 r.dvv[c] += self.dvv[k] * x;
             }
         }
+        for c in 0..D {
+            r.p[c] += x0[c];
+        }
         r
     }
 }
@@ -135,17 +152,21 @@ impl<T: Real, const N: usize> PatchWeights<T, N> {
 impl<T: Real, const N: usize> PatchWeights<T, N> {
     /// Applies the weights to the points `points[indices[k]]`, `k < min(N, indices.len())`
     /// (a patch's control-vertex indices into a vertex buffer). `None` if an index is out of
-    /// range.
+    /// range. Relative to one of the points, as [`PatchWeights::eval`].
     pub fn eval_indexed<const D: usize>(
         &self,
         points: &[[T; D]],
         indices: &[u32],
     ) -> Option<PatchEval<T, D>> {
         let mut r = PatchEval::<T, D>::default();
+        let Some(&first) = indices.get(self.origin()).or(indices.first()) else {
+            return Some(r);
+        };
+        let x0 = *points.get(first as usize)?;
         for (k, &i) in indices.iter().take(N).enumerate() {
             let pt = points.get(i as usize)?;
             for c in 0..D {
-                let x = pt[c];
+                let x = pt[c] - x0[c];
                 r.p[c] += self.p[k] * x;
                 r.du[c] += self.du[k] * x;
                 r.dv[c] += self.dv[k] * x;
@@ -153,6 +174,9 @@ impl<T: Real, const N: usize> PatchWeights<T, N> {
                 r.duv[c] += self.duv[k] * x;
                 r.dvv[c] += self.dvv[k] * x;
             }
+        }
+        for c in 0..D {
+            r.p[c] += x0[c];
         }
         Some(r)
     }
