@@ -98,9 +98,12 @@ fn eval_patch(f: u32, bu_in: Basis, bv_in: Basis) -> Sample {
     r.p = vec3<f32>(0.0);
     r.du = vec3<f32>(0.0);
     r.dv = vec3<f32>(0.0);
+    // The bi-3 part relative to g00 (its weights sum to 1; h is a perturbation): rounding
+    // of the patch's size, not of its distance from the origin.
+    let x0 = pd(16u * f);
     for (var i = 0u; i < 4u; i++) {
         for (var j = 0u; j < 4u; j++) {
-            let x = pd(16u * f + 4u * i + j);
+            let x = pd(16u * f + 4u * i + j) - x0;
             r.p += (bu.b3[i] * bv.b3[j]) * x;
             r.du += (bu.d3[i] * bv.b3[j]) * x;
             r.dv += (bu.b3[i] * bv.d3[j]) * x;
@@ -119,6 +122,7 @@ fn eval_patch(f: u32, bu_in: Basis, bv_in: Basis) -> Sample {
             r.dv += (bu.b5[i] * bv.d5[j]) * x;
         }
     }
+    r.p += x0;
     return r;
 }
 

@@ -131,9 +131,12 @@ fn h_slot(s: u32) -> u32 {
 /// `(x, ∂x/∂u, ∂x/∂v)` of face `f`.
 fn eval_patch(cfg: &PrepConfig, inp: &EvalInputs<'_>, f: u32, bu: &Basis, bv: &Basis) -> [V; 3] {
     let (mut p, mut du, mut dv) = ([0.0f32; 3], [0.0f32; 3], [0.0f32; 3]);
+    // The bi-3 part relative to g00 (its weights sum to 1; h is a perturbation).
+    let x0 = get(inp.patch_data, 16 * f);
     for i in 0..4 {
         for j in 0..4 {
-            let x = get(inp.patch_data, 16 * f + 4 * i as u32 + j as u32);
+            let xk = get(inp.patch_data, 16 * f + 4 * i as u32 + j as u32);
+            let x: V = std::array::from_fn(|c| xk[c] - x0[c]);
             p = axpy(p, bu.b3[i] * bv.b3[j], x);
             du = axpy(du, bu.d3[i] * bv.b3[j], x);
             dv = axpy(dv, bu.b3[i] * bv.d3[j], x);
@@ -151,6 +154,7 @@ fn eval_patch(cfg: &PrepConfig, inp: &EvalInputs<'_>, f: u32, bu: &Basis, bv: &B
             dv = axpy(dv, bu.b5[i] * bv.d5[j], x);
         }
     }
+    p = axpy(p, 1.0, x0);
     [p, du, dv]
 }
 

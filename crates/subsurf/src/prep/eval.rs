@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use super::grid::{uniform_params, GridBasis};
 use super::patch_pass::{corner_index, H_SLOTS};
-use super::scalar::{add, cross, normalize, scale, zero3, Real, V3};
+use super::scalar::{add, cross, normalize, scale, sub, zero3, Real, V3};
 use super::PrepPatches;
 
 /// Bernstein values and derivatives of degree 3 and 5 at one parameter.
@@ -97,9 +97,12 @@ pub fn eval_patch<T: Real>(
     bv: &Basis<T>,
 ) -> Sample<T> {
     let (mut p, mut du, mut dv) = (zero3::<T>(), zero3::<T>(), zero3::<T>());
+    // The bi-3 part relative to g00: its weights sum to 1 (derivatives: 0), so the rounding
+    // is of the patch's size, not of its distance from the origin; h is a perturbation.
+    let x0 = g[0];
     for i in 0..4 {
         for j in 0..4 {
-            let x = g[4 * i + j];
+            let x = sub(g[4 * i + j], x0);
             let (w, wu, wv) = (
                 bu.b3[i] * bv.b3[j],
                 bu.d3[i] * bv.b3[j],
@@ -128,7 +131,7 @@ pub fn eval_patch<T: Real>(
         }
     }
     Sample {
-        position: p,
+        position: add(p, x0),
         du,
         dv,
     }
@@ -147,11 +150,12 @@ pub fn eval_patch_grid<T: Real>(
     bv: &[Basis<T>],
     mut emit: impl FnMut(usize, usize, Sample<T>),
 ) {
+    let x0 = g[0]; // relative to g00, as `eval_patch`
     for (j, b) in bv.iter().enumerate() {
         let (mut cg, mut cgv) = ([zero3::<T>(); 4], [zero3::<T>(); 4]);
         for i in 0..4 {
             for jj in 0..4 {
-                let x = g[4 * i + jj];
+                let x = sub(g[4 * i + jj], x0);
                 for k in 0..3 {
                     cg[i][k] += b.b3[jj] * x[k];
                     cgv[i][k] += b.d3[jj] * x[k];
@@ -189,7 +193,7 @@ pub fn eval_patch_grid<T: Real>(
                 i,
                 j,
                 Sample {
-                    position: p,
+                    position: add(p, x0),
                     du,
                     dv,
                 },

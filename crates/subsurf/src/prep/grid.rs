@@ -150,6 +150,12 @@ impl<T: Real> GridBasis<T> {
         }
         let (pos, nrm) = (&mut pos[..len], &mut nrm[..len]);
         let g: &[V3<T>; 16] = g[..16].try_into().expect("16 coefficients");
+        // Relative to g00 (the bi-3 weights sum to 1, the derivative weights to 0; `h` is a
+        // perturbation): the rounding is of the patch's size, not of its distance from the
+        // origin. g00 is added back to the positions at the end.
+        let x0 = g[0];
+        let g: [V3<T>; 16] = std::array::from_fn(|k| std::array::from_fn(|c| g[k][c] - x0[c]));
+        let g = &g;
         match h {
             None => {
                 let (b, d) = (self.slices::<4>(&self.b3), self.slices::<3>(&self.d3));
@@ -175,6 +181,11 @@ impl<T: Real> GridBasis<T> {
                     let (c, cv) = contract_prep(g, h, row);
                     eval_row(&b, &d, &c, &cv, prow, nrow);
                 }
+            }
+        }
+        for p in pos.iter_mut() {
+            for c in 0..3 {
+                p[c] += x0[c];
             }
         }
     }
