@@ -5,7 +5,7 @@
 use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
 use anyhow::Context;
 use std::path::PathBuf;
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, Tessellation};
+use subsurf::limit::{PatchOptions, PatchTable};
 use subsurf::{Mesh, Topology};
 
 /// The limit surface of a mesh file: the input and the patch-table options shared by
@@ -78,10 +78,7 @@ pub struct LimitArgs {
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     let (mesh, table) = a.surface.load_table()?;
-    let tess = match a.surface.backend {
-        Backend::Cpu => LimitSurface::new(table.clone(), &mesh.positions).tessellate(a.tess)?,
-        Backend::Gpu => tessellate_gpu(&a.surface, &mesh, &table, a.tess)?,
-    };
+    let tess = surface_backend(a.surface.backend)?.limit(&table, &mesh.positions, a.tess)?;
     let out = tess.to_mesh(a.quads);
     write_mesh(&a.output, &out, Some(&tess.normals))?;
     let c = table.counts();
@@ -101,17 +98,13 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn tessellate_gpu(
-    surface: &SurfaceArgs,
-    mesh: &Mesh,
-    table: &PatchTable,
-    n: usize,
-) -> anyhow::Result<Tessellation> {
-    let ctx = gpu_context()?;
-    let gpu = surface.upload(&ctx, mesh, table)?;
-    let t = gpu.tessellation(&ctx, table, n)?;
-    gpu.eval(&ctx, &t.samples)
-        .context("--backend gpu: evaluating the samples")?;
-    t.download(&ctx)
-        .context("--backend gpu: reading the tessellation back")
+/// The `subsurf::surface` backend for `--backend`: the CPU, or the GPU opened with the
+/// install hint on failure.
+pub fn surface_backend(b: Backend) -> anyhow::Result<Box<dyn subsurf::surface::Backend>> {
+    Ok(match b {
+        Backend::Cpu => Box::new(subsurf::surface::Cpu),
+        Backend::Gpu => Box::new(subsurf_gpu::GpuBackend {
+            ctx: gpu_context()?,
+        }),
+    })
 }

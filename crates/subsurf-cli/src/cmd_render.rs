@@ -12,10 +12,9 @@
 
 use crate::common::{read_mesh, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
-use crate::render_limit::{self, LimitColors};
-use crate::render_mesh;
 use anyhow::{bail, Context};
 use std::path::{Path, PathBuf};
+use subsurf::surface::{Colors, Method as SurfaceMethod, SurfaceOptions};
 use subsurf::Mesh;
 use subsurf_render::{Fit, Gpu, RenderMesh, RenderOptions, RgbaImage, UpAxis, View};
 
@@ -225,62 +224,57 @@ pub fn build(
         }
         (_, c) => c,
     };
-    match spec.method {
-        Method::Refine => {
-            progress.stage(format!(
-                "refining {} to level {}",
-                spec.path.display(),
-                spec.level
-            ));
-            render_mesh::refined(mesh, spec.level, color_by == ColorBy::Sharpness, look.cage)
-        }
-        Method::Prep => {
-            progress.stage(format!(
+    let (method, what) = match spec.method {
+        Method::Refine => (
+            SurfaceMethod::Refine {
+                level: spec.level,
+                limit: false,
+            },
+            format!("refining {} to level {}", spec.path.display(), spec.level),
+        ),
+        Method::Prep => (
+            SurfaceMethod::Prep {
+                samples: spec.level,
+                perturbed: spec.perturbed,
+            },
+            format!(
                 "p-rep of {} at {} samples per side",
                 spec.path.display(),
                 spec.level
-            ));
-            if !mesh.creases.is_empty() || !mesh.corners.is_empty() {
-                note("the p-rep ignores crease and corner tags");
-            }
-            let (rm, nf, np) = render_mesh::prep(
-                mesh,
-                spec.level,
-                color_by == ColorBy::PatchKind,
-                spec.perturbed,
-                look.cage,
-            )?;
-            if !quiet() {
-                eprintln!(
-                    "p-rep: {nf} patches, {} B-quads, {np} perturbed{}",
-                    nf - np,
-                    if spec.perturbed {
-                        ""
-                    } else {
-                        " (perturbation left out)"
-                    }
-                );
-            }
-            Ok(rm)
-        }
-        Method::Limit => {
-            progress.stage(format!(
+            ),
+        ),
+        Method::Limit => (
+            SurfaceMethod::Limit {
+                samples: spec.level,
+                options: Default::default(),
+            },
+            format!(
                 "limit surface of {} at {} samples per side",
                 spec.path.display(),
                 spec.level
-            ));
-            let colors = match color_by {
-                ColorBy::PatchKind => LimitColors::PatchKind,
-                ColorBy::Level => LimitColors::Level,
-                _ => LimitColors::None,
-            };
-            let (rm, summary) = render_limit::limit(mesh, spec.level, colors, look.cage)?;
-            if !quiet() {
-                eprintln!("{summary}");
-            }
-            Ok(rm)
-        }
+            ),
+        ),
+    };
+    progress.stage(what);
+    let options = SurfaceOptions {
+        method,
+        colors: match color_by {
+            ColorBy::None => Colors::None,
+            ColorBy::PatchKind => Colors::PatchKind,
+            ColorBy::Level => Colors::Level,
+            ColorBy::Sharpness => Colors::Sharpness,
+        },
+        cage: look.cage,
+    };
+    let surface = subsurf::surface::build(mesh, &options, &subsurf::surface::Cpu)
+        .with_context(|| format!("building the surface of {}", spec.path.display()))?;
+    for n in &surface.notes {
+        note(n.as_str());
     }
+    if !quiet() && spec.method != Method::Refine {
+        crate::say!("{}", surface.summary);
+    }
+    Ok(surface.into())
 }
 
 /// Reads and builds the triangles of one surface.

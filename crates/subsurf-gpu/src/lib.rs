@@ -94,6 +94,7 @@ pub mod prep;
 pub mod prep_chunks;
 pub mod refine;
 pub mod shared;
+pub mod surface;
 pub mod table;
 pub mod uv;
 
@@ -105,6 +106,7 @@ pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use prep_chunks::PrepChunks;
 pub use refine::GpuRefiner;
+pub use surface::GpuBackend;
 pub use table::StencilTable;
 pub use uv::GpuUvRefiner;
 

@@ -127,6 +127,21 @@ impl RenderMesh {
     }
 }
 
+impl From<subsurf::surface::Surface> for RenderMesh {
+    /// The triangles of `subsurf::surface::build` as drawn: classes kept when the surface
+    /// computed any (`colors` other than `None`), the cage as lines.
+    fn from(s: subsurf::surface::Surface) -> Self {
+        let classed = s.colors != subsurf::surface::Colors::None;
+        RenderMesh {
+            positions: s.positions,
+            normals: s.normals,
+            indices: s.triangles.into_iter().flatten().collect(),
+            triangle_class: classed.then_some(s.triangle_class),
+            lines: s.cage,
+        }
+    }
+}
+
 /// A categorical palette (sRGB): neutral grey first, then well-separated hues.
 pub const PALETTE: [[u8; 3]; 8] = [
     [200, 203, 210], // 0 grey

@@ -1,0 +1,119 @@
+//! [`GpuBackend`]: the GPU behind `subsurf::surface::build`. The library defines the
+//! [`Backend`] trait with CPU bodies and knows no GPU; this crate overrides each step with its
+//! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation,
+//! the p-rep passes and grid).
+
+use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, StencilKernel, VertexBuffer};
+use subsurf::limit::{PatchTable, Tessellation};
+use subsurf::prep::PrepTopology;
+use subsurf::surface::{Backend, PrepOutput, SurfaceError};
+use subsurf::{Mesh, Refiner, Topology};
+
+/// The GPU as a surface backend (one device, opened once).
+#[derive(Debug)]
+pub struct GpuBackend {
+    /// The device the kernels run on.
+    pub ctx: GpuContext,
+}
+
+impl GpuBackend {
+    /// Opens the default adapter.
+    pub fn new() -> Result<Self, GpuError> {
+        Ok(GpuBackend {
+            ctx: GpuContext::new()?,
+        })
+    }
+}
+
+fn gpu_err(what: &str) -> impl FnOnce(GpuError) -> SurfaceError + '_ {
+    move |e| SurfaceError::Backend {
+        backend: "gpu",
+        message: format!("{what}: {e}"),
+        source: Some(Box::new(e)),
+    }
+}
+
+fn triples(flat: &[f32]) -> Vec<[f32; 3]> {
+    flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
+}
+
+impl Backend for GpuBackend {
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+
+    fn refine(
+        &self,
+        refiner: &Refiner,
+        base: &[[f32; 3]],
+        limit: bool,
+    ) -> Result<Vec<[f32; 3]>, SurfaceError> {
+        let ctx = &self.ctx;
+        let gpu = GpuRefiner::new(ctx, refiner).map_err(gpu_err("uploading the refiner"))?;
+        gpu.update(ctx, base).map_err(gpu_err("refining"))?;
+        let flat = if limit {
+            let t = refiner.limit_table();
+            let kernel = StencilKernel::new(ctx, &t.offsets, &t.indices, &t.weights)
+                .map_err(gpu_err("uploading the limit stencils"))?;
+            let mut dst = VertexBuffer::zeroed(ctx, t.num_rows(), gpu.output().stride())
+                .map_err(gpu_err("allocating the limit positions"))?;
+            kernel
+                .apply(ctx, gpu.output(), &mut dst)
+                .map_err(gpu_err("limit step"))?;
+            dst.download(ctx)
+        } else {
+            gpu.output().download(ctx)
+        }
+        .map_err(gpu_err("reading positions back"))?;
+        Ok(triples(&flat))
+    }
+
+    fn limit(
+        &self,
+        table: &PatchTable,
+        base: &[[f32; 3]],
+        samples: usize,
+    ) -> Result<Tessellation, SurfaceError> {
+        let ctx = &self.ctx;
+        let mut gpu = GpuLimit::new(ctx, table).map_err(gpu_err("uploading the patch table"))?;
+        gpu.update(ctx, base)
+            .map_err(gpu_err("refining and computing end-cap points"))?;
+        let t = gpu
+            .tessellation(ctx, table, samples)
+            .map_err(gpu_err("planning the tessellation"))?;
+        gpu.eval(ctx, &t.samples)
+            .map_err(gpu_err("evaluating the samples"))?;
+        t.download(ctx)
+            .map_err(gpu_err("reading the tessellation back"))
+    }
+
+    fn prep(
+        &self,
+        quads: &Mesh,
+        samples: usize,
+        perturbed: bool,
+    ) -> Result<PrepOutput, SurfaceError> {
+        if !perturbed {
+            return Err(SurfaceError::Unsupported(
+                "the GPU p-rep always includes the bi-5 perturbations; use the CPU backend".into(),
+            ));
+        }
+        let ctx = &self.ctx;
+        let topo = PrepTopology::new(&Topology::new(quads)?)?;
+        let mut gpu = GpuPrep::new(ctx, &topo).map_err(gpu_err("uploading the p-rep"))?;
+        gpu.update(ctx, &quads.positions)
+            .map_err(gpu_err("vertex and patch pass"))?;
+        let grid = gpu
+            .grid(ctx, samples.max(2))
+            .and_then(|g| gpu.eval_grid(ctx, &g).and_then(|_| g.download(ctx)))
+            .map_err(gpu_err("tessellating"))?;
+        let mut flags = vec![false; topo.num_faces()];
+        for &f in &topo.perturbed_faces {
+            flags[f as usize] = true;
+        }
+        Ok(PrepOutput {
+            tessellation: grid,
+            perturbed: flags,
+        })
+    }
+}
