@@ -1,0 +1,424 @@
+"""subsurf: Catmull-Clark and bilinear subdivision that reproduces OpenSubdiv 3.5, limit
+surfaces and the p-rep, with numpy arrays in and out.
+
+Every computation releases the GIL; objects are immutable (``LimitSurface.update`` swaps its
+state atomically) and safe to share between threads. Floating-point work is done in float32
+(the library's precision) except ``Prep``, which is built in float64.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from . import _subsurf
+from ._errors import GpuError, MeshError, ParseError, SubsurfError
+
+__all__ = [
+    "Mesh", "read", "refine", "Refiner", "LimitSurface", "Prep", "tessellate", "render",
+    "MeshError", "ParseError", "GpuError", "SubsurfError",
+]
+__version__ = "0.1.0"
+
+_U32_MAX = 2**32 - 1
+
+
+def _floats(a: Any, cols: int, what: str) -> np.ndarray:
+    """(n, cols) float32, C-contiguous; no copy when it already is."""
+    try:
+        arr = np.asarray(a)
+    except Exception as e:  # ragged lists and the like
+        raise ValueError(f"{what}: not an array ({e})") from None
+    if arr.dtype.kind not in "fiu" or arr.dtype == np.float16:
+        if arr.size or arr.dtype.kind not in "O":
+            if arr.dtype.kind not in "fiu":
+                raise ValueError(f"{what}: expected numbers, got dtype {arr.dtype}")
+    if arr.ndim == 1 and arr.size == 0:
+        arr = arr.reshape(0, cols)
+    if arr.ndim != 2 or arr.shape[1] != cols:
+        raise ValueError(f"{what}: expected shape (n, {cols}), got {arr.shape}")
+    if arr.dtype == np.float64 and arr.size:
+        big = np.abs(arr[np.isfinite(arr)])
+        if big.size and big.max() > np.finfo(np.float32).max:
+            raise MeshError(f"{what}: a value overflows float32", face=None, corner=None, vertex=None)
+    return np.ascontiguousarray(arr, dtype=np.float32)
+
+
+def _indices(a: Any, what: str) -> np.ndarray:
+    """1-D uint32, C-contiguous; negative, huge or fractional values refused."""
+    try:
+        arr = np.asarray(a)
+    except Exception as e:
+        raise ValueError(f"{what}: not an array ({e})") from None
+    if arr.size == 0:
+        return np.zeros(0, dtype=np.uint32)
+    if arr.dtype.kind == "f":
+        if not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
+            raise ValueError(f"{what}: indices must be integers")
+    elif arr.dtype.kind not in "iub":
+        raise ValueError(f"{what}: expected integers, got dtype {arr.dtype}")
+    arr = arr.reshape(-1)
+    if arr.min() < 0:
+        k = int(np.argmin(arr))
+        raise ValueError(f"{what}[{k}] = {arr[k]}: negative index")
+    if arr.max() > _U32_MAX:
+        k = int(np.argmax(arr))
+        raise ValueError(f"{what}[{k}] = {arr[k]}: index too large")
+    return np.ascontiguousarray(arr, dtype=np.uint32)
+
+
+def _faces(faces: Any) -> Tuple[np.ndarray, np.ndarray]:
+    if isinstance(faces, tuple) and len(faces) == 2:
+        counts, idx = _indices(faces[0], "face counts"), _indices(faces[1], "face indices")
+        return counts, idx
+    if isinstance(faces, np.ndarray) and faces.ndim == 2:
+        m, k = faces.shape
+        return np.full(m, k, dtype=np.uint32), _indices(faces, "faces")
+    if isinstance(faces, np.ndarray) and faces.ndim != 2:
+        raise ValueError(f"faces: expected an (m, k) array, got shape {faces.shape}")
+    try:
+        lists = [list(f) for f in faces]
+    except TypeError:
+        raise ValueError("faces: an (m, k) array, a list of index lists or (counts, indices)") from None
+    counts = np.array([len(f) for f in lists], dtype=np.int64)
+    flat = [i for f in lists for i in f]
+    return _indices(counts, "face counts"), _indices(np.array(flat) if flat else [], "faces")
+
+
+def _tags(a: Any, sharpness: Any, cols: int, what: str) -> Tuple[np.ndarray, np.ndarray]:
+    if a is None:
+        return np.zeros((0, cols), dtype=np.uint32).reshape(-1) if cols == 1 else np.zeros((0, 2), dtype=np.uint32), np.zeros(0, dtype=np.float32)
+    arr = np.asarray(a)
+    if cols == 2:
+        if arr.ndim == 2 and arr.shape[1] == 3 and sharpness is None:
+            pairs, s = arr[:, :2], arr[:, 2]
+        elif arr.ndim == 2 and arr.shape[1] == 2 and sharpness is not None:
+            pairs, s = arr, sharpness
+        else:
+            raise ValueError(f"{what}: a (c, 2) array with a sharpness array, or one (c, 3) array")
+        p = _indices(pairs, what).reshape(-1, 2)
+    else:
+        if arr.ndim == 2 and arr.shape[1] == 2 and sharpness is None:
+            pairs, s = arr[:, 0], arr[:, 1]
+        elif arr.ndim == 1 and sharpness is not None:
+            pairs, s = arr, sharpness
+        else:
+            raise ValueError(f"{what}: a (c,) array with a sharpness array, or one (c, 2) array")
+        p = _indices(pairs, what)
+    s = np.ascontiguousarray(np.asarray(s, dtype=np.float64), dtype=np.float32).reshape(-1)
+    if len(s) != len(p):
+        raise ValueError(f"{what}: {len(p)} tags, {len(s)} sharpness values")
+    if np.any(np.isnan(s)):
+        raise MeshError(f"{what}: sharpness is NaN")
+    return p, s
+
+
+class Mesh:
+    """A polygon mesh with subdivision tags and options (immutable).
+
+    Parameters
+    ----------
+    points : (n, 3) float array (float32 or float64; computed in float32)
+    faces : (m, k) integer array, list of index lists, or ``(counts, indices)`` as USD stores them
+    creases : (c, 2) vertex pairs with ``crease_sharpness`` (c,), or one (c, 3) array;
+        sharpness 10 or more is infinitely sharp
+    corners : (c,) vertices with ``corner_sharpness``, or one (c, 2) array
+    holes : face indices
+    uvs : (u, 2) float array; ``uv_indices`` one per face corner (default: the face indices)
+    scheme : "catmark" | "bilinear"
+    boundary : "none" | "edge-only" | "edge-and-corner"
+    crease_method : "uniform" | "chaikin"
+    triangles : "catmark" | "smooth"
+    uv_interpolation : "none" | "corners-only" | "corners-plus1" | "corners-plus2" | "boundaries" | "linear"
+
+    Raises ``MeshError`` (with ``.face``, ``.corner``, ``.vertex``) on bad content.
+    """
+
+    __slots__ = ("_m",)
+
+    def __init__(self, points: Any, faces: Any, *, creases: Any = None, crease_sharpness: Any = None,
+                 corners: Any = None, corner_sharpness: Any = None, holes: Any = None,
+                 uvs: Any = None, uv_indices: Any = None, scheme: str = "catmark",
+                 boundary: str = "edge-only", crease_method: str = "uniform",
+                 triangles: str = "catmark", uv_interpolation: str = "linear") -> None:
+        p = _floats(points, 3, "points")
+        counts, idx = _faces(faces)
+        cp, cs = _tags(creases, crease_sharpness, 2, "creases")
+        cv, csh = _tags(corners, corner_sharpness, 1, "corners")
+        h = _indices([] if holes is None else holes, "holes")
+        uv = None if uvs is None else _floats(uvs, 2, "uvs")
+        ui = None if uv_indices is None else _indices(uv_indices, "uv_indices")
+        for name, v in (("scheme", scheme), ("boundary", boundary), ("crease_method", crease_method),
+                        ("triangles", triangles), ("uv_interpolation", uv_interpolation)):
+            if not isinstance(v, str):
+                raise ValueError(f"{name}: expected a string, got {type(v).__name__}")
+        self._m = _subsurf._Mesh(p, counts, idx, cp.reshape(-1, 2), cs, cv.reshape(-1), csh, h, uv, ui,
+                                 scheme, boundary, crease_method, triangles, uv_interpolation)
+
+    @classmethod
+    def _wrap(cls, m: Any) -> "Mesh":
+        obj = cls.__new__(cls)
+        obj._m = m
+        return obj
+
+    points = property(lambda self: self._m.points, doc="(n, 3) float32 vertex positions")
+    face_counts = property(lambda self: self._m.face_counts, doc="(m,) uint32 corners per face")
+    face_indices = property(lambda self: self._m.face_indices, doc="uint32 vertex of every face corner")
+    uvs = property(lambda self: self._m.uvs, doc="(u, 2) float32 UVs or None")
+    uv_indices = property(lambda self: self._m.uv_indices, doc="uint32 UV of every face corner or None")
+    creases = property(lambda self: self._m.creases, doc="((c, 2) uint32 pairs, (c,) float32 sharpness)")
+    corners = property(lambda self: self._m.corners, doc="((c,) uint32 vertices, (c,) float32 sharpness)")
+    holes = property(lambda self: self._m.holes, doc="(h,) uint32 hole faces")
+    num_vertices = property(lambda self: self._m.num_vertices, doc="number of vertices")
+    num_faces = property(lambda self: self._m.num_faces, doc="number of faces")
+
+    @property
+    def options(self) -> dict:
+        """Scheme options as the constructor's keyword arguments."""
+        keys = ("scheme", "boundary", "crease_method", "triangles", "uv_interpolation")
+        return dict(zip(keys, self._m.options))
+
+    def faces(self) -> list:
+        """The faces as a list of index lists."""
+        idx = self.face_indices.tolist()
+        out, s = [], 0
+        for c in self.face_counts.tolist():
+            out.append(idx[s:s + c])
+            s += c
+        return out
+
+    def write(self, path: Union[str, "os.PathLike[str]"], normals: Any = None) -> None:
+        """Writes the mesh: .obj (with OpenSubdiv tags), .ply or .glb, by extension."""
+        n = None if normals is None else _floats(normals, 3, "normals")
+        self._m.write(str(path), n)
+
+    def triangles(self) -> np.ndarray:
+        """(t, 3) uint32 fan triangulation of the faces (holes kept)."""
+        tris = []
+        for f in self.faces():
+            tris.extend([f[0], f[k], f[k + 1]] for k in range(1, len(f) - 1))
+        return np.array(tris, dtype=np.uint32).reshape(-1, 3)
+
+    @classmethod
+    def from_trimesh(cls, t: Any, **kwargs: Any) -> "Mesh":
+        """A mesh from a ``trimesh.Trimesh`` (vertices, faces, and UVs when it has them)."""
+        uv = getattr(getattr(t, "visual", None), "uv", None)
+        if uv is not None and len(uv) == len(t.vertices):
+            kwargs.setdefault("uvs", uv)
+        return cls(np.asarray(t.vertices), np.asarray(t.faces), **kwargs)
+
+    def to_trimesh(self, **kwargs: Any) -> Any:
+        """A ``trimesh.Trimesh`` (faces fan-triangulated, vertices not merged)."""
+        import trimesh
+
+        return trimesh.Trimesh(vertices=self.points.astype(np.float64), faces=self.triangles(),
+                               process=False, **kwargs)
+
+    def __repr__(self) -> str:
+        return f"subsurf.Mesh({self.num_vertices} vertices, {self.num_faces} faces)"
+
+
+def read(path: Union[str, "os.PathLike[str]"]) -> Mesh:
+    """Reads a mesh file: .obj (v, vt, f, OpenSubdiv's ``t`` tags) or .ply (ASCII or binary).
+    Raises ``ParseError`` with ``.path`` and ``.line``, ``OSError``, ``MeshError``."""
+    return Mesh._wrap(_subsurf._Mesh.read(str(path)))
+
+
+def _mesh(m: Any) -> Any:
+    if not isinstance(m, Mesh):
+        raise TypeError(f"expected a subsurf.Mesh, got {type(m).__name__}")
+    return m._m
+
+
+def _int(v: Any, what: str, lo: int = 0) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise ValueError(f"{what}: expected an integer, got {v!r}")
+    v = int(v)
+    if v < lo or v > 1_000_000:
+        raise ValueError(f"{what} = {v}: out of range")
+    return v
+
+
+def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu") -> Mesh:
+    """Uniform refinement ``level`` times (vertex order as OpenSubdiv: children of vertices,
+    face points, edge points). ``limit=True`` moves the last level and its UVs to the limit.
+    UVs are refined in the mesh's ``uv_interpolation`` mode. ``backend``: "cpu" or "gpu"
+    (positions on the GPU, UVs on the CPU). Same numbers as ``subsurf refine``."""
+    return Mesh._wrap(_subsurf.refine(_mesh(mesh), _int(level, "level"), bool(limit), backend))
+
+
+class Refiner:
+    """Refinement tables of ``mesh`` to ``level``, built once and applied to any per-vertex
+    data (positions per animation frame, colours, weights).
+
+    ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32.
+    ``limit(values)``: (n_last, d) last-level data -> its limit.
+    ``refine_uvs(uvs, uv_indices=None)``: -> (values, per-corner indices) of the last level.
+    ``mesh(points)``: the refined ``Mesh`` with these positions.
+    ``stencils()``: ``(offsets, indices, weights)`` CSR rows, base -> last level.
+    """
+
+    __slots__ = ("_r", "_mesh", "level")
+
+    def __init__(self, mesh: Mesh, level: int) -> None:
+        self._mesh = mesh
+        self.level = _int(level, "level")
+        self._r = _subsurf._Refiner(_mesh(mesh), self.level)
+
+    @property
+    def num_vertices(self) -> int:
+        """Vertices of the last level."""
+        return self._r.num_vertices
+
+    def refine(self, values: Any) -> np.ndarray:
+        """(n_base, d) float data -> (n_last, d) float32."""
+        v = np.asarray(values)
+        one = v.ndim == 1
+        return self._r.refine(_floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values"))
+
+    def limit(self, values: Any) -> np.ndarray:
+        """(n_last, d) last-level data -> limit values (n_last, d) float32."""
+        v = np.asarray(values)
+        return self._r.limit(_floats(v, v.shape[1] if v.ndim == 2 else 1, "values"))
+
+    def refine_uvs(self, uvs: Any, uv_indices: Any = None) -> Tuple[np.ndarray, np.ndarray]:
+        """Face-varying (u, 2) UVs with one index per base face corner (default the face
+        indices) -> the last level's (values, indices), in the mesh's interpolation mode."""
+        idx = self._mesh.face_indices if uv_indices is None else _indices(uv_indices, "uv_indices")
+        return self._r.refine_uvs(_floats(uvs, 2, "uvs"), idx)
+
+    def mesh(self, points: Any) -> Mesh:
+        """The refined mesh with ``points`` (n_last, 3) as positions."""
+        return Mesh._wrap(self._r.mesh(_floats(points, 3, "points")))
+
+    def stencils(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(offsets (n_last + 1,) uint32, indices uint32, weights float32): row i of the last
+        level is ``sum(weights[k] * base[indices[k]] for k in offsets[i]:offsets[i+1])``."""
+        return self._r.stencils()
+
+    def stencil_matrix(self) -> Any:
+        """The stencils as a ``scipy.sparse.csr_matrix`` of shape (n_last, n_base)."""
+        from scipy.sparse import csr_matrix
+
+        o, i, w = self.stencils()
+        return csr_matrix((w, i, o), shape=(len(o) - 1, self._mesh.num_vertices))
+
+
+class LimitSurface:
+    """The Catmull-Clark limit surface of ``mesh`` (B-spline, single-crease and Gregory
+    patches; extraordinary features isolated to ``isolation`` levels, 0..=10).
+
+    ``evaluate(faces, u, v)`` -> (points, du, dv), each (k, 3) float32, at ptex faces
+    ``faces`` (one per quad, one per n-gon corner) and parameters in [0, 1] (NaN at holes).
+    ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per ptex-face side.
+    ``update(points)``: new control points (same count), e.g. after a deformation.
+    """
+
+    __slots__ = ("_s",)
+
+    def __init__(self, mesh: Mesh, isolation: int = 4) -> None:
+        self._s = _subsurf._LimitSurface(_mesh(mesh), _int(isolation, "isolation"))
+
+    @property
+    def num_ptex_faces(self) -> int:
+        """Number of ptex faces (valid ``faces`` are below it)."""
+        return self._s.num_ptex_faces
+
+    def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points and first derivatives at (face, u, v), vectorized."""
+        f = _indices(faces, "faces")
+        uu = np.ascontiguousarray(np.asarray(u, dtype=np.float64).reshape(-1), dtype=np.float32)
+        vv = np.ascontiguousarray(np.asarray(v, dtype=np.float64).reshape(-1), dtype=np.float32)
+        return self._s.evaluate(f, uu, vv)
+
+    def tessellate(self, n: int = 8) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Watertight (points (p, 3) float32, unit normals (p, 3), triangles (t, 3) uint32)."""
+        return self._s.tessellate(_int(n, "n"))
+
+    def update(self, points: Any) -> None:
+        """Replaces the control points (the patch table is kept)."""
+        self._s.update(_floats(points, 3, "points"))
+
+
+class Prep:
+    """The p-rep (Myles, Yeo & Peters 2008) of a closed, oriented quad mesh, built in float64:
+    one bi-3 patch per quad plus a bi-5 perturbation near non-4-valent vertices (G1).
+
+    ``bezier()`` -> (faces, 6, 6, 3) float64 Bezier control points.
+    ``tessellate(n)`` -> (points, normals, triangles) float64, ``n`` samples per patch side.
+    """
+
+    __slots__ = ("_p",)
+
+    def __init__(self, mesh: Mesh) -> None:
+        self._p = _subsurf._Prep(_mesh(mesh))
+
+    @property
+    def num_faces(self) -> int:
+        """Number of patches (quads)."""
+        return self._p.num_faces
+
+    def bezier(self) -> np.ndarray:
+        """(faces, 6, 6, 3) float64 bi-5 Bezier control points."""
+        return self._p.bezier()
+
+    def tessellate(self, n: int = 8) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Watertight (points, normals, triangles), bit-identical along shared edges."""
+        return self._p.tessellate(_int(n, "n"))
+
+
+def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cpu",
+               isolation: int = 4) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The surface API: ``(points (p, 3) float32, unit normals (p, 3) float32, triangles
+    (t, 3) uint32)``.
+
+    method : "refine" (``n`` = level, fan-triangulated, Newell normals), "limit" (``n``
+        samples per ptex-face side), "prep" (``n`` samples per patch side; one Catmull-Clark
+        step first for non-quad meshes) or "prep-bicubic" (without the perturbation)
+    backend : "cpu" or "gpu"
+    """
+    return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"))
+
+
+_BACKGROUNDS = {"white": (255, 255, 255, 255), "black": (0, 0, 0, 255), "transparent": (255, 255, 255, 0)}
+
+
+def render(mesh: Mesh, size: Tuple[int, int] = (800, 600), method: str = "limit", n: Optional[int] = None,
+           view: str = "iso", up: str = "y", colors: str = "none", cage: bool = False,
+           background: Union[str, Sequence[int]] = "white", path: Optional[str] = None) -> np.ndarray:
+    """A headless render (wgpu; lavapipe without a GPU): ``(height, width, 4)`` uint8 RGBA.
+
+    size : (width, height) in pixels
+    method : "refine" | "limit" | "prep" | "prep-bicubic"; ``n`` = level (refine, default 3)
+        or samples per side (default 8)
+    view : "front" | "back" | "left" | "right" | "top" | "iso"; up : "y" | "z"
+    colors : "none" | "patch-kind" | "level" | "sharpness"
+    cage : draw the base mesh's edges; background : name or (r, g, b, a)
+    path : also write a PNG there
+    """
+    if n is None:
+        n = 3 if method == "refine" else 8
+    bg = _BACKGROUNDS.get(background) if isinstance(background, str) else tuple(int(x) for x in background)
+    if bg is None or len(bg) != 4:
+        raise ValueError(f"background {background!r}: white, black, transparent or (r, g, b, a)")
+    w, h = (_int(size[0], "width", 1), _int(size[1], "height", 1))
+    img = _subsurf.render(_mesh(mesh), w, h, method, _int(n, "n"), view, up, colors, bool(cage), bg)
+    if path is not None:
+        _write_png(img, str(path))
+    return img
+
+
+def _write_png(img: np.ndarray, path: str) -> None:
+    import struct
+    import zlib
+
+    h, w, _ = img.shape
+    raw = b"".join(b"\x00" + img[y].tobytes() for y in range(h))
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))

@@ -1,0 +1,33 @@
+"""Exception classes of subsurf (raised by the compiled module too)."""
+
+from typing import Optional
+
+
+class SubsurfError(Exception):
+    """Base class of subsurf's own errors."""
+
+    def __init__(self, message: str, **attrs: object) -> None:
+        super().__init__(message)
+        for k, v in attrs.items():
+            setattr(self, k, v)
+
+
+class MeshError(SubsurfError, ValueError):
+    """Bad mesh content. ``.face``, ``.corner`` and ``.vertex`` name the element at fault
+    (``None`` where they do not apply)."""
+
+    face: Optional[int] = None
+    corner: Optional[int] = None
+    vertex: Optional[int] = None
+
+
+class ParseError(SubsurfError, ValueError):
+    """A malformed mesh file: ``.path`` and ``.line`` (1-based)."""
+
+    path: Optional[str] = None
+    line: Optional[int] = None
+
+
+class GpuError(SubsurfError, RuntimeError):
+    """No usable GPU adapter, or a device failure. Without a GPU, Mesa's lavapipe
+    (``apt-get install mesa-vulkan-drivers``) with ``WGPU_BACKEND=vulkan`` works."""

@@ -1,0 +1,645 @@
+//! The work: refine, Refiner, LimitSurface, Prep, tessellate, render. Every call releases
+//! the GIL for its computation (`Python::detach`).
+
+use std::sync::{Arc, RwLock};
+
+use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::prep::PrepPatches;
+use subsurf::surface::{self, Backend, Colors, Method, SurfaceOptions};
+use subsurf::{FaceVarying, Mesh, Refiner, Topology};
+
+use crate::arrays::{out1, out2, out4, rows, vec1};
+use crate::errors::{gpu_error, lib_error, surface_error, value_error};
+use crate::mesh::{validate, PyMesh};
+
+/// The backend named `name`; the GPU is opened once per process.
+pub fn backend(py: Python<'_>, name: &str) -> PyResult<&'static dyn Backend> {
+    static CPU: surface::Cpu = surface::Cpu;
+    match name {
+        "cpu" => Ok(&CPU),
+        "gpu" => gpu(py),
+        s => Err(value_error(format!("backend {s:?}: use 'cpu' or 'gpu'"))),
+    }
+}
+
+#[cfg(feature = "gpu")]
+fn gpu(py: Python<'_>) -> PyResult<&'static dyn Backend> {
+    static GPU: std::sync::OnceLock<Result<subsurf_gpu::GpuBackend, String>> =
+        std::sync::OnceLock::new();
+    let g = py.detach(|| {
+        GPU.get_or_init(|| {
+            subsurf_gpu::GpuBackend::new().map_err(|e| {
+                format!(
+                    "{e} (install a Vulkan, Metal or DX12 driver; without a GPU, Mesa's lavapipe \
+                     (`apt-get install mesa-vulkan-drivers`) with WGPU_BACKEND=vulkan works)"
+                )
+            })
+        })
+    });
+    match g {
+        Ok(b) => Ok(b),
+        Err(e) => Err(gpu_error(py, e.clone())),
+    }
+}
+
+#[cfg(not(feature = "gpu"))]
+fn gpu(py: Python<'_>) -> PyResult<&'static dyn Backend> {
+    Err(gpu_error(
+        py,
+        "this build of subsurf has no GPU backend (feature `gpu`)".into(),
+    ))
+}
+
+fn check_level(level: usize) -> PyResult<()> {
+    if level > 12 {
+        return Err(value_error(format!("level {level}: at most 12")));
+    }
+    Ok(())
+}
+
+/// The CLI's `refine`: topology, positions (and their limit), UVs per corner.
+fn refine_mesh(
+    mesh: &Mesh,
+    level: usize,
+    limit: bool,
+    b: &dyn Backend,
+) -> Result<Mesh, surface::SurfaceError> {
+    let refiner = Refiner::new(Topology::new(mesh)?, level)?;
+    let positions = b.refine(&refiner, &mesh.positions, limit)?;
+    let mut out = refiner.to_mesh(level, positions);
+    if let Some(corner) = surface::corner_uvs(&refiner, mesh, limit)? {
+        let t = refiner.last();
+        let mut values = Vec::with_capacity(out.face_indices.len());
+        for f in 0..t.num_faces() {
+            if !t.face_is_hole[f] {
+                let (s, e) = (t.face_offsets[f] as usize, t.face_offsets[f + 1] as usize);
+                values.extend_from_slice(&corner[s..e]);
+            }
+        }
+        let indices = (0..values.len() as u32).collect();
+        out.uvs = Some(FaceVarying { values, indices });
+    }
+    out.creases.clear();
+    out.corners.clear();
+    Ok(out)
+}
+
+#[pyfunction]
+#[pyo3(signature = (mesh, level, limit=false, backend="cpu"))]
+pub fn refine(
+    py: Python<'_>,
+    mesh: &PyMesh,
+    level: usize,
+    limit: bool,
+    backend: &str,
+) -> PyResult<PyMesh> {
+    check_level(level)?;
+    let b = self::backend(py, backend)?;
+    let m = mesh.inner.clone();
+    let out = py
+        .detach(move || refine_mesh(&m, level, limit, b))
+        .map_err(|e| surface_error(py, e))?;
+    Ok(PyMesh {
+        inner: Arc::new(out),
+    })
+}
+
+/// Refinement tables built once, applied to any per-vertex data.
+#[pyclass(frozen, name = "_Refiner", module = "subsurf._subsurf")]
+pub struct PyRefiner {
+    refiner: Arc<Refiner>,
+    mesh: Arc<Mesh>,
+    level: usize,
+}
+
+fn apply<const N: usize>(r: &Refiner, flat: &[f32], n: usize, limit: bool) -> Vec<f32> {
+    let v: Vec<[f32; N]> = flat
+        .chunks_exact(N)
+        .take(n)
+        .map(|c| std::array::from_fn(|k| c[k]))
+        .collect();
+    let out = if limit {
+        r.limit(&v)
+    } else {
+        r.refine_positions(&v)
+    };
+    out.into_flattened()
+}
+
+/// Per-vertex data of any width through `r` (columns in groups of up to 4).
+fn apply_any(r: &Refiner, flat: &[f32], n: usize, d: usize, limit: bool) -> Vec<f32> {
+    let mut cols: Vec<Vec<f32>> = Vec::new();
+    let mut k = 0;
+    while k < d {
+        let w = (d - k).min(4);
+        let part: Vec<f32> = (0..n)
+            .flat_map(|i| flat[i * d + k..i * d + k + w].to_vec())
+            .collect();
+        cols.push(match w {
+            1 => apply::<1>(r, &part, n, limit),
+            2 => apply::<2>(r, &part, n, limit),
+            3 => apply::<3>(r, &part, n, limit),
+            _ => apply::<4>(r, &part, n, limit),
+        });
+        k += w;
+    }
+    if cols.len() == 1 {
+        return cols.pop().unwrap_or_default();
+    }
+    let m = cols[0].len() / d.min(4);
+    let mut out = Vec::with_capacity(m * d);
+    for i in 0..m {
+        let mut k = 0;
+        for c in &cols {
+            let w = (d - k).min(4);
+            out.extend_from_slice(&c[i * w..(i + 1) * w]);
+            k += w;
+        }
+    }
+    out
+}
+
+impl PyRefiner {
+    fn run(
+        &self,
+        py: Python<'_>,
+        values: PyReadonlyArray2<'_, f32>,
+        limit: bool,
+        n_expected: usize,
+    ) -> PyResult<Py<PyAny>> {
+        let s = values.shape().to_vec();
+        if s[0] != n_expected || s[1] == 0 {
+            return Err(value_error(format!(
+                "values: expected shape ({n_expected}, d) with d >= 1, got {s:?}"
+            )));
+        }
+        let flat = values
+            .as_slice()
+            .map_err(|_| value_error("values: not C-contiguous"))?
+            .to_vec();
+        let r = self.refiner.clone();
+        let (n, d) = (s[0], s[1]);
+        let out = py.detach(move || apply_any(&r, &flat, n, d, limit));
+        let m = out.len() / d;
+        let a = numpy::ndarray::Array2::from_shape_vec((m, d), out)
+            .map_err(|e| value_error(e.to_string()))?;
+        Ok(numpy::IntoPyArray::into_pyarray(a, py).into_any().unbind())
+    }
+}
+
+#[pymethods]
+impl PyRefiner {
+    #[new]
+    fn new(py: Python<'_>, mesh: &PyMesh, level: usize) -> PyResult<Self> {
+        check_level(level)?;
+        let m = mesh.inner.clone();
+        let r = py
+            .detach(move || Topology::new(&m).and_then(|t| Refiner::new(t, level)))
+            .map_err(|e| lib_error(py, e, None))?;
+        Ok(PyRefiner {
+            refiner: Arc::new(r),
+            mesh: mesh.inner.clone(),
+            level,
+        })
+    }
+
+    fn refine(&self, py: Python<'_>, values: PyReadonlyArray2<'_, f32>) -> PyResult<Py<PyAny>> {
+        self.run(py, values, false, self.mesh.positions.len())
+    }
+
+    fn limit(&self, py: Python<'_>, values: PyReadonlyArray2<'_, f32>) -> PyResult<Py<PyAny>> {
+        self.run(py, values, true, self.refiner.last().num_vertices())
+    }
+
+    /// UVs (values, per-corner indices of the base mesh) refined in the mesh's mode: the
+    /// last level's (values, indices).
+    fn refine_uvs(
+        &self,
+        py: Python<'_>,
+        values: PyReadonlyArray2<'_, f32>,
+        indices: PyReadonlyArray1<'_, u32>,
+    ) -> PyResult<(Py<PyAny>, Py<PyAny>)> {
+        let v = rows::<2, f32>(&values, "uvs")?;
+        let i = vec1(&indices, "uv_indices")?;
+        let mut probe = (*self.mesh).clone();
+        probe.uvs = Some(FaceVarying {
+            values: v.clone(),
+            indices: i.clone(),
+        });
+        validate(py, &probe)?;
+        let r = self.refiner.clone();
+        let mode = self.mesh.options.fvar_interpolation;
+        let last = py
+            .detach(move || {
+                let f = r.fvar_refinement(&i, v.len(), mode)?;
+                f.refine(&v)
+            })
+            .map_err(|e| lib_error(py, e, None))?
+            .pop()
+            .ok_or_else(|| value_error("no levels"))?;
+        Ok((out2(py, last.values)?, out1(py, last.indices)))
+    }
+
+    /// The refined mesh with `points` (n_last, 3) as its positions.
+    fn mesh(&self, points: PyReadonlyArray2<'_, f32>) -> PyResult<PyMesh> {
+        let p = rows::<3, f32>(&points, "points")?;
+        if p.len() != self.refiner.last().num_vertices() {
+            return Err(value_error(format!(
+                "points: {} rows for {} refined vertices",
+                p.len(),
+                self.refiner.last().num_vertices()
+            )));
+        }
+        let mut m = self.refiner.to_mesh(self.level, p);
+        m.creases.clear();
+        m.corners.clear();
+        Ok(PyMesh { inner: Arc::new(m) })
+    }
+
+    /// (offsets, indices, weights): CSR rows from the base vertices to the last level.
+    fn stencils(&self, py: Python<'_>) -> (Py<PyAny>, Py<PyAny>, Py<PyAny>) {
+        let r = self.refiner.clone();
+        let t = py.detach(move || r.stencil_table());
+        (
+            out1(py, t.offsets),
+            out1(py, t.indices),
+            out1(py, t.weights),
+        )
+    }
+
+    #[getter]
+    fn num_vertices(&self) -> usize {
+        self.refiner.last().num_vertices()
+    }
+    #[getter]
+    fn level(&self) -> usize {
+        self.level
+    }
+}
+
+/// The limit surface: patch table built once, positions updatable.
+#[pyclass(frozen, name = "_LimitSurface", module = "subsurf._subsurf")]
+pub struct PyLimit {
+    table: Arc<PatchTable>,
+    num_vertices: usize,
+    surface: RwLock<Arc<LimitSurface>>,
+}
+
+fn tess_out(
+    py: Python<'_>,
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+    Ok((
+        out2(py, positions)?,
+        out2(py, normals)?,
+        out2(py, triangles)?,
+    ))
+}
+
+impl PyLimit {
+    fn current(&self) -> PyResult<Arc<LimitSurface>> {
+        self.surface
+            .read()
+            .map(|s| s.clone())
+            .map_err(|_| value_error("limit surface lock poisoned"))
+    }
+}
+
+#[pymethods]
+impl PyLimit {
+    #[new]
+    #[pyo3(signature = (mesh, isolation=4))]
+    fn new(py: Python<'_>, mesh: &PyMesh, isolation: u32) -> PyResult<Self> {
+        if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
+            return Err(value_error(format!(
+                "isolation {isolation}: at most {}",
+                subsurf::limit::MAX_ISOLATION_LEVEL
+            )));
+        }
+        let m = mesh.inner.clone();
+        let (table, s) = py
+            .detach(move || -> subsurf::Result<_> {
+                let t = PatchTable::build(
+                    &Topology::new(&m)?,
+                    &PatchOptions {
+                        isolation_level: isolation,
+                        ..Default::default()
+                    },
+                )?;
+                let s = LimitSurface::new(t.clone(), &m.positions);
+                Ok((t, s))
+            })
+            .map_err(|e| lib_error(py, e, None))?;
+        Ok(PyLimit {
+            table: Arc::new(table),
+            num_vertices: mesh.inner.positions.len(),
+            surface: RwLock::new(Arc::new(s)),
+        })
+    }
+
+    /// New control points (same count), e.g. after a deformation.
+    fn update(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
+        let p = rows::<3, f32>(&points, "points")?;
+        if p.len() != self.num_vertices {
+            return Err(value_error(format!(
+                "points: {} rows for {} vertices",
+                p.len(),
+                self.num_vertices
+            )));
+        }
+        if let Some(v) = p.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
+            return Err(crate::errors::mesh_error(
+                py,
+                &subsurf::MeshError::NonFiniteCoordinate {
+                    vertex: v,
+                    value: f32::NAN,
+                },
+            ));
+        }
+        let t = self.table.clone();
+        let s = py.detach(move || LimitSurface::new((*t).clone(), &p));
+        *self
+            .surface
+            .write()
+            .map_err(|_| value_error("lock poisoned"))? = Arc::new(s);
+        Ok(())
+    }
+
+    /// (points, du, dv) at ptex faces `faces` and parameters `u`, `v` in [0, 1].
+    fn evaluate(
+        &self,
+        py: Python<'_>,
+        faces: PyReadonlyArray1<'_, u32>,
+        u: PyReadonlyArray1<'_, f32>,
+        v: PyReadonlyArray1<'_, f32>,
+    ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+        let f = vec1(&faces, "faces")?;
+        let u = vec1(&u, "u")?;
+        let v = vec1(&v, "v")?;
+        if f.len() != u.len() || f.len() != v.len() {
+            return Err(value_error(format!(
+                "faces, u, v: lengths {}, {}, {}",
+                f.len(),
+                u.len(),
+                v.len()
+            )));
+        }
+        let np = self.table.num_ptex_faces() as u32;
+        if let Some(k) = f.iter().position(|&x| x >= np) {
+            return Err(value_error(format!(
+                "faces[{k}] = {}: only {np} ptex faces",
+                f[k]
+            )));
+        }
+        if let Some(k) = u.iter().chain(&v).position(|x| !(0.0..=1.0).contains(x)) {
+            return Err(value_error(format!(
+                "u, v must lie in [0, 1] (entry {})",
+                k % f.len().max(1)
+            )));
+        }
+        let s = self.current()?;
+        let q: Vec<(u32, f32, f32)> = f
+            .iter()
+            .zip(&u)
+            .zip(&v)
+            .map(|((&f, &u), &v)| (f, u, v))
+            .collect();
+        let (p, du, dv) = py.detach(move || {
+            let r = s.eval_batch(&q);
+            let nan = [f32::NAN; 3];
+            let mut p = Vec::with_capacity(r.len());
+            let mut du = Vec::with_capacity(r.len());
+            let mut dv = Vec::with_capacity(r.len());
+            for x in r {
+                match x {
+                    Some(l) => {
+                        p.push(l.p);
+                        du.push(l.du);
+                        dv.push(l.dv);
+                    }
+                    None => {
+                        p.push(nan);
+                        du.push(nan);
+                        dv.push(nan);
+                    }
+                }
+            }
+            (p, du, dv)
+        });
+        Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
+    }
+
+    /// Watertight tessellation with `n` samples per ptex-face side.
+    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+        if !(2..=1025).contains(&n) {
+            return Err(value_error(format!("n = {n}: use 2..=1025")));
+        }
+        let s = self.current()?;
+        let t = py
+            .detach(move || s.tessellate(n))
+            .map_err(|e| lib_error(py, e, None))?;
+        let tris = t.triangles();
+        tess_out(py, t.positions, t.normals, tris)
+    }
+
+    #[getter]
+    fn num_ptex_faces(&self) -> usize {
+        self.table.num_ptex_faces()
+    }
+}
+
+/// The p-rep of a closed quad mesh (built in f64).
+#[pyclass(frozen, name = "_Prep", module = "subsurf._subsurf")]
+pub struct PyPrep {
+    patches: Arc<PrepPatches<f64>>,
+}
+
+#[pymethods]
+impl PyPrep {
+    #[new]
+    fn new(py: Python<'_>, mesh: &PyMesh) -> PyResult<Self> {
+        let m = mesh.inner.clone();
+        let p = py
+            .detach(move || PrepPatches::<f64>::build(&m))
+            .map_err(|e| lib_error(py, e, None))?;
+        Ok(PyPrep {
+            patches: Arc::new(p),
+        })
+    }
+
+    /// (faces, 6, 6, 3) float64 bi-5 Bezier control points.
+    fn bezier(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        let p = self.patches.clone();
+        let b = py.detach(move || p.to_bezier().into_flattened());
+        out4(py, b, 6, 6, 3)
+    }
+
+    /// Watertight tessellation, `n` samples per patch side (float64).
+    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+        if !(2..=1025).contains(&n) {
+            return Err(value_error(format!("n = {n}: use 2..=1025")));
+        }
+        let p = self.patches.clone();
+        let t = py.detach(move || p.tessellate(n));
+        Ok((
+            out2(py, t.positions)?,
+            out2(py, t.normals)?,
+            out2(py, t.triangles)?,
+        ))
+    }
+
+    #[getter]
+    fn num_faces(&self) -> usize {
+        self.patches.num_faces()
+    }
+}
+
+fn surface_options(
+    method: &str,
+    n: usize,
+    colors: &str,
+    cage: bool,
+    isolation: u32,
+) -> PyResult<SurfaceOptions> {
+    let method = match method {
+        "refine" => Method::Refine {
+            level: n,
+            limit: false,
+        },
+        "limit" => Method::Limit {
+            samples: n,
+            options: PatchOptions {
+                isolation_level: isolation,
+                ..Default::default()
+            },
+        },
+        "prep" => Method::Prep {
+            samples: n,
+            perturbed: true,
+        },
+        "prep-bicubic" => Method::Prep {
+            samples: n,
+            perturbed: false,
+        },
+        s => {
+            return Err(value_error(format!(
+                "method {s:?}: use 'refine', 'limit' or 'prep'"
+            )))
+        }
+    };
+    match &method {
+        Method::Refine { level, .. } => check_level(*level)?,
+        _ if !(2..=1025).contains(&n) => return Err(value_error(format!("n = {n}: use 2..=1025"))),
+        _ => {}
+    }
+    if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
+        return Err(value_error(format!("isolation {isolation}: too large")));
+    }
+    let colors = match colors {
+        "none" => Colors::None,
+        "patch-kind" => Colors::PatchKind,
+        "level" => Colors::Level,
+        "sharpness" => Colors::Sharpness,
+        s => {
+            return Err(value_error(format!(
+                "colors {s:?}: use none, patch-kind, level or sharpness"
+            )))
+        }
+    };
+    Ok(SurfaceOptions {
+        method,
+        colors,
+        cage,
+    })
+}
+
+#[pyfunction]
+#[pyo3(signature = (mesh, method="limit", n=8, backend="cpu", isolation=4))]
+pub fn tessellate(
+    py: Python<'_>,
+    mesh: &PyMesh,
+    method: &str,
+    n: usize,
+    backend: &str,
+    isolation: u32,
+) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+    let o = surface_options(method, n, "none", false, isolation)?;
+    let b = self::backend(py, backend)?;
+    let m = mesh.inner.clone();
+    let s = py
+        .detach(move || surface::build(&m, &o, b))
+        .map_err(|e| surface_error(py, e))?;
+    tess_out(py, s.positions, s.normals, s.triangles)
+}
+
+#[cfg(feature = "gpu")]
+#[pyfunction]
+#[pyo3(signature = (mesh, width, height, method, n, view, up, colors, cage, background))]
+pub fn render(
+    py: Python<'_>,
+    mesh: &PyMesh,
+    width: u32,
+    height: u32,
+    method: &str,
+    n: usize,
+    view: &str,
+    up: &str,
+    colors: &str,
+    cage: bool,
+    background: [u8; 4],
+) -> PyResult<Py<PyAny>> {
+    use subsurf_render::{RenderOptions, UpAxis, View};
+    if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
+        return Err(value_error(format!(
+            "size {width}x{height}: 1..=16384 each"
+        )));
+    }
+    let view = match view {
+        "front" => View::Front,
+        "back" => View::Back,
+        "left" => View::Left,
+        "right" => View::Right,
+        "top" => View::Top,
+        "iso" => View::Iso,
+        s => {
+            return Err(value_error(format!(
+                "view {s:?}: front, back, left, right, top or iso"
+            )))
+        }
+    };
+    let up = match up {
+        "y" => UpAxis::Y,
+        "z" => UpAxis::Z,
+        s => return Err(value_error(format!("up {s:?}: 'y' or 'z'"))),
+    };
+    let o = surface_options(method, n, colors, cage, 4)?;
+    let m = mesh.inner.clone();
+    let r = py.detach(move || {
+        let s = surface::build(&m, &o, &surface::Cpu).map_err(Err)?;
+        let options = RenderOptions {
+            width,
+            height,
+            view,
+            up,
+            background,
+            ..Default::default()
+        };
+        subsurf_render::render(&s.into(), &options).map_err(Ok)
+    });
+    match r {
+        Ok(img) => {
+            let (h, w) = (img.height as usize, img.width as usize);
+            crate::arrays::out3(py, img.data, h, w * 4).and_then(|a| {
+                a.bind(py)
+                    .call_method1("reshape", ((h, w, 4),))
+                    .map(|x| x.unbind())
+            })
+        }
+        Err(Err(e)) => Err(surface_error(py, e)),
+        Err(Ok(e)) => Err(gpu_error(py, e.to_string())),
+    }
+}
