@@ -86,6 +86,16 @@ pub enum MeshError {
         /// Where the mesh falls short.
         details: String,
     },
+    /// A caller's buffer does not have the length the operation needs.
+    #[error("{what}: {found} values given, {expected} expected")]
+    LengthMismatch {
+        /// The buffer at fault.
+        what: &'static str,
+        /// The length needed.
+        expected: usize,
+        /// The length given.
+        found: usize,
+    },
     /// The requested output would not fit in memory.
     #[error(
         "{what} would need about {bytes} bytes ({human}), more than the limit of {limit_human}"

@@ -24,6 +24,7 @@ mod fvar_propagate;
 mod fvar_stencils;
 mod fvar_topology;
 mod interpolate;
+mod into;
 mod last_level;
 mod level;
 mod masks;

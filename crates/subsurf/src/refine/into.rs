@@ -1,0 +1,84 @@
+//! [`Refiner::refine_positions_into`]: the per-frame evaluation of [`Refiner::refine_positions`]
+//! into buffers the caller keeps, so that an animated mesh allocates nothing per frame.
+
+use super::Refiner;
+use crate::error::{MeshError, Result};
+
+impl Refiner {
+    /// Vertex data of the last level written into `out`, bit-identical to
+    /// [`Refiner::refine_positions`], allocating nothing once `scratch` has grown to the
+    /// second-to-last level's size (on the first call).
+    ///
+    /// Levels alternate between `out` and `scratch` from the last one down: level `L` fills
+    /// `out`, level `L - 1` the front of `scratch`, level `L - 2` the front of `out`, and so on,
+    /// so the one scratch buffer holds at most the second-to-last level.
+    ///
+    /// Errors with [`MeshError::LengthMismatch`] when `base` does not hold one value per base
+    /// vertex or `out` one value per last-level vertex.
+    ///
+    /// ```
+    /// use subsurf::{shapes, Refiner, Topology};
+    ///
+    /// let cube = shapes::cube();
+    /// let r = Refiner::new(Topology::new(&cube)?, 2)?;
+    /// let mut out = vec![[0.0f32; 3]; r.last().num_vertices()];
+    /// let mut scratch = Vec::new();
+    /// r.refine_positions_into(&cube.positions, &mut out, &mut scratch)?;
+    /// assert_eq!(out, r.refine_positions(&cube.positions));
+    /// # Ok::<(), subsurf::Error>(())
+    /// ```
+    pub fn refine_positions_into<const N: usize>(
+        &self,
+        base: &[[f32; N]],
+        out: &mut [[f32; N]],
+        scratch: &mut Vec<[f32; N]>,
+    ) -> Result<()> {
+        let inputs = self.levels[0].num_vertices();
+        if base.len() != inputs {
+            return Err(MeshError::LengthMismatch {
+                what: "base vertex data",
+                expected: inputs,
+                found: base.len(),
+            }
+            .into());
+        }
+        let rows = self.stencils.last().map_or(inputs, |s| s.num_rows());
+        if out.len() != rows {
+            return Err(MeshError::LengthMismatch {
+                what: "last-level output",
+                expected: rows,
+                found: out.len(),
+            }
+            .into());
+        }
+        let steps = self.stencils.len();
+        if steps == 0 {
+            out.copy_from_slice(base);
+            return Ok(());
+        }
+        if steps >= 2 {
+            let need = self.stencils[steps - 2].num_rows();
+            if scratch.len() < need {
+                scratch.resize(need, [0.0; N]);
+            }
+        }
+        // Level k (1-based) goes to `out` when `steps - k` is even, else to `scratch`.
+        for (i, s) in self.stencils.iter().enumerate() {
+            let k = i + 1;
+            let n = s.num_rows();
+            let prev = if i == 0 {
+                0
+            } else {
+                self.stencils[i - 1].num_rows()
+            };
+            if (steps - k) % 2 == 0 {
+                let src: &[[f32; N]] = if i == 0 { base } else { &scratch[..prev] };
+                s.apply(src, &mut out[..n]);
+            } else {
+                let src: &[[f32; N]] = if i == 0 { base } else { &out[..prev] };
+                s.apply(src, &mut scratch[..n]);
+            }
+        }
+        Ok(())
+    }
+}
