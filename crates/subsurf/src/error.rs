@@ -123,6 +123,15 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// A malformed glTF file: where in it (`GLB header`, `accessors[3]`,
+    /// `meshes[0].primitives[1]`, ...) and what is wrong there.
+    #[error("glTF {location}: {reason}")]
+    Gltf {
+        /// The part of the file at fault, as a glTF JSON path.
+        location: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// Bad mesh content.
     #[error(transparent)]
     Mesh(#[from] MeshError),

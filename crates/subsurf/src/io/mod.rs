@@ -3,10 +3,12 @@
 //! - [`obj`]: Wavefront OBJ with OpenSubdiv's `t` tag lines (creases, corners, holes, options)
 //!   and face-varying UVs.
 //! - [`ply`]: Stanford PLY, ASCII and binary in, binary little-endian out.
-//! - [`gltf`]: binary glTF 2.0 (`.glb`), out only.
+//! - [`gltf`]: binary glTF 2.0 (`.glb`) out.
+//! - [`gltf_read`]: glTF 2.0 in (`.gltf` with its buffers, `.glb`): triangle primitives
+//!   welded into one cage, `TEXCOORD_0` as face-varying UVs.
 //!
-//! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault; no
-//! input makes a reader panic.
+//! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault
+//! ([`Error::Gltf`] with the JSON path at fault for glTF); no input makes a reader panic.
 //!
 //! # Example
 //!
@@ -41,6 +43,8 @@
 //! ```
 
 pub mod gltf;
+mod gltf_access;
+pub mod gltf_read;
 pub mod obj;
 mod obj_tags;
 pub mod ply;
@@ -56,8 +60,10 @@ pub enum Format {
     Obj,
     /// Stanford PLY (`.ply`).
     Ply,
-    /// Binary glTF 2.0 (`.glb`), written only.
+    /// Binary glTF 2.0 (`.glb`), read and written.
     Glb,
+    /// glTF 2.0 JSON (`.gltf`, buffers in files next to it or `data:` URIs), read only.
+    Gltf,
 }
 
 impl Format {
@@ -72,11 +78,12 @@ impl Format {
             Some("obj") => Ok(Format::Obj),
             Some("ply") => Ok(Format::Ply),
             Some("glb") => Ok(Format::Glb),
+            Some("gltf") => Ok(Format::Gltf),
             Some(other) => Err(Error::Unsupported(format!(
-                "mesh file extension '.{other}' (known: .obj, .ply, .glb)"
+                "mesh file extension '.{other}' (known: .obj, .ply, .glb, .gltf)"
             ))),
             None => Err(Error::Unsupported(format!(
-                "mesh file '{}' has no extension (known: .obj, .ply, .glb)",
+                "mesh file '{}' has no extension (known: .obj, .ply, .glb, .gltf)",
                 path.display()
             ))),
         }
@@ -84,27 +91,34 @@ impl Format {
 }
 
 impl Format {
-    /// The format named `name` (`obj`, `ply` or `glb`, case-insensitive), as a command line's
-    /// `--format` gives it.
+    /// The format named `name` (`obj`, `ply`, `glb` or `gltf`, case-insensitive), as a
+    /// command line's `--format` gives it.
     pub fn from_name(name: &str) -> Result<Format> {
         match name.to_ascii_lowercase().as_str() {
             "obj" => Ok(Format::Obj),
             "ply" => Ok(Format::Ply),
             "glb" => Ok(Format::Glb),
+            "gltf" => Ok(Format::Gltf),
             other => Err(Error::Unsupported(format!(
-                "mesh format '{other}' (known: obj, ply, glb)"
+                "mesh format '{other}' (known: obj, ply, glb, gltf)"
             ))),
         }
     }
 
-    /// Whether [`read_from`] can read this format.
+    /// Whether [`read_from`] can read this format (all can).
     pub fn readable(self) -> bool {
-        self != Format::Glb
+        true
+    }
+
+    /// Whether [`write_to`] can write this format (all but `.gltf`).
+    pub fn writable(self) -> bool {
+        self != Format::Gltf
     }
 }
 
 /// Reads a mesh in `format` from `reader` (for example standard input). OBJ input gets the
-/// default (Catmull-Clark) scheme unless its tags say otherwise.
+/// default (Catmull-Clark) scheme unless its tags say otherwise. glTF is read with
+/// [`gltf_read::ReadOptions::default`] and can only use its GLB chunk and `data:` URIs.
 pub fn read_from(mut reader: impl std::io::Read, format: Format) -> Result<Mesh> {
     let mut bytes = Vec::new();
     reader.read_to_end(&mut bytes)?;
@@ -112,9 +126,7 @@ pub fn read_from(mut reader: impl std::io::Read, format: Format) -> Result<Mesh>
         // As in `obj::read_file`: bytes that are not UTF-8 can only matter inside comments.
         Format::Obj => obj::read(&String::from_utf8_lossy(&bytes)),
         Format::Ply => ply::read(&bytes),
-        Format::Glb => Err(Error::Unsupported(
-            "reading glTF; subsurf writes .glb but reads .obj and .ply".into(),
-        )),
+        Format::Glb | Format::Gltf => Ok(gltf_read::read(&bytes, None, &Default::default())?.mesh),
     }
 }
 
@@ -131,21 +143,25 @@ pub fn write_to(
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,
         (Format::Ply, n) => ply::write(mesh, n, w)?,
         (Format::Glb, n) => gltf::write(mesh, n, w)?,
+        (Format::Gltf, _) => {
+            return Err(Error::Unsupported(
+                "writing .gltf; subsurf writes binary glTF (.glb)".into(),
+            ))
+        }
     }
     w.flush()?;
     Ok(())
 }
 
 /// Reads a mesh, choosing the format by extension. OBJ files get their scheme from the file
-/// name prefix (see [`obj::scheme_from_name`]).
+/// name prefix (see [`obj::scheme_from_name`]); glTF files are read with
+/// [`gltf_read::ReadOptions::default`] (see [`gltf_read::read_file`] for the options).
 pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
     let path = path.as_ref();
     match Format::from_path(path)? {
         Format::Obj => obj::read_file(path),
         Format::Ply => ply::read_file(path),
-        Format::Glb => Err(Error::Unsupported(
-            "reading glTF; subsurf writes .glb but reads .obj and .ply".into(),
-        )),
+        Format::Glb | Format::Gltf => Ok(gltf_read::read_file(path, &Default::default())?.mesh),
     }
 }
 
@@ -154,6 +170,9 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
 pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<()> {
     let path = path.as_ref();
     let format = Format::from_path(path)?;
+    if !format.writable() {
+        return write_to(&mut std::io::sink(), format, mesh, normals);
+    }
     let file = std::fs::File::create(path)?;
     write_to(&mut std::io::BufWriter::new(file), format, mesh, normals)
 }
