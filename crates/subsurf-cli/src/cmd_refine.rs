@@ -3,7 +3,7 @@
 use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::refine::{level_mesh, refine_once, StencilTable};
+use subsurf::refine::{refine_once_mesh, StencilTable};
 use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
@@ -77,8 +77,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     if ctx.is_none() && !options.full_topology_in_last_level {
         // Positions only, once: no stencil table kept, each parent level dropped as soon as
         // its child exists (bit-identical to the stencil path, about half its peak memory).
-        let (last, positions) = refine_once(topo, a.level, &mesh.positions, options)?;
-        let out = level_mesh(&last, positions);
+        let out = refine_once_mesh(topo, a.level, &mesh.positions, options)?;
         return finish(a, &mesh, out);
     }
     let refiner = Refiner::with_options(topo, a.level, options)?;
@@ -100,7 +99,8 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
             flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
         }
     };
-    let mut out = refiner.to_mesh(a.level, positions);
+    // All faces, holes tagged, with the remaining sharpness: the file refines on as the level.
+    let mut out = refiner.to_tagged_mesh(a.level, positions)?;
     if let Some(fv) = &mesh.uvs {
         let mode = a
             .uv_interp
@@ -132,21 +132,8 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
                 }
             }
         };
-        let corner: Vec<[f32; 2]> = last
-            .indices
-            .iter()
-            .map(|&i| last.values[i as usize])
-            .collect();
-        let t = refiner.last();
-        let mut values = Vec::with_capacity(out.face_indices.len());
-        for f in 0..t.num_faces() {
-            if !t.face_is_hole[f] {
-                let (s, e) = (t.face_offsets[f] as usize, t.face_offsets[f + 1] as usize);
-                values.extend_from_slice(&corner[s..e]);
-            }
-        }
-        let indices = (0..values.len() as u32).collect();
-        out.uvs = Some(FaceVarying { values, indices });
+        out.options.fvar_interpolation = mode;
+        out.uvs = Some(last);
     }
     finish(a, &mesh, out)
 }
@@ -165,9 +152,7 @@ fn apply_on_gpu(
 }
 
 /// Writes the refined mesh and reports what was made.
-fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, mut out: subsurf::Mesh) -> anyhow::Result<()> {
-    out.creases.clear();
-    out.corners.clear();
+fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::Result<()> {
     write_mesh(&a.output, &out, None)?;
     crate::say!(
         "refined {} faces to level {}: {} vertices, {} faces -> {}",

@@ -505,7 +505,8 @@ impl Source<'_> {
 
 /// Writes `mesh` as binary little-endian PLY: `x y z` (and `nx ny nz` with `normals`, one per
 /// vertex) as floats, faces as a `vertex_indices` list of `uint` (count `uchar` when every
-/// face has at most 255 vertices, else `uint`). UVs and tags are not written.
+/// face has at most 255 vertices, else `uint`). UVs and tags are not written; faces tagged as
+/// holes are left out (PLY cannot tag them), their vertices kept.
 pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> Result<()> {
     super::check_writable(mesh)?;
     if let Some(n) = normals {
@@ -518,6 +519,12 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
         }
     }
     let small = mesh.face_counts.iter().all(|&n| n <= 255);
+    let mut hole = vec![false; mesh.face_counts.len()];
+    for &f in &mesh.holes {
+        if let Some(h) = hole.get_mut(f as usize) {
+            *h = true;
+        }
+    }
     let mut w = std::io::BufWriter::new(w);
     writeln!(
         w,
@@ -528,7 +535,7 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
     if normals.is_some() {
         writeln!(w, "property float nx\nproperty float ny\nproperty float nz")?;
     }
-    writeln!(w, "element face {}", mesh.face_counts.len())?;
+    writeln!(w, "element face {}", hole.iter().filter(|&&h| !h).count())?;
     let count_ty = if small { "uchar" } else { "uint" };
     writeln!(
         w,
@@ -545,13 +552,17 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
         }
     }
     let mut start = 0usize;
-    for &n in &mesh.face_counts {
+    for (&n, &h) in mesh.face_counts.iter().zip(&hole) {
+        let end = start + n as usize;
+        if h {
+            start = end;
+            continue;
+        }
         if small {
             w.write_all(&[n as u8])?;
         } else {
             w.write_all(&n.to_le_bytes())?;
         }
-        let end = start + n as usize;
         for v in &mesh.face_indices[start..end] {
             w.write_all(&v.to_le_bytes())?;
         }

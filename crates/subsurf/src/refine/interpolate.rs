@@ -9,9 +9,11 @@
 //! [`super::Refiner::refine_positions`].
 
 use super::last_level::{refine_face_lists, ChildSharpness, ChildSharpnessBuf};
+use super::level_tags::{child_level_tags, level_tags, tagged_level_mesh, LevelTags};
 use super::masks::{LevelRows, Scratch};
 use super::{check_size, refine_topology, RefineOptions};
-use crate::error::{MeshError, Result};
+use crate::error::{Error, MeshError, Result};
+use crate::mesh::Mesh;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
@@ -29,6 +31,33 @@ pub fn refine_once<const N: usize>(
     data: &[[f32; N]],
     options: RefineOptions,
 ) -> Result<(Topology, Vec<[f32; N]>)> {
+    let (t, values, _) = refine_once_with(base, level, data, options, false)?;
+    Ok((t, values))
+}
+
+/// As [`refine_once`] on positions, returning the last level as a [`Mesh`] to write: all its
+/// faces, holes tagged, with the sharpness that remains after `level` steps of decay and the
+/// options ([`super::tagged_level_mesh`]), so that the written file refines again as the
+/// level itself would. A lean last level's tags come from its parent before it is dropped.
+pub fn refine_once_mesh(
+    base: Topology,
+    level: usize,
+    positions: &[[f32; 3]],
+    options: RefineOptions,
+) -> Result<Mesh> {
+    let (t, positions, tags) = refine_once_with(base, level, positions, options, true)?;
+    let tags = tags.ok_or_else(|| Error::Internal("refined level without its tags".into()))?;
+    Ok(tagged_level_mesh(&t, positions, tags))
+}
+
+/// [`refine_once`], with the last level's tags where `tagged` asks for them.
+fn refine_once_with<const N: usize>(
+    base: Topology,
+    level: usize,
+    data: &[[f32; N]],
+    options: RefineOptions,
+    tagged: bool,
+) -> Result<(Topology, Vec<[f32; N]>, Option<LevelTags>)> {
     check_size(&base, level)?;
     if data.len() != base.num_vertices() {
         return Err(MeshError::Unsupported {
@@ -38,28 +67,40 @@ pub fn refine_once<const N: usize>(
         }
         .into());
     }
+    let mut tags = None;
+    if tagged && level == 0 {
+        tags = Some(level_tags(&base)?);
+    }
     let mut cur = base;
     let mut values = data.to_vec();
     for k in 0..level {
+        let last = k + 1 == level;
         let mut dst = vec![[0.0f32; N]; cur.num_vertices() + cur.num_faces() + cur.num_edges()];
-        let child = if k + 1 == level && !options.full_topology_in_last_level {
+        let child = if last && !options.full_topology_in_last_level {
             let sharpness = ChildSharpnessBuf::new(&cur);
             apply_rows(
                 LevelRows::new(&cur, sharpness.view(&cur)),
                 &values,
                 &mut dst,
             );
-            refine_face_lists(&cur)
+            let child = refine_face_lists(&cur);
+            if tagged {
+                tags = Some(child_level_tags(&cur, sharpness.view(&cur), &child));
+            }
+            child
         } else {
             let child = refine_topology(&cur);
             let rows = LevelRows::new(&cur, ChildSharpness::of_child(&cur, &child));
             apply_rows(rows, &values, &mut dst);
+            if tagged && last {
+                tags = Some(level_tags(&child)?);
+            }
             child
         };
         cur = child;
         values = dst;
     }
-    Ok((cur, values))
+    Ok((cur, values, tags))
 }
 
 /// Evaluates one step's rows on `src` into `dst` (`[vertex | face | edge]` points), in

@@ -27,6 +27,7 @@ mod interpolate;
 mod into;
 mod last_level;
 mod level;
+mod level_tags;
 mod masks;
 pub(crate) mod par;
 mod stencil;
@@ -35,9 +36,10 @@ mod uv;
 pub use fvar_limit::fvar_limit_stencils;
 pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
 pub use fvar_topology::FVarTopology;
-pub use interpolate::refine_once;
+pub use interpolate::{refine_once, refine_once_mesh};
 use last_level::{refine_face_lists, ChildSharpnessBuf};
 pub use level::refine_topology;
+pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
 use masks::level_stencils_with;
 pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
@@ -367,6 +369,39 @@ impl Refiner {
     /// The faces of `level` that are not holes, as a [`Mesh`] with the given positions.
     pub fn to_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Mesh {
         level_mesh(&self.levels[level], positions)
+    }
+
+    /// All faces of `level`, holes included and tagged, with the sharpness that remains there
+    /// and the options, as a [`Mesh`] that refines again as the level itself would
+    /// ([`tagged_level_mesh`]): what a refined file is written from. A lean last level's
+    /// sharpness is derived from its parent.
+    pub fn to_tagged_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Result<Mesh> {
+        let t = self.levels.get(level).ok_or_else(|| {
+            Error::Unsupported(format!(
+                "level {level} of a refiner of {} levels",
+                self.max_level()
+            ))
+        })?;
+        if positions.len() != t.num_vertices() {
+            return Err(MeshError::Unsupported {
+                construction: "a refined level as a mesh",
+                requirement: "one position per vertex of the level",
+                details: format!(
+                    "{} positions for {} vertices",
+                    positions.len(),
+                    t.num_vertices()
+                ),
+            }
+            .into());
+        }
+        let tags = if self.is_full(level) {
+            level_tags(t)?
+        } else {
+            let p = &self.levels[level - 1];
+            let sharpness = ChildSharpnessBuf::new(p);
+            level_tags::child_level_tags(p, sharpness.view(p), t)
+        };
+        Ok(tagged_level_mesh(t, positions, tags))
     }
 }
 
