@@ -1,0 +1,195 @@
+//! OpenSubdiv 3.5 and the Rust subdivision crates on one mesh, one level, in one process:
+//! every peer's setup and per-frame time, medians of alternating runs, and each peer's
+//! distance from OpenSubdiv's positions.
+//!
+//! ```text
+//! cargo run --release --manifest-path crates/peer-bench/Cargo.toml -- [MESH.obj] [LEVELS] [RUNS]
+//! ```
+//!
+//! LEVELS is a comma-separated list (default `3,4,5`), RUNS the number of alternating runs
+//! (default 7). Setup is each peer's topology refinement plus the tables its per-frame path
+//! reads; a frame is the last level's positions from new base positions, tables built, into a
+//! buffer kept between frames. OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
+//! thread only; subsurf runs in a one-thread and a two-thread rayon pool.
+
+mod error;
+mod peers;
+
+use std::time::Instant;
+
+use osd_ref::{OsdMesh, OsdStencils};
+use peers::{Kernels, Osd, OsdRs, OsdTable, Prepared, Subsurf};
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// Wall-clock time of `f` in ms, and its result.
+fn ms<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    let t = Instant::now();
+    let r = f();
+    (t.elapsed().as_secs_f64() * 1e3, r)
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "?".into())
+}
+
+/// The peers, in table order.
+const PEERS: [&str; 5] = [
+    "OpenSubdiv 3.5 (PrimvarRefiner)",
+    "OpenSubdiv 3.5 (StencilTable)",
+    "opensubdiv-rs 0.5",
+    "subdiv-kernels 0.1",
+    "subsurf",
+];
+const SUBSURF: usize = 4;
+
+/// Medians of one peer at one level (`None`: the peer has no multi-threaded path).
+#[derive(Default)]
+struct Row {
+    setup: Vec<f64>,
+    setup2: Vec<f64>,
+    frame: Vec<f64>,
+    frame2: Vec<f64>,
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let default_mesh = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../testdata/shapes/catmark_car.obj"
+    );
+    let path = args
+        .first()
+        .filter(|s| !s.is_empty())
+        .map_or(default_mesh, |s| s.as_str());
+    let levels: Vec<usize> = match args.get(1).filter(|s| !s.is_empty()) {
+        Some(s) => s.split(',').map(str::parse).collect::<Result<_, _>>()?,
+        None => vec![3, 4, 5],
+    };
+    let runs: usize = args.get(2).map(|s| s.parse()).transpose()?.unwrap_or(7);
+    if !osd_ref::available() {
+        return Err("OpenSubdiv is not installed (apt-get install libosd-dev)".into());
+    }
+    if levels.contains(&0) {
+        return Err("levels start at 1".into());
+    }
+    let mesh = subsurf::io::read_path(path)?;
+    let osd_mesh = OsdMesh::from(&mesh);
+    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    let two = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
+    let diag = subsurf::mesh::bbox_diagonal(&mesh.positions) as f64;
+    println!(
+        "{path}: {} faces, {} vertices; medians of {runs} alternating runs, wall-clock; \
+         load average {} at start",
+        mesh.num_faces(),
+        mesh.num_vertices(),
+        load_average()
+    );
+    println!();
+    println!("| level | peer | vertices | setup 1T (ms) | setup 2T (ms) | frame 1T (ms) | frame 2T (ms) | setup / subsurf 1T | frame / subsurf 1T | setup + frame / subsurf 1T | max error vs OpenSubdiv (of bbox diagonal) |");
+    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    // Each frame refines these base positions, moved a little per run so no frame repeats.
+    let frame_base = |run: usize| -> Vec<[f32; 3]> {
+        let s = 1.0 + run as f32 * 1e-3;
+        mesh.positions.iter().map(|p| p.map(|c| c * s)).collect()
+    };
+    for &level in &levels {
+        let mut rows: Vec<Row> = (0..PEERS.len()).map(|_| Row::default()).collect();
+        // Setup, alternating peer by peer within each run.
+        for _ in 0..runs {
+            rows[0].setup.push(ms(|| Osd::setup(&osd_mesh, level)).0);
+            rows[1].setup.push(
+                ms(|| {
+                    let r = Osd::setup(&osd_mesh, level);
+                    OsdStencils::new(&r.0).expect("OpenSubdiv stencils")
+                })
+                .0,
+            );
+            rows[2].setup.push(ms(|| OsdRs::setup(&mesh, level)).0);
+            rows[3].setup.push(ms(|| Kernels::setup(&mesh, level)).0);
+            rows[SUBSURF]
+                .setup
+                .push(one.install(|| ms(|| Subsurf::setup(&mesh, level)).0));
+            rows[SUBSURF]
+                .setup2
+                .push(two.install(|| ms(|| Subsurf::setup(&mesh, level)).0));
+        }
+        // Frames, tables built once.
+        let osd = Osd::setup(&osd_mesh, level);
+        let table = OsdTable(OsdStencils::new(&osd.0)?);
+        let mut peers: Vec<Box<dyn Prepared>> = vec![
+            Box::new(osd),
+            Box::new(table),
+            Box::new(OsdRs::setup(&mesh, level)),
+            Box::new(Kernels::setup(&mesh, level)),
+        ];
+        // subsurf is kept apart: it runs inside the rayon pools, which need `Send`.
+        let mut ours = one.install(|| Subsurf::setup(&mesh, level));
+        let mut outs: Vec<Vec<[f32; 3]>> = peers
+            .iter()
+            .map(|p| vec![[0.0; 3]; p.num_outputs()])
+            .collect();
+        outs.push(vec![[0.0; 3]; ours.num_outputs()]);
+        for run in 0..runs {
+            let base = frame_base(run);
+            for (i, p) in peers.iter_mut().enumerate() {
+                let out = &mut outs[i];
+                rows[i].frame.push(ms(|| p.frame(&base, out)).0);
+            }
+            let out = &mut outs[SUBSURF];
+            let t = one.install(|| ms(|| ours.frame(&base, out)).0);
+            rows[SUBSURF].frame.push(t);
+            let t = two.install(|| ms(|| ours.frame(&base, out)).0);
+            rows[SUBSURF].frame2.push(t);
+        }
+        // Errors: every peer's last frame against OpenSubdiv's (PrimvarRefiner) of the same base.
+        let want = outs[0].clone();
+        let (s_setup, s_frame) = (
+            median(rows[SUBSURF].setup.clone()),
+            median(rows[SUBSURF].frame.clone()),
+        );
+        for (i, row) in rows.into_iter().enumerate() {
+            let d = error::distance(&want, &outs[i], 1e-4 * diag);
+            let opt = |v: Vec<f64>| {
+                if v.is_empty() {
+                    "—".to_string()
+                } else {
+                    format!("{:.2}", median(v))
+                }
+            };
+            let (setup, frame) = (median(row.setup.clone()), median(row.frame.clone()));
+            let err = if i == 0 {
+                "reference".to_string()
+            } else {
+                format!(
+                    "{:.1e} ({:.1e}){}",
+                    d.max,
+                    d.max / diag,
+                    if d.same_order {
+                        ""
+                    } else {
+                        ", other vertex order: to nearest"
+                    }
+                )
+            };
+            println!(
+                "| {level} | {} | {} | {setup:.2} | {} | {frame:.2} | {} | {:.2}x | {:.2}x | {:.2}x | {err} |",
+                PEERS[i],
+                outs[i].len(),
+                opt(row.setup2),
+                opt(row.frame2),
+                setup / s_setup,
+                frame / s_frame,
+                (setup + frame) / (s_setup + s_frame),
+            );
+        }
+    }
+    println!();
+    println!("load average {} at end", load_average());
+    Ok(())
+}
