@@ -21,11 +21,12 @@ use subsurf_render::RgbaImage;
 /// Render two surfaces side by side into one PNG.
 #[derive(Debug, clap::Args)]
 pub struct CompareArgs {
-    /// Left surface: FILE[@[METHOD][:N]].
+    /// Left surface: FILE[@[METHOD][:N]], FILE a .obj or .ply mesh, METHOD refine, limit, prep
+    /// or prep-bicubic.
     pub left: String,
-    /// Right surface: FILE[@[METHOD][:N]].
+    /// Right surface: FILE[@[METHOD][:N]], as the left one.
     pub right: String,
-    /// Output image (.png).
+    /// Output image (.png; `-` writes the PNG to standard output).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Default refinement level for arguments without `:N`.
@@ -82,6 +83,7 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
 }
 
 pub fn run(a: &CompareArgs) -> anyhow::Result<()> {
+    crate::common::check_output_ext(&a.output, "png")?;
     let specs = [
         parse_spec(&a.left, a.level)?,
         parse_spec(&a.right, a.level)?,
@@ -104,13 +106,13 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<()> {
     save(&image, &a.output)?;
     drop(progress);
     if !quiet() {
-        eprintln!(
+        crate::say!(
             "compared {} and {} at {}x{} -> {}",
             a.left,
             a.right,
             image.width,
             image.height,
-            a.output.display()
+            crate::common::shown(&a.output, true)
         );
     }
     Ok(())

@@ -2,7 +2,7 @@
 //! tessellated watertight with `N` samples per ptex-face side, written as OBJ or PLY with
 //! normals.
 
-use crate::common::{gpu_context, write_mesh, Backend, SchemeArgs};
+use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
 use anyhow::Context;
 use std::path::PathBuf;
 use subsurf::limit::{PatchOptions, PatchTable};
@@ -12,7 +12,7 @@ use subsurf::{Mesh, Topology};
 /// `limit` and `eval`.
 #[derive(Debug, clap::Args)]
 pub struct SurfaceArgs {
-    /// Input mesh (.obj with OpenSubdiv tags, or .ply).
+    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
     pub input: PathBuf,
     /// Isolation level of extraordinary and irregular features (0..=10).
     #[arg(long, default_value_t = 4)]
@@ -68,7 +68,8 @@ pub struct LimitArgs {
     /// raised by one on meshes with non-quad faces).
     #[arg(long, default_value_t = 9)]
     pub tess: usize,
-    /// Output file (.obj or .ply, by extension).
+    /// Output file, format by extension: .obj, .ply or .glb (with normals); `-` writes standard
+    /// output (`--format obj|ply|glb`, OBJ by default).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Write the grid quads instead of triangles.
@@ -77,12 +78,13 @@ pub struct LimitArgs {
 }
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
+    check_mesh_output(&a.output)?;
     let (mesh, table) = a.surface.load_table()?;
     let tess = surface_backend(a.surface.backend)?.limit(&table, &mesh.positions, a.tess)?;
     let out = tess.to_mesh(a.quads);
     write_mesh(&a.output, &out, Some(&tess.normals))?;
     let c = table.counts();
-    eprintln!(
+    crate::say!(
         "{} patches ({} regular, {} single-crease, {} Gregory) on {} ptex faces; \
          {} samples per side: {} vertices, {} faces -> {}",
         table.num_patches(),
@@ -93,7 +95,7 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
         tess.samples_per_side,
         out.positions.len(),
         out.num_faces(),
-        a.output.display()
+        shown(&a.output, true)
     );
     Ok(())
 }

@@ -13,6 +13,7 @@
 use crate::common::{read_mesh, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
 use anyhow::{bail, Context};
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use subsurf::surface::{Colors, Method as SurfaceMethod, SurfaceOptions};
 use subsurf::Mesh;
@@ -98,9 +99,9 @@ pub enum FitArg {
 /// Render a subdivision surface to PNG.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Input mesh (.obj with OpenSubdiv tags, or .ply).
+    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
     pub input: PathBuf,
-    /// Output image (.png).
+    /// Output image (.png; `-` writes the PNG to standard output).
     #[arg(short, long)]
     pub output: PathBuf,
     /// Surface construction.
@@ -307,12 +308,16 @@ pub fn open_gpu() -> anyhow::Result<Gpu> {
 
 /// Writes a PNG, with the path in the error.
 pub fn save(image: &RgbaImage, path: &Path) -> anyhow::Result<()> {
+    let mut w = crate::common::create_output(path)?;
     image
-        .save_png(path)
-        .with_context(|| format!("writing {}", path.display()))
+        .write_png(&mut w)
+        .map_err(anyhow::Error::from)
+        .and_then(|_| Ok(w.flush()?))
+        .with_context(|| format!("writing {}", crate::common::shown(path, true)))
 }
 
 pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
+    crate::common::check_output_ext(&a.output, "png")?;
     let level = match (a.method, a.level, a.tess) {
         (Method::Refine, _, Some(_)) => bail!("--tess applies to --method limit|prep; use --level"),
         (Method::Refine, l, None) => l.unwrap_or(3),
@@ -338,7 +343,7 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
     save(&image, &a.output)?;
     drop(progress);
     if !quiet() {
-        eprintln!(
+        crate::say!(
             "rendered {} triangles ({:?}, {}) at {}x{} on {} -> {}",
             tris,
             a.method,
@@ -346,7 +351,7 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
             image.width,
             image.height,
             subsurf_render::describe(&gpu),
-            a.output.display()
+            crate::common::shown(&a.output, true)
         );
     }
     Ok(())

@@ -86,6 +86,7 @@ pub mod context;
 pub mod cpu;
 pub mod error;
 pub mod gather;
+pub mod headless;
 pub mod kernels;
 pub mod limit;
 pub mod limit_chunks;
