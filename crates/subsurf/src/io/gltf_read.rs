@@ -358,9 +358,17 @@ impl Builder {
             }
             None => (0..n as u32).collect(),
         };
-        // World positions, welded.
-        let mut ids = Vec::with_capacity(n);
+        // World positions of the vertices the triangles use, welded, in accessor order.
+        let tris = triangles(&indices, mode);
+        let mut used = vec![false; n];
+        for &i in tris.iter().flatten() {
+            used[i as usize] = true;
+        }
+        let mut ids = vec![u32::MAX; n];
         for (v, p) in pos.chunks_exact(3).enumerate() {
+            if !used[v] {
+                continue;
+            }
             let q = transform(m, [p[0], p[1], p[2]]);
             if let Some(&bad) = q.iter().find(|x| !x.is_finite()) {
                 return Err(gltf_error(
@@ -374,10 +382,9 @@ impl Builder {
             if id == next {
                 self.positions.push(q);
             }
-            ids.push(id);
+            ids[v] = id;
         }
         let flip = det3(m) < 0.0;
-        let tris = triangles(&indices, mode);
         if uvs.is_none() && !tris.is_empty() {
             self.without_uv += 1;
         }
@@ -421,6 +428,24 @@ impl Builder {
                 self.degenerate
             ));
         }
+        // Vertices only degenerate triangles used are dropped, the others keep their order.
+        let mut remap = vec![u32::MAX; self.positions.len()];
+        for &v in &self.faces {
+            remap[v as usize] = 0;
+        }
+        let mut kept = 0u32;
+        let mut positions = Vec::with_capacity(self.positions.len());
+        for (r, p) in remap.iter_mut().zip(&self.positions) {
+            if *r == 0 {
+                *r = kept;
+                kept += 1;
+                positions.push(*p);
+            }
+        }
+        for v in &mut self.faces {
+            *v = remap[*v as usize];
+        }
+        self.positions = positions;
         let uvs = if self.uv_values.is_empty() {
             None
         } else {
