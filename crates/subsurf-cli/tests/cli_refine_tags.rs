@@ -58,6 +58,11 @@ fn refined_file_refines_on_as_the_level() {
     // under boundary interpolation `none` (its boundary faces become holes).
     for (shape, flags, tag) in [
         (
+            "testdata/shapes/catmark_pyramid_creases2.obj",
+            &["--crease-method", "chaikin"][..],
+            "pyramid",
+        ),
+        (
             "examples/car.obj",
             &["--crease-method", "chaikin"][..],
             "car",
