@@ -10,7 +10,8 @@ use subsurf::{Refiner, Topology};
 /// Time topology refinement, stencil application and the whole pipeline.
 #[derive(Debug, clap::Args)]
 pub struct BenchArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
+    /// from standard input.
     pub input: PathBuf,
     /// Refinement level.
     #[arg(short, long, default_value_t = 3)]

@@ -9,7 +9,8 @@ use subsurf::Topology;
 /// Print counts, histograms, features and problems of a mesh.
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
+    /// from standard input.
     pub input: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]

@@ -17,8 +17,8 @@ use subsurf::Mesh;
 /// Arguments of `subsurf prep`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct PrepArgs {
-    /// Input mesh (.obj or .ply; `-` reads OBJ or PLY from standard input): a closed, oriented
-    /// quad mesh.
+    /// Input mesh (.obj, .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB from standard input): a
+    /// closed, oriented quad mesh.
     pub input: PathBuf,
     /// Samples per patch side of the tessellation (>= 2).
     #[arg(long = "tess", default_value_t = 9, value_parser = clap::value_parser!(u32).range(2..=1025))]

@@ -9,7 +9,8 @@ use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topo
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
 pub struct RefineArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
+    /// from standard input.
     pub input: PathBuf,
     /// Number of refinement steps.
     #[arg(short, long, default_value_t = 2)]

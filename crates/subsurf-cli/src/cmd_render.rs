@@ -10,7 +10,7 @@
 //! Gregory end caps (red); `level` colours by adaptive level (palette order: grey 0, orange
 //! 1, blue 2, green 3, red 4, ...).
 
-use crate::common::{read_mesh, SchemeArgs};
+use crate::common::{read_mesh_with, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
 use anyhow::{bail, Context};
 use std::io::Write as _;
@@ -99,7 +99,8 @@ pub enum FitArg {
 /// Render a subdivision surface to PNG.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags) or .ply; `-` reads OBJ or PLY from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
+    /// from standard input.
     pub input: PathBuf,
     /// Output image (.png; `-` writes the PNG to standard output).
     #[arg(short, long)]
@@ -285,7 +286,7 @@ pub fn prepare_spec(
     scheme: &SchemeArgs,
     progress: &Progress,
 ) -> anyhow::Result<RenderMesh> {
-    let mut mesh = read_mesh(&spec.path)?;
+    let mut mesh = read_mesh_with(&spec.path, scheme.flatten)?;
     scheme.apply(&mut mesh);
     build(&mesh, spec, look, progress)
 }

@@ -22,6 +22,11 @@ pub struct SchemeArgs {
     /// Triangle rule for Catmull-Clark.
     #[arg(long, value_enum)]
     pub triangles: Option<TriArg>,
+    /// glTF input: apply node transforms and merge every mesh of the scene in world space
+    /// (default: each mesh in its own coordinates, an error when the scene places several
+    /// meshes under different transforms).
+    #[arg(long)]
+    pub flatten: bool,
 }
 
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -52,7 +57,7 @@ pub enum TriArg {
 impl SchemeArgs {
     /// Reads a mesh file and applies the overrides.
     pub fn read(&self, path: &Path) -> anyhow::Result<Mesh> {
-        let mut mesh = read_mesh(path)?;
+        let mut mesh = read_mesh_with(path, self.flatten)?;
         self.apply(&mut mesh);
         Ok(mesh)
     }
@@ -134,7 +139,12 @@ pub fn check_mesh_output(path: &Path) -> anyhow::Result<()> {
     if is_stdio(path) {
         return Ok(());
     }
-    Format::from_path(path).with_context(|| format!("output {}", path.display()))?;
+    let format = Format::from_path(path).with_context(|| format!("output {}", path.display()))?;
+    anyhow::ensure!(
+        format.writable(),
+        "output {}: subsurf writes glTF as .glb, not .gltf",
+        path.display()
+    );
     check_folder(path)
 }
 
@@ -171,22 +181,46 @@ fn check_folder(path: &Path) -> anyhow::Result<()> {
 }
 
 /// Reads a mesh file, with the path in the error. `-` reads standard input: PLY when it starts
-/// with the `ply` magic line, OBJ otherwise.
+/// with the `ply` magic line, binary glTF with the `glTF` magic, OBJ otherwise. glTF scenes
+/// are read with their node transforms kept out of the geometry.
 pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
-    if is_stdio(path) {
+    read_mesh_with(path, false)
+}
+
+/// [`read_mesh`], with `flatten` applying glTF node transforms (`--flatten`). Notes on what a
+/// glTF file held that was left out are printed.
+pub fn read_mesh_with(path: &Path, flatten: bool) -> anyhow::Result<Mesh> {
+    use subsurf::io::gltf_read;
+    let opts = gltf_read::ReadOptions { flatten };
+    let read = if is_stdio(path) {
         let mut bytes = Vec::new();
         std::io::stdin()
             .lock()
             .read_to_end(&mut bytes)
             .context("reading standard input")?;
-        let format = if bytes.starts_with(b"ply") {
-            Format::Ply
-        } else {
-            Format::Obj
-        };
-        return subsurf::io::read_from(&bytes[..], format).context("reading standard input");
+        if !gltf_read::is_glb(&bytes) {
+            let format = if bytes.starts_with(b"ply") {
+                Format::Ply
+            } else {
+                Format::Obj
+            };
+            return subsurf::io::read_from(&bytes[..], format).context("reading standard input");
+        }
+        gltf_read::read(&bytes, None, &opts).context("reading standard input")?
+    } else {
+        match Format::from_path(path) {
+            Ok(Format::Glb | Format::Gltf) => gltf_read::read_file(path, &opts)
+                .with_context(|| format!("reading {}", path.display()))?,
+            _ => {
+                return subsurf::io::read_path(path)
+                    .with_context(|| format!("reading {}", path.display()))
+            }
+        }
+    };
+    for note in &read.notes {
+        crate::say!("{}: {note}", shown(path, false));
     }
-    subsurf::io::read_path(path).with_context(|| format!("reading {}", path.display()))
+    Ok(read.mesh)
 }
 
 /// Writes a mesh file, with the path in the error; `-` writes standard output in the

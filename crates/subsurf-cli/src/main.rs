@@ -28,7 +28,7 @@ struct Cli {
     #[arg(short, long, global = true)]
     quiet: bool,
     /// Format of mesh output written to standard output (`-o -`); input from standard input
-    /// (`-`) is PLY when it starts with `ply`, OBJ otherwise.
+    /// (`-`) is PLY when it starts with `ply`, binary glTF with `glTF`, OBJ otherwise.
     #[arg(long, value_enum, global = true, value_name = "obj|ply|glb")]
     format: Option<common::FormatArg>,
     #[command(subcommand)]

@@ -225,12 +225,22 @@ fn help_texts_list_the_accepted_formats() {
     for (cmd, wanted) in [
         (
             "refine",
-            &[".obj", ".ply", ".glb", "standard input", "standard output"][..],
+            &[
+                ".obj",
+                ".ply",
+                ".gltf",
+                ".glb",
+                "standard input",
+                "standard output",
+            ][..],
         ),
-        ("limit", &[".obj", ".ply", ".glb", "standard output"][..]),
-        ("prep", &[".obj", ".ply", ".glb", ".npy"][..]),
-        ("render", &[".obj", ".ply", ".png"][..]),
-        ("info", &[".obj", ".ply"][..]),
+        (
+            "limit",
+            &[".obj", ".ply", ".gltf", ".glb", "standard output"][..],
+        ),
+        ("prep", &[".obj", ".ply", ".gltf", ".glb", ".npy"][..]),
+        ("render", &[".obj", ".ply", ".gltf", ".glb", ".png"][..]),
+        ("info", &[".obj", ".ply", ".gltf", ".glb"][..]),
     ] {
         let out = run_ok(bin().args([cmd, "--help"]));
         let text = String::from_utf8_lossy(&out.stdout);
