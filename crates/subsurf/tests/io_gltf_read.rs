@@ -394,3 +394,42 @@ fn truncations_and_bit_flips_never_panic() {
         "{ok} flipped files accepted"
     );
 }
+
+#[test]
+fn sparse_accessors_substitute_their_values() {
+    let (_, mut json, mut bin) = cube_parts();
+    let base = bin.len();
+    bin.extend_from_slice(&[0, 0, 0, 0]); // u8 index 0, padded.
+    for x in [5.0f32, 6.0, 7.0] {
+        bin.extend_from_slice(&x.to_le_bytes());
+    }
+    let views = json["bufferViews"].as_array_mut().unwrap();
+    views.push(serde_json::json!({"buffer": 0, "byteOffset": base, "byteLength": 1}));
+    views.push(serde_json::json!({"buffer": 0, "byteOffset": base + 4, "byteLength": 12}));
+    let (iv, vv) = (views.len() - 2, views.len() - 1);
+    json["buffers"][0]["byteLength"] = bin.len().into();
+    json["accessors"][0]["sparse"] = serde_json::json!({
+        "count": 1,
+        "indices": {"bufferView": iv, "componentType": 5121},
+        "values": {"bufferView": vv}
+    });
+    let plain = gltf_read::read(&cube_parts().0, None, &KEEP).unwrap().mesh;
+    let sparse = gltf_read::read(&glb_from(&json, &bin), None, &KEEP)
+        .unwrap()
+        .mesh;
+    assert_eq!(sparse.face_indices.len(), plain.face_indices.len());
+    assert!(sparse.positions.contains(&[5.0, 6.0, 7.0]));
+    // Corner by corner (same triangles, same order), only glTF vertex 0's corners moved.
+    let (a, b) = (mesh_corners(&plain).0, mesh_corners(&sparse).0);
+    let moved: Vec<usize> = (0..a.len()).filter(|&k| a[k] != b[k]).collect();
+    assert!(!moved.is_empty());
+    for &k in &moved {
+        assert_eq!(b[k], [5.0, 6.0, 7.0]);
+        assert_eq!(a[k], a[moved[0]]);
+    }
+    // A sparse index past the accessor's count is an error.
+    json["accessors"][0]["sparse"]["count"] = 1.into();
+    bin[base] = 200;
+    let (loc, _) = gltf_err(&glb_from(&json, &bin));
+    assert!(loc.contains("sparse.indices"), "{loc}");
+}

@@ -444,6 +444,12 @@ pub(crate) fn index_field(obj: &Value, key: &str, loc: &str) -> Result<Option<us
         None => Ok(None),
         Some(v) => v
             .as_u64()
+            // Some writers spell integers as `24.0`.
+            .or_else(|| {
+                v.as_f64()
+                    .filter(|x| x.fract() == 0.0 && (0.0..9.0e15).contains(x))
+                    .map(|x| x as u64)
+            })
             .and_then(|x| usize::try_from(x).ok())
             .map(Some)
             .ok_or_else(|| gltf_error(loc, format!("{key} is not a non-negative integer: {v}"))),
