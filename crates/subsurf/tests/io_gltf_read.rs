@@ -241,6 +241,11 @@ fn files_from_trimesh_and_pygltflib_read_correctly() {
     }
     // Kept transforms: one mesh, read in its own coordinates.
     let kept = gltf_read::read_file(dir.join("pg_cube.glb"), &KEEP).unwrap();
+    assert!(
+        kept.notes.iter().any(|n| n.contains("not applied")),
+        "{:?}",
+        kept.notes
+    );
     let local = json_rows::<3>(&expected["pg_cube.glb"]["local"]);
     assert_eq!(
         canonical(&local, None),

@@ -75,8 +75,9 @@ pub fn read(bytes: &[u8], base_dir: Option<&Path>, opts: &ReadOptions) -> Result
             }
         }
     }
-    let instances = instances(&doc, opts)?;
+    let (instances, note) = instances(&doc, opts)?;
     let mut b = Builder::default();
+    b.notes.extend(note);
     for inst in &instances {
         b.add_mesh(&doc, inst)?;
     }
@@ -97,8 +98,8 @@ struct Instance {
 }
 
 /// The meshes of the default scene with their world transforms (flatten), or each used mesh
-/// once, untransformed.
-fn instances(doc: &Document, opts: &ReadOptions) -> Result<Vec<Instance>> {
+/// once, untransformed, with a note when that leaves a transform out.
+fn instances(doc: &Document, opts: &ReadOptions) -> Result<(Vec<Instance>, Option<String>)> {
     let scenes = doc.array("scenes")?;
     let scene = match index_field(&doc.json, "scene", "scene")? {
         Some(s) => Some(s),
@@ -141,10 +142,11 @@ fn instances(doc: &Document, opts: &ReadOptions) -> Result<Vec<Instance>> {
         }
     }
     if opts.flatten {
-        return Ok(placed
+        let all = placed
             .into_iter()
             .map(|(mesh, matrix, _)| Instance { mesh, matrix })
-            .collect());
+            .collect();
+        return Ok((all, None));
     }
     let mut out: Vec<Instance> = Vec::new();
     let mut first: Vec<(usize, Mat4, usize)> = Vec::new();
@@ -166,7 +168,13 @@ fn instances(doc: &Document, opts: &ReadOptions) -> Result<Vec<Instance>> {
             matrix: IDENTITY,
         });
     }
-    Ok(out)
+    let note = first.iter().find(|f| f.1 != IDENTITY).map(|f| {
+        format!(
+            "the transform of nodes[{}] is not applied (flatten applies node transforms)",
+            f.2
+        )
+    });
+    Ok((out, note))
 }
 
 /// The `nodes` or `children` array of a scene or node.
