@@ -85,3 +85,34 @@ fn nearest_max(want: &[[f32; 3]], got: &[[f32; 3]]) -> f64 {
     }
     max
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice() -> Vec<[f32; 3]> {
+        (0..1000)
+            .map(|i| [(i % 10) as f32, ((i / 10) % 10) as f32, (i / 100) as f32])
+            .collect()
+    }
+
+    #[test]
+    fn same_order_is_taken_index_by_index() {
+        let a = lattice();
+        let mut b = a.clone();
+        b[17][2] += 1e-6;
+        let d = distance(&a, &b, 1e-3);
+        assert!(d.same_order);
+        assert!((d.max - 1e-6).abs() < 1e-7, "{}", d.max);
+    }
+
+    #[test]
+    fn a_permutation_is_matched_to_nearest() {
+        let a = lattice();
+        // Reversed and moved by 0.01 along x: nearest distance 0.01, index distance large.
+        let b: Vec<[f32; 3]> = a.iter().rev().map(|p| [p[0] + 0.01, p[1], p[2]]).collect();
+        let d = distance(&a, &b, 1e-3);
+        assert!(!d.same_order);
+        assert!((d.max - 0.01).abs() < 1e-6, "{}", d.max);
+    }
+}

@@ -3,11 +3,12 @@
 //! distance from OpenSubdiv's positions.
 //!
 //! ```text
-//! cargo run --release --manifest-path crates/peer-bench/Cargo.toml -- [MESH.obj] [LEVELS] [RUNS]
+//! cargo run --release --manifest-path crates/peer-bench/Cargo.toml -- [MESH.obj] [LEVELS] [RUNS] [--cpu]
 //! ```
 //!
 //! LEVELS is a comma-separated list (default `3,4,5`), RUNS the number of alternating runs
-//! (default 7). Setup is each peer's topology refinement plus the tables its per-frame path
+//! (default 7); `--cpu` times the single-threaded runs in CPU time of the running thread, leaving
+//! out time spent waiting for a core on a loaded machine (two-thread runs stay wall-clock). Setup is each peer's topology refinement plus the tables its per-frame path
 //! reads; a frame is the last level's positions from new base positions, tables built, into a
 //! buffer kept between frames. OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
 //! thread only; subsurf runs in a one-thread and a two-thread rayon pool.
@@ -25,8 +26,32 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-/// Wall-clock time of `f` in ms, and its result.
+/// Whether single-thread timings are CPU time of the running thread (`--cpu`).
+static CPU_TIME: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+
+/// CPU time of the calling thread in ms (`/proc/thread-self/schedstat`: nanoseconds on a
+/// core, kernel time such as page faults included). Yielding first makes the kernel update it.
+fn thread_cpu_ms() -> f64 {
+    std::thread::yield_now();
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns / 1e6)
+}
+
+/// Time of single-threaded `f` in ms, and its result: thread CPU time with `--cpu`, else
+/// wall-clock.
 fn ms<T>(f: impl FnOnce() -> T) -> (f64, T) {
+    if *CPU_TIME.get().unwrap_or(&false) {
+        let t = thread_cpu_ms();
+        let r = f();
+        return (thread_cpu_ms() - t, r);
+    }
+    wall(f)
+}
+
+/// Wall-clock time of `f` in ms, and its result (the two-thread runs).
+fn wall<T>(f: impl FnOnce() -> T) -> (f64, T) {
     let t = Instant::now();
     let r = f();
     (t.elapsed().as_secs_f64() * 1e3, r)
@@ -58,7 +83,9 @@ struct Row {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let all: Vec<String> = std::env::args().skip(1).collect();
+    CPU_TIME.get_or_init(|| all.iter().any(|a| a == "--cpu"));
+    let args: Vec<String> = all.into_iter().filter(|a| !a.starts_with("--")).collect();
     let default_mesh = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../testdata/shapes/catmark_car.obj"
@@ -84,10 +111,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let two = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     let diag = subsurf::mesh::bbox_diagonal(&mesh.positions) as f64;
     println!(
-        "{path}: {} faces, {} vertices; medians of {runs} alternating runs, wall-clock; \
+        "{path}: {} faces, {} vertices; medians of {runs} alternating runs, {}; \
          load average {} at start",
         mesh.num_faces(),
         mesh.num_vertices(),
+        if *CPU_TIME.get().unwrap_or(&false) {
+            "1T in thread CPU time, 2T wall-clock"
+        } else {
+            "wall-clock"
+        },
         load_average()
     );
     println!();
@@ -117,7 +149,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .push(one.install(|| ms(|| Subsurf::setup(&mesh, level)).0));
             rows[SUBSURF]
                 .setup2
-                .push(two.install(|| ms(|| Subsurf::setup(&mesh, level)).0));
+                .push(two.install(|| wall(|| Subsurf::setup(&mesh, level)).0));
         }
         // Frames, tables built once.
         let osd = Osd::setup(&osd_mesh, level);
@@ -144,7 +176,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let out = &mut outs[SUBSURF];
             let t = one.install(|| ms(|| ours.frame(&base, out)).0);
             rows[SUBSURF].frame.push(t);
-            let t = two.install(|| ms(|| ours.frame(&base, out)).0);
+            let t = two.install(|| wall(|| ours.frame(&base, out)).0);
             rows[SUBSURF].frame2.push(t);
         }
         // Errors: every peer's last frame against OpenSubdiv's (PrimvarRefiner) of the same base.
