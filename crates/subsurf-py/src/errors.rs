@@ -85,7 +85,7 @@ pub fn lib_error(py: Python<'_>, e: Error, path: Option<&str>) -> PyErr {
             };
             PyErr::new::<pyo3::exceptions::PyOSError, _>(msg)
         }
-        Error::Unsupported(s) => raise(py, "SubsurfError", format!("unsupported: {s}"), &[]),
+        Error::Unsupported(s) => raise(py, "UnsupportedError", format!("unsupported: {s}"), &[]),
         other => PyRuntimeError::new_err(other.to_string()),
     }
 }
@@ -95,7 +95,7 @@ pub fn surface_error(py: Python<'_>, e: SurfaceError) -> PyErr {
     match e {
         SurfaceError::Library(e) => lib_error(py, e, None),
         SurfaceError::Backend { .. } => raise(py, "GpuError", e.to_string(), &[]),
-        SurfaceError::Unsupported(s) => raise(py, "SubsurfError", s, &[]),
+        SurfaceError::Unsupported(s) => raise(py, "UnsupportedError", s, &[]),
     }
 }
 

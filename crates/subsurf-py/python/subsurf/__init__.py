@@ -13,11 +13,11 @@ from typing import Any, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _subsurf
-from ._errors import GpuError, MeshError, ParseError, SubsurfError
+from ._errors import GpuError, MeshError, ParseError, SubsurfError, UnsupportedError
 
 __all__ = [
     "Mesh", "read", "refine", "Refiner", "LimitSurface", "Prep", "tessellate", "render",
-    "MeshError", "ParseError", "GpuError", "SubsurfError",
+    "MeshError", "ParseError", "GpuError", "SubsurfError", "UnsupportedError",
 ]
 __version__ = "0.1.0"
 

@@ -10,6 +10,7 @@ from ._errors import GpuError as GpuError
 from ._errors import MeshError as MeshError
 from ._errors import ParseError as ParseError
 from ._errors import SubsurfError as SubsurfError
+from ._errors import UnsupportedError as UnsupportedError
 
 __version__: str
 _Path = Union[str, "os.PathLike[str]"]

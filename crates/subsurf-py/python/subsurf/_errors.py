@@ -31,3 +31,8 @@ class ParseError(SubsurfError, ValueError):
 class GpuError(SubsurfError, RuntimeError):
     """No usable GPU adapter, or a device failure. Without a GPU, Mesa's lavapipe
     (``apt-get install mesa-vulkan-drivers``) with ``WGPU_BACKEND=vulkan`` works."""
+
+
+class UnsupportedError(SubsurfError, ValueError):
+    """A format, option or construction this build or backend does not handle (an unknown
+    file extension, the p-rep of a mesh that is not a closed quad manifold on the GPU, ...)."""

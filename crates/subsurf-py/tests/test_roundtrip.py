@@ -1,0 +1,76 @@
+"""Round trips through constructors, files and trimesh."""
+
+import numpy as np
+import pytest
+
+import subsurf
+from conftest import SHAPES
+
+
+def test_face_layouts_agree():
+    pts = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [2, 0, 0]], dtype=np.float64)
+    a = subsurf.Mesh(pts, [[0, 1, 2, 3], [1, 4, 2]])
+    b = subsurf.Mesh(pts, (np.array([4, 3]), np.array([0, 1, 2, 3, 1, 4, 2])))
+    c = subsurf.Mesh(pts.astype(np.float32), np.array([[0, 1, 2, 3]]))
+    assert np.array_equal(a.face_counts, b.face_counts) and np.array_equal(a.face_indices, b.face_indices)
+    assert a.points.dtype == np.float32 and np.array_equal(a.points, pts.astype(np.float32))
+    assert c.num_faces == 1 and c.num_vertices == 5
+    assert a.faces() == [[0, 1, 2, 3], [1, 4, 2]]
+
+
+def test_crease_forms_agree():
+    m = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
+    pairs, sharp = m.creases
+    a = subsurf.Mesh(m.points, (m.face_counts, m.face_indices), creases=pairs, crease_sharpness=sharp)
+    b = subsurf.Mesh(m.points, (m.face_counts, m.face_indices),
+                     creases=np.column_stack([pairs, sharp.astype(np.float64)]))
+    assert np.array_equal(subsurf.refine(a, 2).points, subsurf.refine(m, 2).points)
+    assert np.array_equal(subsurf.refine(b, 2).points, subsurf.refine(m, 2).points)
+
+
+@pytest.mark.parametrize("ext", ["obj", "ply"])
+@pytest.mark.parametrize("name", ["catmark_cube_creases1", "catmark_hole_test2", "catmark_fvar_bound1"])
+def test_file_round_trip(tmp_path, ext, name):
+    m = subsurf.read(SHAPES / f"{name}.obj")
+    p = tmp_path / f"m.{ext}"
+    m.write(p)
+    back = subsurf.read(p)
+    assert np.array_equal(back.points, m.points)
+    assert np.array_equal(back.face_indices, m.face_indices)
+    if ext == "obj":  # tags and UVs survive OBJ
+        assert np.array_equal(back.creases[1], m.creases[1])
+        assert np.array_equal(back.holes, m.holes)
+        assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+
+
+def test_glb_is_written(tmp_path):
+    m = subsurf.refine(subsurf.read(SHAPES / "catmark_cube.obj"), 1)
+    m.write(tmp_path / "m.glb")
+    assert (tmp_path / "m.glb").read_bytes()[:4] == b"glTF"
+
+
+def test_trimesh_round_trip():
+    trimesh = pytest.importorskip("trimesh")
+    box = trimesh.creation.box()
+    m = subsurf.Mesh.from_trimesh(box)
+    assert m.num_vertices == len(box.vertices) and m.num_faces == len(box.faces)
+    r = subsurf.refine(m, 2)
+    t = r.to_trimesh()
+    assert isinstance(t, trimesh.Trimesh)
+    assert len(t.faces) == r.num_faces * 2  # quads split in two
+    assert np.allclose(t.vertices, r.points)
+    back = subsurf.Mesh.from_trimesh(t)
+    assert np.array_equal(back.points, r.points)
+    # A closed surface stays closed; the subdivided box shrinks inside the box.
+    assert t.is_watertight and np.all(np.abs(t.vertices) <= 0.5 + 1e-6)
+
+
+def test_outputs_own_their_buffers_and_inputs_are_not_copied():
+    m = subsurf.read(SHAPES / "catmark_cube.obj")
+    p = subsurf.refine(m, 2).points
+    assert p.flags.c_contiguous and p.flags.writeable
+    # The array is the owner of its memory or views the Rust-allocated base (no numpy copy).
+    assert p.base is None or p.base.base is None
+    # Inputs already float32 and C-contiguous are passed through without a copy.
+    x = np.ascontiguousarray(m.points)
+    assert np.asarray(x, dtype=np.float32) is x
