@@ -10,7 +10,8 @@
 //! (default 7); `--cpu` times the single-threaded runs in CPU time of the running thread, leaving
 //! out time spent waiting for a core on a loaded machine (two-thread runs stay wall-clock). Setup is each peer's topology refinement plus the tables its per-frame path
 //! reads; a frame is the last level's positions from new base positions, tables built, into a
-//! buffer kept between frames. OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
+//! buffer kept between frames; a one shot is setup, one frame into a fresh buffer and dropping
+//! it all, timed together (OpenSubdiv's `StencilTable` path has none). OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
 //! thread only; subsurf runs in a one-thread and a two-thread rayon pool.
 
 mod error;
@@ -57,6 +58,15 @@ fn wall<T>(f: impl FnOnce() -> T) -> (f64, T) {
     (t.elapsed().as_secs_f64() * 1e3, r)
 }
 
+/// One frame of a freshly set-up peer into a fresh buffer, then both dropped: a one-shot
+/// refinement as a command-line run does it.
+fn one_shot<P: Prepared>(mut p: P, base: &[[f32; 3]]) {
+    let mut out = vec![[0.0; 3]; p.num_outputs()];
+    p.frame(base, &mut out);
+    drop(out);
+    drop(p);
+}
+
 fn load_average() -> String {
     std::fs::read_to_string("/proc/loadavg")
         .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
@@ -78,6 +88,7 @@ const SUBSURF: usize = 4;
 struct Row {
     setup: Vec<f64>,
     setup2: Vec<f64>,
+    once: Vec<f64>,
     frame: Vec<f64>,
     frame2: Vec<f64>,
 }
@@ -123,8 +134,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         load_average()
     );
     println!();
-    println!("| level | peer | vertices | setup 1T (ms) | setup 2T (ms) | frame 1T (ms) | frame 2T (ms) | setup / subsurf 1T | frame / subsurf 1T | setup + frame / subsurf 1T | max error vs OpenSubdiv (of bbox diagonal) |");
-    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    println!("| level | peer | vertices | setup 1T (ms) | setup 2T (ms) | frame 1T (ms) | frame 2T (ms) | setup / subsurf 1T | frame / subsurf 1T | one shot 1T (ms) | one shot / subsurf 1T | max error vs OpenSubdiv (of bbox diagonal) |");
+    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     // Each frame refines these base positions, moved a little per run so no frame repeats.
     let frame_base = |run: usize| -> Vec<[f32; 3]> {
         let s = 1.0 + run as f32 * 1e-3;
@@ -150,6 +161,20 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             rows[SUBSURF]
                 .setup2
                 .push(two.install(|| wall(|| Subsurf::setup(&mesh, level)).0));
+            // One shot: setup, one frame into a fresh buffer, everything dropped, all timed.
+            let base = &mesh.positions;
+            rows[0]
+                .once
+                .push(ms(|| one_shot(Osd::setup(&osd_mesh, level), base)).0);
+            rows[2]
+                .once
+                .push(ms(|| one_shot(OsdRs::setup(&mesh, level), base)).0);
+            rows[3]
+                .once
+                .push(ms(|| one_shot(Kernels::setup(&mesh, level), base)).0);
+            rows[SUBSURF]
+                .once
+                .push(one.install(|| ms(|| one_shot(Subsurf::setup(&mesh, level), base)).0));
         }
         // Frames, tables built once.
         let osd = Osd::setup(&osd_mesh, level);
@@ -181,6 +206,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         // Errors: every peer's last frame against OpenSubdiv's (PrimvarRefiner) of the same base.
         let want = outs[0].clone();
+        let s_once = median(rows[SUBSURF].once.clone());
         let (s_setup, s_frame) = (
             median(rows[SUBSURF].setup.clone()),
             median(rows[SUBSURF].frame.clone()),
@@ -210,14 +236,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 )
             };
             println!(
-                "| {level} | {} | {} | {setup:.2} | {} | {frame:.2} | {} | {:.2}x | {:.2}x | {:.2}x | {err} |",
+                "| {level} | {} | {} | {setup:.2} | {} | {frame:.2} | {} | {:.2}x | {:.2}x | {} | {} | {err} |",
                 PEERS[i],
                 outs[i].len(),
                 opt(row.setup2),
                 opt(row.frame2),
                 setup / s_setup,
                 frame / s_frame,
-                (setup + frame) / (s_setup + s_frame),
+                opt(row.once.clone()),
+                if row.once.is_empty() {
+                    "—".to_string()
+                } else {
+                    format!("{:.2}x", median(row.once) / s_once)
+                },
             );
         }
     }
