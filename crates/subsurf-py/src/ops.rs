@@ -59,7 +59,9 @@ fn check_level(level: usize) -> PyResult<()> {
     Ok(())
 }
 
-/// The CLI's `refine`: topology, positions (and their limit), UVs per corner.
+/// The CLI's `refine`: all faces of the last level with the holes tagged and the sharpness
+/// that remains (so that the result refines on as the level itself would), positions (and
+/// their limit), UVs as the last face-varying level's values and per-corner indices.
 fn refine_mesh(
     mesh: &Mesh,
     level: usize,
@@ -68,21 +70,19 @@ fn refine_mesh(
 ) -> Result<Mesh, surface::SurfaceError> {
     let refiner = Refiner::new(Topology::new(mesh)?, level)?;
     let positions = b.refine(&refiner, &mesh.positions, limit)?;
-    let mut out = refiner.to_mesh(level, positions);
-    if let Some(corner) = surface::corner_uvs(&refiner, mesh, limit)? {
-        let t = refiner.last();
-        let mut values = Vec::with_capacity(out.face_indices.len());
-        for f in 0..t.num_faces() {
-            if !t.face_is_hole[f] {
-                let (s, e) = (t.face_offsets[f] as usize, t.face_offsets[f + 1] as usize);
-                values.extend_from_slice(&corner[s..e]);
-            }
+    let mut out = refiner.to_tagged_mesh(level, positions)?;
+    if let Some(fv) = &mesh.uvs {
+        let mode = mesh.options.fvar_interpolation;
+        let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
+        let mut last = fvar.refine(&fv.values)?.pop().ok_or_else(|| {
+            subsurf::Error::Internal("face-varying refinement without levels".into())
+        })?;
+        if limit {
+            last.values = refiner.limit_face_varying(&fvar, &last.values)?;
         }
-        let indices = (0..values.len() as u32).collect();
-        out.uvs = Some(FaceVarying { values, indices });
+        out.options.fvar_interpolation = mode;
+        out.uvs = Some(last);
     }
-    out.creases.clear();
-    out.corners.clear();
     Ok(out)
 }
 
@@ -242,8 +242,9 @@ impl PyRefiner {
         Ok((out2(py, last.values)?, out1(py, last.indices)))
     }
 
-    /// The refined mesh with `points` (n_last, 3) as its positions.
-    fn mesh(&self, points: PyReadonlyArray2<'_, f32>) -> PyResult<PyMesh> {
+    /// The refined mesh (all faces, holes and remaining sharpness tagged) with `points`
+    /// (n_last, 3) as its positions.
+    fn mesh(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<PyMesh> {
         let p = rows::<3, f32>(&points, "points")?;
         if p.len() != self.refiner.last().num_vertices() {
             return Err(value_error(format!(
@@ -252,9 +253,10 @@ impl PyRefiner {
                 self.refiner.last().num_vertices()
             )));
         }
-        let mut m = self.refiner.to_mesh(self.level, p);
-        m.creases.clear();
-        m.corners.clear();
+        let m = self
+            .refiner
+            .to_tagged_mesh(self.level, p)
+            .map_err(|e| lib_error(py, e, None))?;
         Ok(PyMesh { inner: Arc::new(m) })
     }
 

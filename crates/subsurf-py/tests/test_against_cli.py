@@ -21,7 +21,12 @@ def test_refine_matches_cli_file(cli, tmp_path, name, limit):
     back = subsurf.read(cli_out)
     # Same float32 positions (OBJ round-trips float32 exactly), faces and corner UVs.
     assert np.array_equal(back.points, py.points)
+    # All faces, holes and the remaining sharpness tagged as in the CLI's OBJ.
+    assert np.array_equal(back.face_counts, py.face_counts)
     assert np.array_equal(back.face_indices, py.face_indices)
+    assert np.array_equal(back.holes, py.holes)
+    for a, b in zip(back.creases + back.corners, py.creases + py.corners):
+        assert np.array_equal(a, b)
     if py.uvs is not None:
         assert np.array_equal(back.uvs[back.uv_indices], py.uvs[py.uv_indices])
 
@@ -78,11 +83,43 @@ def test_refiner_reuses_tables_bit_for_bit(name):
         assert np.allclose(r.refine(cols), rw[:, k:k + 3], atol=1e-6)
     # The composed stencils give the same values (within float32 rounding of the products).
     o, i, wt = r.stencils()
-    assert len(o) == r.num_vertices + 1
-    m = r.stencil_matrix()
+    assert len(o) == r.num_vertices + 1 and o[-1] == len(i) == len(wt)
+    rows = np.repeat(np.arange(r.num_vertices), np.diff(o.astype(np.int64)))
+    via = np.zeros((r.num_vertices, 3))
+    np.add.at(via, rows, wt[:, None].astype(np.float64) * mesh.points[i].astype(np.float64))
     diag = np.linalg.norm(mesh.points.max(0) - mesh.points.min(0))
-    assert np.abs(m @ mesh.points.astype(np.float64) - p).max() < 1e-5 * diag
-    assert np.allclose(np.asarray(m.sum(axis=1)).ravel(), 1.0, atol=1e-5)
+    assert np.abs(via - p).max() < 1e-5 * diag
+    assert np.allclose(np.bincount(rows, weights=wt, minlength=r.num_vertices), 1.0, atol=1e-5)
+
+
+def test_stencil_matrix_is_the_stencils():
+    scipy_sparse = pytest.importorskip("scipy.sparse")
+    mesh = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
+    r = subsurf.Refiner(mesh, 2)
+    m = r.stencil_matrix()
+    assert isinstance(m, scipy_sparse.csr_matrix) and m.shape == (r.num_vertices, mesh.num_vertices)
+    o, i, wt = r.stencils()
+    assert np.array_equal(m.indptr, o) and np.array_equal(m.indices, i) and np.array_equal(m.data, wt)
+
+
+def test_refined_mesh_refines_on_as_the_level():
+    # refine(refine(m, 1), 2) == refine(m, 3) as surfaces (the vertex numbering differs):
+    # holes and decayed sharpness carried along, so the same points and the same hole faces.
+    def by_position(x):
+        x = np.round(np.asarray(x, dtype=np.float64), 4)
+        return x[np.lexsort(x.T[::-1])]
+
+    def hole_centroids(m):
+        f = m.face_indices.reshape(-1, 4)  # quads after one step
+        return by_position(m.points[f[m.holes]].mean(axis=1))
+
+    for name in ("catmark_hole_test2", "catmark_cube_creases1", "catmark_chaikin1"):
+        mesh = subsurf.read(SHAPES / f"{name}.obj")
+        a = subsurf.refine(subsurf.refine(mesh, 1), 2)
+        b = subsurf.refine(mesh, 3)
+        assert a.num_faces == b.num_faces and len(a.holes) == len(b.holes), name
+        assert np.allclose(by_position(a.points), by_position(b.points), atol=2e-4), name
+        assert np.allclose(hole_centroids(a), hole_centroids(b), atol=2e-4), name
 
 
 def test_refine_uvs_match_refine():
@@ -90,7 +127,7 @@ def test_refine_uvs_match_refine():
     r = subsurf.Refiner(mesh, 2)
     values, idx = r.refine_uvs(mesh.uvs, mesh.uv_indices)
     ref = subsurf.refine(mesh, 2)
-    # refine() stores one UV per corner of the non-hole faces: the same values.
+    # refine() stores the last level's UV values and per-corner indices: the same values.
     assert np.array_equal(values[idx], ref.uvs[ref.uv_indices])
 
 

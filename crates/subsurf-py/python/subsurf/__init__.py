@@ -244,7 +244,10 @@ def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu")
     """Uniform refinement ``level`` times (vertex order as OpenSubdiv: children of vertices,
     face points, edge points). ``limit=True`` moves the last level and its UVs to the limit.
     UVs are refined in the mesh's ``uv_interpolation`` mode. ``backend``: "cpu" or "gpu"
-    (positions on the GPU, UVs on the CPU). Same numbers as ``subsurf refine``."""
+    (positions on the GPU, UVs on the CPU). The result keeps every face of the last level,
+    hole faces listed in ``holes``, with the crease and corner sharpness that remains, so it
+    refines on as the level itself would; UVs are the last level's values and per-corner
+    indices. Same numbers and faces as ``subsurf refine`` writes to OBJ."""
     return Mesh._wrap(_subsurf.refine(_mesh(mesh), _int(level, "level"), bool(limit), backend))
 
 
@@ -289,7 +292,8 @@ class Refiner:
         return self._r.refine_uvs(_floats(uvs, 2, "uvs"), idx)
 
     def mesh(self, points: Any) -> Mesh:
-        """The refined mesh with ``points`` (n_last, 3) as positions."""
+        """The refined mesh (every face, holes and remaining sharpness tagged, as ``refine``)
+        with ``points`` (n_last, 3) as positions."""
         return Mesh._wrap(self._r.mesh(_floats(points, 3, "points")))
 
     def stencils(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -376,7 +380,9 @@ def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cp
     method : "refine" (``n`` = level, fan-triangulated, Newell normals), "limit" (``n``
         samples per ptex-face side), "prep" (``n`` samples per patch side; one Catmull-Clark
         step first for non-quad meshes) or "prep-bicubic" (without the perturbation)
+    n : level (refine) or samples per side (limit, prep), an integer
     backend : "cpu" or "gpu"
+    isolation : levels of feature-adaptive isolation of the limit patches (0..=10, default 4)
     """
     return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"))
 
