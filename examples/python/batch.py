@@ -70,6 +70,14 @@ def run(inputs: List[str], out_dir: str, op: str = "refine", n: int = 2, workers
     """Runs the batch and writes OUT/summary.csv; returns the rows in input order."""
     from dask.distributed import Client, LocalCluster
 
+    # Ship `process` by value: workers then need subsurf, not this script on their path
+    # (it may be loaded from a file, as the tests do, rather than imported).
+    try:
+        import cloudpickle
+
+        cloudpickle.register_pickle_by_value(sys.modules[process.__module__])
+    except (ImportError, KeyError, ValueError):
+        pass
     files = find_meshes(inputs)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
