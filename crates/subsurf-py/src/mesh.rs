@@ -158,6 +158,8 @@ impl PyMesh {
     #[pyo3(signature = (points, counts, indices, crease_pairs, crease_sharpness, corner_vertices,
         corner_sharpness, holes, uvs, uv_indices, scheme, boundary, crease_method, triangles,
         uv_interpolation))]
+    // One argument per keyword of the Python constructor.
+    #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
         points: PyReadonlyArray2<'_, f32>,

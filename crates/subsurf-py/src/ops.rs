@@ -581,6 +581,8 @@ pub fn tessellate(
 #[cfg(feature = "gpu")]
 #[pyfunction]
 #[pyo3(signature = (mesh, width, height, method, n, view, up, colors, cage, background))]
+// One argument per keyword of the Python `render`.
+#[allow(clippy::too_many_arguments)]
 pub fn render(
     py: Python<'_>,
     mesh: &PyMesh,
