@@ -124,6 +124,9 @@ fn write_path_picks_glb_by_extension() {
     let (g, _) = read_back(&bytes);
     assert_eq!(g.meshes().count(), 1);
     // And reads back (tests/io_gltf_read.rs checks the reader in depth).
-    assert_eq!(subsurf::io::read_path(&path).unwrap().positions, mesh.positions);
+    assert_eq!(
+        subsurf::io::read_path(&path).unwrap().positions,
+        mesh.positions
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
