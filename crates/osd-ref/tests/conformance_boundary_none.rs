@@ -13,17 +13,10 @@ mod common;
 use osd_ref::{EndCap, OsdMesh, PatchOptions as OsdPatchOptions};
 use subsurf::limit::patch_map::EMPTY;
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
-use subsurf::{BoundaryInterpolation, Crease, FVarLinearInterpolation, FaceVarying, Mesh};
+use subsurf::{BoundaryInterpolation, Crease, FaceVarying, Mesh};
 use subsurf::{Refiner, Topology};
 
-const MODES: [(FVarLinearInterpolation, u8); 6] = [
-    (FVarLinearInterpolation::None, 0),
-    (FVarLinearInterpolation::CornersOnly, 1),
-    (FVarLinearInterpolation::CornersPlus1, 2),
-    (FVarLinearInterpolation::CornersPlus2, 3),
-    (FVarLinearInterpolation::Boundaries, 4),
-    (FVarLinearInterpolation::All, 5),
-];
+use common::MODES;
 
 fn crease(v0: u32, v1: u32, sharpness: f32) -> Crease {
     Crease { v0, v1, sharpness }

@@ -9,14 +9,7 @@ mod common;
 use osd_ref::OsdMesh;
 use subsurf::{FVarLinearInterpolation, Mesh, Refiner, Topology};
 
-const MODES: [(FVarLinearInterpolation, u8); 6] = [
-    (FVarLinearInterpolation::None, 0),
-    (FVarLinearInterpolation::CornersOnly, 1),
-    (FVarLinearInterpolation::CornersPlus1, 2),
-    (FVarLinearInterpolation::CornersPlus2, 3),
-    (FVarLinearInterpolation::Boundaries, 4),
-    (FVarLinearInterpolation::All, 5),
-];
+use common::MODES;
 
 fn osd_mesh(m: &Mesh, fvar_interp: u8) -> OsdMesh<'_> {
     let mut o = OsdMesh::from(m);

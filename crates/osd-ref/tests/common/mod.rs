@@ -5,7 +5,18 @@
 
 use std::path::{Path, PathBuf};
 
-use subsurf::Mesh;
+use subsurf::{FVarLinearInterpolation, Mesh};
+
+/// Every `FVarLinearInterpolation` mode with OpenSubdiv's integer code for it (0 NONE …
+/// 5 ALL).
+pub const MODES: [(FVarLinearInterpolation, u8); 6] = [
+    (FVarLinearInterpolation::None, 0),
+    (FVarLinearInterpolation::CornersOnly, 1),
+    (FVarLinearInterpolation::CornersPlus1, 2),
+    (FVarLinearInterpolation::CornersPlus2, 3),
+    (FVarLinearInterpolation::Boundaries, 4),
+    (FVarLinearInterpolation::All, 5),
+];
 
 /// `require_osd!()` at the top of a test: returns from it (after a loud message) when
 /// OpenSubdiv is missing, and fails under CI.
