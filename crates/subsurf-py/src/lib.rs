@@ -11,6 +11,10 @@ use pyo3::prelude::*;
 
 #[pymodule]
 fn _subsurf(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // At import, before the package starts any thread: keeps Mesa's display layer from printing
+    // a Wayland error on machines without a display server (see `subsurf_gpu::headless`).
+    #[cfg(feature = "gpu")]
+    subsurf_gpu::headless::disable_display_layers_when_headless();
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<ops::PyRefiner>()?;
     m.add_class::<ops::PyLimit>()?;

@@ -17,3 +17,26 @@ def test_render_shows_the_surface(tmp_path):
     assert tuple(img[0, 0]) == (255, 255, 255, 255)  # background in the corner
     assert tuple(img[24, 32]) != (255, 255, 255, 255)  # surface in the centre
     assert (tmp_path / "c.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_headless_render_prints_no_error_line():
+    """Without a display server, Mesa's device-select layer would print a Wayland
+    `error: XDG_RUNTIME_DIR ...` line on every GPU start; the package switches it off at import."""
+    import os
+    import subprocess
+    import sys
+
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("XDG_RUNTIME_DIR", "WAYLAND_DISPLAY", "DISPLAY", "NODEVICE_SELECT")}
+    code = ("import subsurf\n"
+            f"m = subsurf.read({str(SHAPES / 'catmark_cube.obj')!r})\n"
+            "try:\n"
+            "    subsurf.render(m, size=(32, 24), method='refine', n=1)\n"
+            "except subsurf.GpuError:\n"
+            "    print('no adapter')\n")
+    r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, r.stderr
+    if "no adapter" in r.stdout:
+        pytest.skip("SKIPPED: no GPU adapter")
+    assert not any(line.startswith("error:") for line in r.stderr.splitlines()), r.stderr
