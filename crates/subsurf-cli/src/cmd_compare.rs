@@ -12,7 +12,7 @@ use crate::cmd_render::{
     open_gpu, prepare_spec, render_prepared, save, LookArgs, Method, SurfaceSpec,
 };
 use crate::common::SchemeArgs;
-use crate::progress::{quiet, Progress};
+use crate::progress::Progress;
 use anyhow::{anyhow, Context};
 use clap::ValueEnum;
 use std::path::PathBuf;
@@ -105,16 +105,14 @@ pub fn run(a: &CompareArgs) -> anyhow::Result<()> {
     let image = RgbaImage::hstack(&images, a.gap, a.look.background);
     save(&image, &a.output)?;
     drop(progress);
-    if !quiet() {
-        crate::say!(
-            "compared {} and {} at {}x{} -> {}",
-            a.left,
-            a.right,
-            image.width,
-            image.height,
-            crate::common::shown(&a.output, true)
-        );
-    }
+    crate::say!(
+        "compared {} and {} at {}x{} -> {}",
+        a.left,
+        a.right,
+        image.width,
+        image.height,
+        crate::common::shown(&a.output, true)
+    );
     Ok(())
 }
 

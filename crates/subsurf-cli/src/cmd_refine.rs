@@ -3,7 +3,7 @@
 use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::refine::{refine_once_mesh, StencilTable};
+use subsurf::refine::refine_once_mesh;
 use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
 
 /// Refine a mesh uniformly.
@@ -92,7 +92,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
             gpu.update(ctx, &mesh.positions)
                 .context("--backend gpu: refining on the GPU")?;
             let flat = if a.limit {
-                apply_on_gpu(ctx, refiner.limit_table(), gpu.output())
+                subsurf_gpu::StencilKernel::apply_once(ctx, refiner.limit_table(), gpu.output())
             } else {
                 gpu.output().download(ctx)
             }
@@ -122,7 +122,11 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
                     .context("--backend gpu: refining UVs on the GPU")?;
                 let levels = &fvar.levels;
                 let flat = if a.limit {
-                    apply_on_gpu(ctx, &refiner.fvar_limit_table(&fvar)?, gpu.output())
+                    subsurf_gpu::StencilKernel::apply_once(
+                        ctx,
+                        &refiner.fvar_limit_table(&fvar)?,
+                        gpu.output(),
+                    )
                 } else {
                     gpu.output().download(ctx)
                 }
@@ -137,19 +141,6 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         out.uvs = Some(last);
     }
     finish(a, &mesh, out)
-}
-
-/// `table` applied on the GPU to `src` (the limit step), read back.
-fn apply_on_gpu(
-    ctx: &subsurf_gpu::GpuContext,
-    table: &StencilTable,
-    src: &subsurf_gpu::VertexBuffer,
-) -> Result<Vec<f32>, subsurf_gpu::GpuError> {
-    let kernel =
-        subsurf_gpu::StencilKernel::new(ctx, &table.offsets, &table.indices, &table.weights)?;
-    let mut dst = subsurf_gpu::VertexBuffer::zeroed(ctx, table.num_rows(), src.stride())?;
-    kernel.apply(ctx, src, &mut dst)?;
-    dst.download(ctx)
 }
 
 /// Writes the refined mesh and reports what was made.

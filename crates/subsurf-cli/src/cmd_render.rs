@@ -343,17 +343,15 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
     progress.stage("writing PNG");
     save(&image, &a.output)?;
     drop(progress);
-    if !quiet() {
-        crate::say!(
-            "rendered {} triangles ({:?}, {}) at {}x{} on {} -> {}",
-            tris,
-            a.method,
-            level,
-            image.width,
-            image.height,
-            subsurf_render::describe(&gpu),
-            crate::common::shown(&a.output, true)
-        );
-    }
+    crate::say!(
+        "rendered {} triangles ({:?}, {}) at {}x{} on {} -> {}",
+        tris,
+        a.method,
+        level,
+        image.width,
+        image.height,
+        subsurf_render::describe(&gpu),
+        crate::common::shown(&a.output, true)
+    );
     Ok(())
 }

@@ -198,15 +198,15 @@ pub fn read_mesh_with(path: &Path, flatten: bool) -> anyhow::Result<Mesh> {
             .lock()
             .read_to_end(&mut bytes)
             .context("reading standard input")?;
-        if !gltf_read::is_glb(&bytes) {
-            let format = if bytes.starts_with(b"ply") {
-                Format::Ply
-            } else {
-                Format::Obj
-            };
-            return subsurf::io::read_from(&bytes[..], format).context("reading standard input");
+        match Format::sniff(&bytes) {
+            // glTF through its reader directly, for the options and the notes.
+            Format::Glb => {
+                gltf_read::read(&bytes, None, &opts).context("reading standard input")?
+            }
+            format => {
+                return subsurf::io::read_bytes(&bytes, format).context("reading standard input")
+            }
         }
-        gltf_read::read(&bytes, None, &opts).context("reading standard input")?
     } else {
         match Format::from_path(path) {
             Ok(Format::Glb | Format::Gltf) => gltf_read::read_file(path, &opts)

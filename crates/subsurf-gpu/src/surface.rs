@@ -3,7 +3,7 @@
 //! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation,
 //! the p-rep passes and grid).
 
-use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, StencilKernel, VertexBuffer};
+use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, StencilKernel};
 use subsurf::limit::{PatchTable, Tessellation};
 use subsurf::prep::PrepTopology;
 use subsurf::surface::{Backend, PrepOutput, SurfaceError};
@@ -52,19 +52,13 @@ impl Backend for GpuBackend {
         let gpu = GpuRefiner::new(ctx, refiner).map_err(gpu_err("uploading the refiner"))?;
         gpu.update(ctx, base).map_err(gpu_err("refining"))?;
         let flat = if limit {
-            let t = refiner.limit_table();
-            let kernel = StencilKernel::new(ctx, &t.offsets, &t.indices, &t.weights)
-                .map_err(gpu_err("uploading the limit stencils"))?;
-            let mut dst = VertexBuffer::zeroed(ctx, t.num_rows(), gpu.output().stride())
-                .map_err(gpu_err("allocating the limit positions"))?;
-            kernel
-                .apply(ctx, gpu.output(), &mut dst)
-                .map_err(gpu_err("limit step"))?;
-            dst.download(ctx)
+            StencilKernel::apply_once(ctx, refiner.limit_table(), gpu.output())
+                .map_err(gpu_err("limit step"))?
         } else {
-            gpu.output().download(ctx)
-        }
-        .map_err(gpu_err("reading positions back"))?;
+            gpu.output()
+                .download(ctx)
+                .map_err(gpu_err("reading positions back"))?
+        };
         Ok(triples(&flat))
     }
 

@@ -205,6 +205,19 @@ impl StencilKernel {
         Self::with_limits(ctx, &table, ChunkLimits::from_context(ctx))
     }
 
+    /// Applies a library stencil table once to `src` and reads the result back (`rows ×
+    /// stride` floats): for a step run once, such as the limit step after refinement.
+    pub fn apply_once(
+        ctx: &GpuContext,
+        table: &subsurf::StencilTable,
+        src: &VertexBuffer,
+    ) -> Result<Vec<f32>> {
+        let kernel = Self::new(ctx, &table.offsets, &table.indices, &table.weights)?;
+        let mut dst = VertexBuffer::zeroed(ctx, table.num_rows(), src.stride())?;
+        kernel.apply(ctx, src, &mut dst)?;
+        dst.download(ctx)
+    }
+
     /// Uploads `table` chunked against `limits` (clamped to the adapter's limits).
     pub fn with_limits(
         ctx: &GpuContext,

@@ -105,9 +105,16 @@ impl Format {
         }
     }
 
-    /// Whether [`read_from`] can read this format (all can).
-    pub fn readable(self) -> bool {
-        true
+    /// The format of a file's bytes, by their magic: GLB (`glTF`), PLY (`ply`), else OBJ
+    /// (which has none). A `.gltf` JSON file cannot be told from text and is never returned.
+    pub fn sniff(bytes: &[u8]) -> Format {
+        if gltf_read::is_glb(bytes) {
+            Format::Glb
+        } else if bytes.starts_with(b"ply") {
+            Format::Ply
+        } else {
+            Format::Obj
+        }
     }
 
     /// Whether [`write_to`] can write this format (all but `.gltf`).
@@ -122,11 +129,16 @@ impl Format {
 pub fn read_from(mut reader: impl std::io::Read, format: Format) -> Result<Mesh> {
     let mut bytes = Vec::new();
     reader.read_to_end(&mut bytes)?;
+    read_bytes(&bytes, format)
+}
+
+/// Reads a mesh in `format` from the bytes of a whole file, as [`read_from`].
+pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
     match format {
         // As in `obj::read_file`: bytes that are not UTF-8 can only matter inside comments.
-        Format::Obj => obj::read(&String::from_utf8_lossy(&bytes)),
-        Format::Ply => ply::read(&bytes),
-        Format::Glb | Format::Gltf => Ok(gltf_read::read(&bytes, None, &Default::default())?.mesh),
+        Format::Obj => obj::read(&String::from_utf8_lossy(bytes)),
+        Format::Ply => ply::read(bytes),
+        Format::Glb | Format::Gltf => Ok(gltf_read::read(bytes, None, &Default::default())?.mesh),
     }
 }
 
