@@ -401,59 +401,70 @@ int osd_adaptive_counts(const osd_adaptive *a, int64_t *counts) {
     return 0;
 }
 
-int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *out,
-                               size_t cap) {
-    try {
-        if (n < 2) {
-            set_error("need at least 2 samples per side");
-            return -1;
-        }
-        const Far::PatchTable &pt = *a->patches;
-        bool triangles = a->scheme == Sdc::SCHEME_LOOP;
-        float wP[20], wDu[20], wDv[20];
-        size_t count = 0;
-        for (int face = 0; face < a->num_ptex; ++face) {
-            for (int j = 0; j < n; ++j) {
-                for (int i = 0; i < n; ++i) {
-                    float u = (float)i / (float)(n - 1), v = (float)j / (float)(n - 1);
-                    if (triangles && i + j > n - 1) continue;  // triangular ptex domain u + v <= 1
-                    const Far::PatchTable::PatchHandle *h = a->map->FindPatch(face, u, v);
-                    if (!h) continue;  // hole, or no limit surface here
-                    Far::PatchDescriptor::Type t = pt.GetPatchDescriptor(*h).GetType();
-                    if (t == Far::PatchDescriptor::GREGORY ||
-                        t == Far::PatchDescriptor::GREGORY_BOUNDARY) {
-                        set_error("legacy Gregory patches cannot be evaluated on the CPU");
-                        return -1;
-                    }
-                    if (count >= cap) {
-                        set_error("sample buffer too small");
-                        return -1;
-                    }
-                    // EvaluateBasis takes the ptex (u,v), normalises it to the patch and
-                    // scales the derivative weights by 2^depth. On the sub-faces of an
-                    // n-gon that depth counts the split into quads too (the parameter
-                    // fraction is 2^-(depth-1)), so halve them: du/dv are then w.r.t. the
-                    // ptex face's own (u,v), as for quads.
-                    pt.EvaluateBasis(*h, u, v, wP, wDu, wDv);
-                    float dscale = pt.GetPatchParam(*h).NonQuadRoot() ? 0.5f : 1.0f;
-                    Far::ConstIndexArray cvs = pt.GetPatchVertices(*h);
-                    osd_limit_sample &s = out[count++];
-                    s.face = (uint32_t)face;
-                    s.u = u;
-                    s.v = v;
-                    for (int k = 0; k < 3; ++k) s.p[k] = s.du[k] = s.dv[k] = 0.0f;
-                    for (int c = 0; c < cvs.size(); ++c) {
-                        const Vec3 &x = a->points[cvs[c]];
-                        for (int k = 0; k < 3; ++k) {
-                            s.p[k] += wP[c] * x.v[k];
-                            s.du[k] += dscale * wDu[c] * x.v[k];
-                            s.dv[k] += dscale * wDv[c] * x.v[k];
-                        }
+}  // extern "C"
+
+// Samples an n x n grid of every ptex face (u, v = i/(n-1), v the outer loop; only u + v <= 1
+// for triangles), skipping holes, into `out`: position and derivatives w.r.t. the ptex face's
+// own (u, v), weights and sums in `Real`. Shared by the f32 and the f64 evaluation.
+template <class Real, class Point, class Sample>
+static int64_t sample_grid(const Far::PatchTable &pt, const Far::PatchMap &map, int num_ptex,
+                           bool triangles, const Point *points, int n, Sample *out, size_t cap) {
+    if (n < 2) {
+        set_error("need at least 2 samples per side");
+        return -1;
+    }
+    Real wP[20], wDu[20], wDv[20];
+    size_t count = 0;
+    for (int face = 0; face < num_ptex; ++face) {
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                float u = (float)i / (float)(n - 1), v = (float)j / (float)(n - 1);
+                if (triangles && i + j > n - 1) continue;  // triangular ptex domain u + v <= 1
+                const Far::PatchTable::PatchHandle *h = map.FindPatch(face, u, v);
+                if (!h) continue;  // hole, or no limit surface here
+                Far::PatchDescriptor::Type t = pt.GetPatchDescriptor(*h).GetType();
+                if (t == Far::PatchDescriptor::GREGORY ||
+                    t == Far::PatchDescriptor::GREGORY_BOUNDARY) {
+                    set_error("legacy Gregory patches cannot be evaluated on the CPU");
+                    return -1;
+                }
+                if (count >= cap) {
+                    set_error("sample buffer too small");
+                    return -1;
+                }
+                // EvaluateBasis takes the ptex (u,v), normalises it to the patch and scales the
+                // derivative weights by 2^depth. On the sub-faces of an n-gon that depth counts
+                // the split into quads too (the parameter fraction is 2^-(depth-1)), so halve
+                // them: du/dv are then w.r.t. the ptex face's own (u,v), as for quads.
+                pt.EvaluateBasis(*h, (Real)u, (Real)v, wP, wDu, wDv);
+                Real dscale = pt.GetPatchParam(*h).NonQuadRoot() ? Real(0.5) : Real(1);
+                Far::ConstIndexArray cvs = pt.GetPatchVertices(*h);
+                Sample &s = out[count++];
+                s.face = (uint32_t)face;
+                s.u = u;
+                s.v = v;
+                for (int k = 0; k < 3; ++k) s.p[k] = s.du[k] = s.dv[k] = Real(0);
+                for (int c = 0; c < cvs.size(); ++c) {
+                    const Point &x = points[cvs[c]];
+                    for (int k = 0; k < 3; ++k) {
+                        s.p[k] += wP[c] * x.v[k];
+                        s.du[k] += dscale * wDu[c] * x.v[k];
+                        s.dv[k] += dscale * wDv[c] * x.v[k];
                     }
                 }
             }
         }
-        return (int64_t)count;
+    }
+    return (int64_t)count;
+}
+
+extern "C" {
+
+int64_t osd_adaptive_eval_grid(const osd_adaptive *a, int n, osd_limit_sample *out,
+                               size_t cap) {
+    try {
+        return sample_grid<float>(*a->patches, *a->map, a->num_ptex,
+                                  a->scheme == Sdc::SCHEME_LOOP, a->points.data(), n, out, cap);
     } catch (const std::exception &e) {
         set_error(e.what());
     } catch (...) {
@@ -503,47 +514,8 @@ int64_t osd_adaptive_eval_grid_f64(const osd_mesh_desc *mesh, int isolation, int
         if (nlocal > 0)
             pt->GetLocalPointStencilTable<double>()->UpdateValues(points.data(), &points[nref]);
 
-        bool triangles = mesh->scheme == Sdc::SCHEME_LOOP;
-        double wP[20], wDu[20], wDv[20];
-        size_t count = 0;
-        for (int face = 0; face < num_ptex; ++face) {
-            for (int j = 0; j < n; ++j) {
-                for (int i = 0; i < n; ++i) {
-                    float u = (float)i / (float)(n - 1), v = (float)j / (float)(n - 1);
-                    if (triangles && i + j > n - 1) continue;
-                    const Far::PatchTable::PatchHandle *h = map.FindPatch(face, u, v);
-                    if (!h) continue;
-                    Far::PatchDescriptor::Type t = pt->GetPatchDescriptor(*h).GetType();
-                    if (t == Far::PatchDescriptor::GREGORY ||
-                        t == Far::PatchDescriptor::GREGORY_BOUNDARY) {
-                        set_error("legacy Gregory patches cannot be evaluated on the CPU");
-                        return -1;
-                    }
-                    if (count >= cap) {
-                        set_error("sample buffer too small");
-                        return -1;
-                    }
-                    // As osd_adaptive_eval_grid: derivatives w.r.t. the ptex face's (u, v).
-                    pt->EvaluateBasis(*h, (double)u, (double)v, wP, wDu, wDv);
-                    double dscale = pt->GetPatchParam(*h).NonQuadRoot() ? 0.5 : 1.0;
-                    Far::ConstIndexArray cvs = pt->GetPatchVertices(*h);
-                    osd_limit_sample_f64 &s = out[count++];
-                    s.face = (uint32_t)face;
-                    s.u = u;
-                    s.v = v;
-                    for (int k = 0; k < 3; ++k) s.p[k] = s.du[k] = s.dv[k] = 0.0;
-                    for (int c = 0; c < cvs.size(); ++c) {
-                        const Vec3d &x = points[cvs[c]];
-                        for (int k = 0; k < 3; ++k) {
-                            s.p[k] += wP[c] * x.v[k];
-                            s.du[k] += dscale * wDu[c] * x.v[k];
-                            s.dv[k] += dscale * wDv[c] * x.v[k];
-                        }
-                    }
-                }
-            }
-        }
-        return (int64_t)count;
+        return sample_grid<double>(*pt, map, num_ptex, mesh->scheme == Sdc::SCHEME_LOOP,
+                                   points.data(), n, out, cap);
     } catch (const std::exception &e) {
         set_error(e.what());
     } catch (...) {
