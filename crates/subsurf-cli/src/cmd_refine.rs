@@ -1,10 +1,10 @@
 //! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
 
-use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
-use anyhow::Context as _;
+use crate::cmd_limit::surface_backend;
+use crate::common::{check_mesh_output, shown, write_mesh, Backend, SchemeArgs};
 use std::path::PathBuf;
-use subsurf::refine::refine_once_mesh;
-use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topology};
+use subsurf::surface::refine_mesh;
+use subsurf::FVarLinearInterpolation;
 
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
@@ -66,80 +66,14 @@ impl From<UvInterp> for FVarLinearInterpolation {
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
     let mesh = a.scheme.read(&a.input)?;
-    let topo = Topology::new(&mesh)?;
-    // The last level's full topology is only read by the limit and face-varying refinement.
-    let options = RefineOptions {
-        full_topology_in_last_level: a.limit || mesh.uvs.is_some(),
-    };
-    let ctx = match a.backend {
-        Backend::Cpu => None,
-        Backend::Gpu => Some(gpu_context()?),
-    };
-    if ctx.is_none() && !options.full_topology_in_last_level {
-        // Positions only, once: no stencil table kept, each parent level dropped as soon as
-        // its child exists (bit-identical to the stencil path, about half its peak memory).
-        let out = refine_once_mesh(topo, a.level, &mesh.positions, options)?;
-        return finish(a, &mesh, out);
-    }
-    let refiner = Refiner::with_options(topo, a.level, options)?;
-    let positions = match &ctx {
-        None if a.limit => refiner.limit(&refiner.refine_positions(&mesh.positions)),
-        None => refiner.refine_positions(&mesh.positions),
-        // Refinement and the limit step on the GPU, read back once.
-        Some(ctx) => {
-            let gpu = subsurf_gpu::GpuRefiner::new(ctx, &refiner)
-                .context("--backend gpu: refining on the GPU")?;
-            gpu.update(ctx, &mesh.positions)
-                .context("--backend gpu: refining on the GPU")?;
-            let flat = if a.limit {
-                subsurf_gpu::StencilKernel::apply_once(ctx, refiner.limit_table(), gpu.output())
-            } else {
-                gpu.output().download(ctx)
-            }
-            .context("--backend gpu: refining on the GPU")?;
-            flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect()
-        }
-    };
-    // All faces, holes tagged, with the remaining sharpness: the file refines on as the level.
-    let mut out = refiner.to_tagged_mesh(a.level, positions)?;
-    if let Some(fv) = &mesh.uvs {
-        let mode = a
-            .uv_interp
-            .map_or(mesh.options.fvar_interpolation, Into::into);
-        let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-        let last = match &ctx {
-            None => {
-                let mut last = fvar.refine(&fv.values)?.pop().expect("base level present");
-                if a.limit {
-                    last.values = refiner.limit_face_varying(&fvar, &last.values)?;
-                }
-                last
-            }
-            Some(ctx) => {
-                let mut gpu = subsurf_gpu::GpuUvRefiner::new(ctx, &fvar)
-                    .context("--backend gpu: refining UVs on the GPU")?;
-                gpu.update(ctx, &fv.values)
-                    .context("--backend gpu: refining UVs on the GPU")?;
-                let levels = &fvar.levels;
-                let flat = if a.limit {
-                    subsurf_gpu::StencilKernel::apply_once(
-                        ctx,
-                        &refiner.fvar_limit_table(&fvar)?,
-                        gpu.output(),
-                    )
-                } else {
-                    gpu.output().download(ctx)
-                }
-                .context("--backend gpu: refining UVs on the GPU")?;
-                FaceVarying {
-                    values: flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
-                    indices: levels[levels.len() - 1].corner_values.clone(),
-                }
-            }
-        };
-        out.options.fvar_interpolation = mode;
-        out.uvs = Some(last);
-    }
+    let backend = surface_backend(a.backend)?;
+    let out = refine_mesh(
+        &mesh,
+        a.level,
+        a.limit,
+        a.uv_interp.map(Into::into),
+        backend.as_ref(),
+    )?;
     finish(a, &mesh, out)
 }
 

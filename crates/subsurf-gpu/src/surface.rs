@@ -3,11 +3,12 @@
 //! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation,
 //! the p-rep passes and grid).
 
-use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, StencilKernel};
+use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, GpuUvRefiner, StencilKernel};
 use subsurf::limit::{PatchTable, Tessellation};
 use subsurf::prep::PrepTopology;
+use subsurf::refine::FVarRefinement;
 use subsurf::surface::{Backend, PrepOutput, SurfaceError};
-use subsurf::{Mesh, Refiner, Topology};
+use subsurf::{FaceVarying, Mesh, Refiner, Topology};
 
 /// The GPU as a surface backend (one device, opened once).
 #[derive(Debug)]
@@ -60,6 +61,37 @@ impl Backend for GpuBackend {
                 .map_err(gpu_err("reading positions back"))?
         };
         Ok(triples(&flat))
+    }
+
+    fn one_pass(&self) -> bool {
+        false
+    }
+
+    fn refine_uvs(
+        &self,
+        refiner: &Refiner,
+        fvar: &FVarRefinement,
+        base: &[[f32; 2]],
+        limit: bool,
+    ) -> Result<FaceVarying, SurfaceError> {
+        let ctx = &self.ctx;
+        let mut gpu = GpuUvRefiner::new(ctx, fvar).map_err(gpu_err("uploading the UV refiner"))?;
+        gpu.update(ctx, base).map_err(gpu_err("refining UVs"))?;
+        let flat = if limit {
+            StencilKernel::apply_once(ctx, &refiner.fvar_limit_table(fvar)?, gpu.output())
+                .map_err(gpu_err("UV limit step"))?
+        } else {
+            gpu.output()
+                .download(ctx)
+                .map_err(gpu_err("reading UVs back"))?
+        };
+        let last = fvar.levels.last().ok_or_else(|| {
+            subsurf::Error::Internal("face-varying refinement without levels".into())
+        })?;
+        Ok(FaceVarying {
+            values: flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
+            indices: last.corner_values.clone(),
+        })
     }
 
     fn limit(

@@ -1,6 +1,6 @@
 //! Library errors as the package's Python exceptions (defined in `subsurf/_errors.py`):
 //! `MeshError(ValueError)` with `.face`, `.corner`, `.vertex`; `ParseError(ValueError)` with
-//! `.path`, `.line`; `GpuError(RuntimeError)`; `SubsurfError` for the rest.
+//! `.path`, `.line` (and `.location` for glTF); `GpuError(RuntimeError)`; `SubsurfError` for the rest.
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -75,6 +75,20 @@ pub fn lib_error(py: Python<'_>, e: Error, path: Option<&str>) -> PyErr {
                 |d| {
                     d.set_item("path", path)?;
                     d.set_item("line", line)
+                },
+            )
+        }
+        Error::Gltf { location, reason } => {
+            let where_ = path.map_or(String::new(), |p| format!("{p}: "));
+            let path = path.map(str::to_owned);
+            raise_with(
+                py,
+                "ParseError",
+                format!("{where_}glTF {location}: {reason}"),
+                |d| {
+                    d.set_item("path", path)?;
+                    d.set_item("line", py.None())?;
+                    d.set_item("location", location)
                 },
             )
         }

@@ -59,33 +59,6 @@ fn check_level(level: usize) -> PyResult<()> {
     Ok(())
 }
 
-/// The CLI's `refine`: all faces of the last level with the holes tagged and the sharpness
-/// that remains (so that the result refines on as the level itself would), positions (and
-/// their limit), UVs as the last face-varying level's values and per-corner indices.
-fn refine_mesh(
-    mesh: &Mesh,
-    level: usize,
-    limit: bool,
-    b: &dyn Backend,
-) -> Result<Mesh, surface::SurfaceError> {
-    let refiner = Refiner::new(Topology::new(mesh)?, level)?;
-    let positions = b.refine(&refiner, &mesh.positions, limit)?;
-    let mut out = refiner.to_tagged_mesh(level, positions)?;
-    if let Some(fv) = &mesh.uvs {
-        let mode = mesh.options.fvar_interpolation;
-        let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-        let mut last = fvar.refine(&fv.values)?.pop().ok_or_else(|| {
-            subsurf::Error::Internal("face-varying refinement without levels".into())
-        })?;
-        if limit {
-            last.values = refiner.limit_face_varying(&fvar, &last.values)?;
-        }
-        out.options.fvar_interpolation = mode;
-        out.uvs = Some(last);
-    }
-    Ok(out)
-}
-
 #[pyfunction]
 #[pyo3(signature = (mesh, level, limit=false, backend="cpu"))]
 pub fn refine(
@@ -99,7 +72,7 @@ pub fn refine(
     let b = self::backend(py, backend)?;
     let m = mesh.inner.clone();
     let out = py
-        .detach(move || refine_mesh(&m, level, limit, b))
+        .detach(move || surface::refine_mesh(&m, level, limit, None, b))
         .map_err(|e| surface_error(py, e))?;
     Ok(PyMesh {
         inner: Arc::new(out),
@@ -114,22 +87,32 @@ pub struct PyRefiner {
     level: usize,
 }
 
-fn apply<const N: usize>(r: &Refiner, flat: &[f32], n: usize, limit: bool) -> Vec<f32> {
-    let v: Vec<[f32; N]> = flat
-        .chunks_exact(N)
-        .take(n)
-        .map(|c| std::array::from_fn(|k| c[k]))
-        .collect();
+/// `flat` (rows of `N` values, read in place) through `r`.
+fn apply<const N: usize>(r: &Refiner, flat: &[f32], limit: bool) -> Vec<f32> {
+    let v: &[[f32; N]] = bytemuck::cast_slice(flat);
     let out = if limit {
-        r.limit(&v)
+        r.limit(v)
     } else {
-        r.refine_positions(&v)
+        r.refine_positions(v)
     };
     out.into_flattened()
 }
 
-/// Per-vertex data of any width through `r` (columns in groups of up to 4).
+fn apply_n(r: &Refiner, flat: &[f32], w: usize, limit: bool) -> Vec<f32> {
+    match w {
+        1 => apply::<1>(r, flat, limit),
+        2 => apply::<2>(r, flat, limit),
+        3 => apply::<3>(r, flat, limit),
+        _ => apply::<4>(r, flat, limit),
+    }
+}
+
+/// Per-vertex data of any width through `r`: up to 4 columns read in place, wider data in
+/// groups of up to 4 columns.
 fn apply_any(r: &Refiner, flat: &[f32], n: usize, d: usize, limit: bool) -> Vec<f32> {
+    if d <= 4 {
+        return apply_n(r, &flat[..n * d], d, limit);
+    }
     let mut cols: Vec<Vec<f32>> = Vec::new();
     let mut k = 0;
     while k < d {
@@ -137,12 +120,7 @@ fn apply_any(r: &Refiner, flat: &[f32], n: usize, d: usize, limit: bool) -> Vec<
         let part: Vec<f32> = (0..n)
             .flat_map(|i| flat[i * d + k..i * d + k + w].to_vec())
             .collect();
-        cols.push(match w {
-            1 => apply::<1>(r, &part, n, limit),
-            2 => apply::<2>(r, &part, n, limit),
-            3 => apply::<3>(r, &part, n, limit),
-            _ => apply::<4>(r, &part, n, limit),
-        });
+        cols.push(apply_n(r, &part, w, limit));
         k += w;
     }
     if cols.len() == 1 {
@@ -177,11 +155,10 @@ impl PyRefiner {
         }
         let flat = values
             .as_slice()
-            .map_err(|_| value_error("values: not C-contiguous"))?
-            .to_vec();
-        let r = self.refiner.clone();
+            .map_err(|_| value_error("values: not C-contiguous"))?;
+        let r = &self.refiner;
         let (n, d) = (s[0], s[1]);
-        let out = py.detach(move || apply_any(&r, &flat, n, d, limit));
+        let out = py.detach(|| apply_any(r, flat, n, d, limit));
         let m = out.len() / d;
         let a = numpy::ndarray::Array2::from_shape_vec((m, d), out)
             .map_err(|e| value_error(e.to_string()))?;

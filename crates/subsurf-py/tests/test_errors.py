@@ -40,6 +40,35 @@ def test_parse_error_has_path_and_line(tmp_path):
         subsurf.read(tmp_path / "missing.obj")
 
 
+def test_gltf_parse_error_names_the_part(tmp_path):
+    # A valid one-triangle glTF whose accessor points past the end of its buffer.
+    import base64
+    import json
+
+    data = np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], dtype=np.float32).tobytes()
+    doc = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": [{"buffer": 0, "byteLength": len(data)}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    }
+    good = tmp_path / "good.gltf"
+    good.write_text(json.dumps(doc))
+    assert subsurf.read(good).num_faces == 1
+    doc["accessors"][0]["count"] = 30
+    bad = tmp_path / "bad.gltf"
+    bad.write_text(json.dumps(doc))
+    with pytest.raises(subsurf.ParseError) as e:
+        subsurf.read(bad)
+    assert isinstance(e.value, ValueError)
+    assert e.value.path == str(bad) and e.value.line is None
+    assert e.value.location is not None and "accessors[0]" in e.value.location
+    assert str(bad) in str(e.value) and "glTF" in str(e.value)
+
+
 def test_gpu_error_is_a_runtime_error():
     assert issubclass(subsurf.GpuError, RuntimeError)
     assert "lavapipe" in subsurf.GpuError.__doc__

@@ -244,7 +244,7 @@ def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu")
     """Uniform refinement ``level`` times (vertex order as OpenSubdiv: children of vertices,
     face points, edge points). ``limit=True`` moves the last level and its UVs to the limit.
     UVs are refined in the mesh's ``uv_interpolation`` mode. ``backend``: "cpu" or "gpu"
-    (positions on the GPU, UVs on the CPU). The result keeps every face of the last level,
+    (positions and UVs refined on the GPU). The result keeps every face of the last level,
     hole faces listed in ``holes``, with the crease and corner sharpness that remains, so it
     refines on as the level itself would; UVs are the last level's values and per-corner
     indices. Same numbers and faces as ``subsurf refine`` writes to OBJ."""

@@ -22,10 +22,13 @@ class MeshError(SubsurfError, ValueError):
 
 
 class ParseError(SubsurfError, ValueError):
-    """A malformed mesh file: ``.path`` and ``.line`` (1-based)."""
+    """A malformed mesh file: ``.path``, and where in it: ``.line`` (1-based) for the text
+    formats, ``.location`` (a glTF JSON path such as ``accessors[3]``) for glTF, ``None``
+    where they do not apply."""
 
     path: Optional[str] = None
     line: Optional[int] = None
+    location: Optional[str] = None
 
 
 class GpuError(SubsurfError, RuntimeError):

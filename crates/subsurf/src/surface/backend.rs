@@ -1,12 +1,13 @@
 //! Where the surface's heavy steps run. The library knows no GPU: [`Backend`] names the three
-//! steps (apply refinement stencils, tessellate the limit surface, tessellate the p-rep) with
+//! steps (apply refinement stencils to positions and UVs, tessellate the limit surface, tessellate the p-rep) with
 //! the CPU as their default bodies; `subsurf-gpu` implements the trait with wgpu kernels, so
 //! a front end passes either [`Cpu`] or `subsurf_gpu::GpuBackend` to the same call.
 
 use super::SurfaceError;
 use crate::limit::{LimitSurface, PatchTable, Tessellation};
 use crate::prep::{PrepPatches, Tessellation as PrepTessellation};
-use crate::{Mesh, Refiner};
+use crate::refine::FVarRefinement;
+use crate::{Error, FaceVarying, Mesh, Refiner};
 
 /// The p-rep tessellation and which patches carry the bi-5 perturbation.
 #[derive(Debug, Clone)]
@@ -34,6 +35,32 @@ pub trait Backend: std::fmt::Debug + Send + Sync {
     ) -> Result<Vec<[f32; 3]>, SurfaceError> {
         let p = refiner.refine_positions(base);
         Ok(if limit { refiner.limit(&p) } else { p })
+    }
+
+    /// Whether [`super::refine_mesh`] may refine positions in one pass without keeping
+    /// stencil tables (true on the CPU; a GPU needs the tables to upload).
+    fn one_pass(&self) -> bool {
+        true
+    }
+
+    /// The last level's UVs (values and one index per face corner) of `fvar`, a face-varying
+    /// refinement on `refiner`'s levels, from the base values `base`; moved to the limit when
+    /// `limit`.
+    fn refine_uvs(
+        &self,
+        refiner: &Refiner,
+        fvar: &FVarRefinement,
+        base: &[[f32; 2]],
+        limit: bool,
+    ) -> Result<FaceVarying, SurfaceError> {
+        let mut last = fvar
+            .refine(base)?
+            .pop()
+            .ok_or_else(|| Error::Internal("face-varying refinement without levels".into()))?;
+        if limit {
+            last.values = refiner.limit_face_varying(fvar, &last.values)?;
+        }
+        Ok(last)
     }
 
     /// The watertight tessellation of the limit surface of `table` with control points

@@ -18,10 +18,12 @@
 mod backend;
 mod limit;
 mod prep;
+mod refine_mesh;
 mod refined;
 mod triangulate;
 
 pub use backend::{Backend, Cpu, PrepOutput};
+pub use refine_mesh::refine_mesh;
 pub use refined::{corner_uvs, crease_classes};
 pub use triangulate::{newell, triangulate, unit, Fans};
 

@@ -1,0 +1,49 @@
+//! The Rust side of the Python package's overhead benchmark (`crates/subsurf-py/bench/overhead.py`):
+//! the same two calls as `subsurf.refine(mesh, level)` and `Refiner.refine(points)` make,
+//! timed in-process, median of RUNS runs each, printed as one JSON line.
+//!
+//! `cargo run --release -p subsurf --example surface_timing -- FILE LEVEL RUNS`
+use std::time::Instant;
+use subsurf::surface::{refine_mesh, Cpu};
+use subsurf::{Refiner, Topology};
+
+fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
+    let mut t: Vec<f64> = (0..runs)
+        .map(|_| {
+            let s = Instant::now();
+            f();
+            s.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    t.sort_by(f64::total_cmp);
+    t[t.len() / 2]
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args
+        .get(1)
+        .map(String::as_str)
+        .unwrap_or("examples/car.obj");
+    let level: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(3);
+    let runs: usize = args
+        .get(3)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(11)
+        .max(1);
+    let mesh = subsurf::io::read_path(path)?;
+    // Warm-up, as the Python side does.
+    let mut faces = refine_mesh(&mesh, level, false, None, &Cpu)?.num_faces();
+    let refine = median_ms(runs, || {
+        faces = refine_mesh(&mesh, level, false, None, &Cpu)
+            .map(|m| m.num_faces())
+            .unwrap_or(0);
+    });
+    let refiner = Refiner::new(Topology::new(&mesh)?, level)?;
+    let mut n = refiner.refine_positions(&mesh.positions).len();
+    let frame = median_ms(runs, || n = refiner.refine_positions(&mesh.positions).len());
+    println!(
+        "{{\"refine_ms\": {refine:.4}, \"frame_ms\": {frame:.4}, \"faces\": {faces}, \"vertices\": {n}, \"runs\": {runs}}}"
+    );
+    Ok(())
+}
