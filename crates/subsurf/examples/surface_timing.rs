@@ -2,7 +2,8 @@
 //! the same two calls as `subsurf.refine(mesh, level)` and `Refiner.refine(points)` make,
 //! timed in-process, median of RUNS runs each, printed as one JSON line.
 //!
-//! `cargo run --release -p subsurf --example surface_timing -- FILE LEVEL RUNS`
+//! `cargo run --release -p subsurf --example surface_timing -- FILE LEVEL RUNS [both|refine|frame]`
+//! (one call alone for instruction counts under callgrind; the other's time prints as 0).
 use std::time::Instant;
 use subsurf::surface::{refine_mesh, Cpu};
 use subsurf::{Refiner, Topology};
@@ -16,7 +17,7 @@ fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
         })
         .collect();
     t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
+    t.get(t.len() / 2).copied().unwrap_or(0.0)
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -31,17 +32,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .and_then(|s| s.parse().ok())
         .unwrap_or(11)
         .max(1);
+    let mode = args.get(4).map_or("both", String::as_str);
     let mesh = subsurf::io::read_path(path)?;
     // Warm-up, as the Python side does.
     let mut faces = refine_mesh(&mesh, level, false, None, &Cpu)?.num_faces();
-    let refine = median_ms(runs, || {
+    let runs_of = |m: &str| if mode == "both" || mode == m { runs } else { 0 };
+    let refine = median_ms(runs_of("refine"), || {
         faces = refine_mesh(&mesh, level, false, None, &Cpu)
             .map(|m| m.num_faces())
             .unwrap_or(0);
     });
     let refiner = Refiner::new(Topology::new(&mesh)?, level)?;
     let mut n = refiner.refine_positions(&mesh.positions).len();
-    let frame = median_ms(runs, || n = refiner.refine_positions(&mesh.positions).len());
+    let frame = median_ms(runs_of("frame"), || {
+        n = refiner.refine_positions(&mesh.positions).len()
+    });
     println!(
         "{{\"refine_ms\": {refine:.4}, \"frame_ms\": {frame:.4}, \"faces\": {faces}, \"vertices\": {n}, \"runs\": {runs}}}"
     );
