@@ -11,11 +11,18 @@
 //! out time spent waiting for a core on a loaded machine (two-thread runs stay wall-clock). Setup is each peer's topology refinement plus the tables its per-frame path
 //! reads; a frame is the last level's positions from new base positions, tables built, into a
 //! buffer kept between frames; a one shot is setup, one frame into a fresh buffer and dropping
-//! it all, timed together (OpenSubdiv's `StencilTable` path has none). OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
+//! it all, timed together (OpenSubdiv's `StencilTable` path has none), in this process after
+//! the other peers' runs; a cold one shot is the same in a fresh process per run (`--cold`),
+//! every page new and no allocator state inherited from another peer, with the process's
+//! peak resident memory. A last table gives subsurf's per-frame bytes per output vertex (a
+//! lower bound), its frame against the same frame through every stored row, and memcpy's
+//! bandwidth. OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
 //! thread only; subsurf runs in a one-thread and a two-thread rayon pool.
 
+mod cold;
 mod error;
 mod peers;
+mod traffic;
 
 use std::time::Instant;
 
@@ -89,6 +96,8 @@ struct Row {
     setup: Vec<f64>,
     setup2: Vec<f64>,
     once: Vec<f64>,
+    cold: Vec<f64>,
+    peak: Vec<f64>,
     frame: Vec<f64>,
     frame2: Vec<f64>,
 }
@@ -96,6 +105,11 @@ struct Row {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let all: Vec<String> = std::env::args().skip(1).collect();
     CPU_TIME.get_or_init(|| all.iter().any(|a| a == "--cpu"));
+    if let Some(i) = all.iter().position(|a| a == "--cold") {
+        // A child of the harness: one cold one-shot (see `cold`).
+        let arg = |k: usize| all.get(i + k).cloned().ok_or("--cold PEER LEVEL MESH");
+        return cold::run_child(&arg(1)?, arg(2)?.parse()?, &arg(3)?);
+    }
     let args: Vec<String> = all.into_iter().filter(|a| !a.starts_with("--")).collect();
     let default_mesh = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -134,47 +148,64 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         load_average()
     );
     println!();
-    println!("| level | peer | vertices | setup 1T (ms) | setup 2T (ms) | frame 1T (ms) | frame 2T (ms) | setup / subsurf 1T | frame / subsurf 1T | one shot 1T (ms) | one shot / subsurf 1T | max error vs OpenSubdiv (of bbox diagonal) |");
-    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    println!("| level | peer | vertices | setup 1T (ms) | setup 2T (ms) | frame 1T (ms) | frame 2T (ms) | setup / subsurf 1T | frame / subsurf 1T | one shot 1T (ms) | one shot / subsurf 1T | cold one shot 1T (ms) | cold / subsurf 1T | cold peak RSS (MiB) | max error vs OpenSubdiv (of bbox diagonal) |");
+    println!("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
     // Each frame refines these base positions, moved a little per run so no frame repeats.
     let frame_base = |run: usize| -> Vec<[f32; 3]> {
         let s = 1.0 + run as f32 * 1e-3;
         mesh.positions.iter().map(|p| p.map(|c| c * s)).collect()
     };
+    let mut traffic_lines = Vec::new();
     for &level in &levels {
         let mut rows: Vec<Row> = (0..PEERS.len()).map(|_| Row::default()).collect();
-        // Setup, alternating peer by peer within each run.
+        // Setup, alternating peer by peer within each run. Every single-threaded run happens
+        // on the one-thread pool's worker, so that all peers allocate from the same malloc
+        // arena and each reuses the pages the others freed alike (OpenSubdiv on the main
+        // thread and subsurf on the worker would not: see the README's peer table).
+        let on1 = |f: &(dyn Fn() -> f64 + Sync)| one.install(f);
         for _ in 0..runs {
-            rows[0].setup.push(ms(|| Osd::setup(&osd_mesh, level)).0);
-            rows[1].setup.push(
+            rows[0]
+                .setup
+                .push(on1(&|| ms(|| Osd::setup(&osd_mesh, level)).0));
+            rows[1].setup.push(on1(&|| {
                 ms(|| {
                     let r = Osd::setup(&osd_mesh, level);
                     OsdStencils::new(&r.0).expect("OpenSubdiv stencils")
                 })
-                .0,
-            );
-            rows[2].setup.push(ms(|| OsdRs::setup(&mesh, level)).0);
-            rows[3].setup.push(ms(|| Kernels::setup(&mesh, level)).0);
+                .0
+            }));
+            rows[2]
+                .setup
+                .push(on1(&|| ms(|| OsdRs::setup(&mesh, level)).0));
+            rows[3]
+                .setup
+                .push(on1(&|| ms(|| Kernels::setup(&mesh, level)).0));
             rows[SUBSURF]
                 .setup
-                .push(one.install(|| ms(|| Subsurf::setup(&mesh, level)).0));
+                .push(on1(&|| ms(|| Subsurf::setup(&mesh, level)).0));
             rows[SUBSURF]
                 .setup2
                 .push(two.install(|| wall(|| Subsurf::setup(&mesh, level)).0));
             // One shot: setup, one frame into a fresh buffer, everything dropped, all timed.
             let base = &mesh.positions;
-            rows[0]
-                .once
-                .push(ms(|| one_shot(Osd::setup(&osd_mesh, level), base)).0);
+            rows[0].once.push(on1(&|| {
+                ms(|| one_shot(Osd::setup(&osd_mesh, level), base)).0
+            }));
             rows[2]
                 .once
-                .push(ms(|| one_shot(OsdRs::setup(&mesh, level), base)).0);
-            rows[3]
-                .once
-                .push(ms(|| one_shot(Kernels::setup(&mesh, level), base)).0);
-            rows[SUBSURF]
-                .once
-                .push(one.install(|| ms(|| one_shot(Subsurf::setup(&mesh, level), base)).0));
+                .push(on1(&|| ms(|| one_shot(OsdRs::setup(&mesh, level), base)).0));
+            rows[3].once.push(on1(&|| {
+                ms(|| one_shot(Kernels::setup(&mesh, level), base)).0
+            }));
+            rows[SUBSURF].once.push(on1(&|| {
+                ms(|| one_shot(Subsurf::setup(&mesh, level), base)).0
+            }));
+            // Cold one shots, each in a fresh process.
+            for (name, i) in cold::COLD_PEERS {
+                let (t, peak) = cold::cold(name, level, path, *CPU_TIME.get().unwrap_or(&false))?;
+                rows[i].cold.push(t);
+                rows[i].peak.push(peak);
+            }
         }
         // Frames, tables built once.
         let osd = Osd::setup(&osd_mesh, level);
@@ -192,8 +223,22 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .map(|p| vec![[0.0; 3]; p.num_outputs()])
             .collect();
         outs.push(vec![[0.0; 3]; ours.num_outputs()]);
+        let (mut stored, mut stored_scratch) = (Vec::new(), Vec::new());
+        let mut stored_out = vec![[0.0f32; 3]; ours.num_outputs()];
         for run in 0..runs {
             let base = frame_base(run);
+            let t = one.install(|| {
+                ms(|| {
+                    traffic::stored_rows_frame(
+                        &ours.refiner,
+                        &base,
+                        &mut stored_out,
+                        &mut stored_scratch,
+                    )
+                })
+                .0
+            });
+            stored.push(t);
             for (i, p) in peers.iter_mut().enumerate() {
                 let out = &mut outs[i];
                 rows[i].frame.push(ms(|| p.frame(&base, out)).0);
@@ -204,9 +249,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let t = two.install(|| wall(|| ours.frame(&base, out)).0);
             rows[SUBSURF].frame2.push(t);
         }
+        let (plan_b, table_b) = traffic::frame_bytes(&ours.refiner);
+        let n_out = outs[SUBSURF].len() as f64;
+        let f1 = median(rows[SUBSURF].frame.clone());
+        let f2 = median(rows[SUBSURF].frame2.clone());
+        let copy = traffic::memcpy_gbps(plan_b / 2, runs);
+        assert_eq!(
+            stored_out, outs[SUBSURF],
+            "the stored rows give the plan's values"
+        );
+        let fs = median(stored);
+        traffic_lines.push(format!(
+            "| {level} | {:.1} | {:.1} | {f1:.2} | {fs:.2} | {:.2}x | {:.2} | {:.2} | {copy:.2} |",
+            plan_b as f64 / n_out,
+            table_b as f64 / n_out,
+            fs / f1,
+            plan_b as f64 / f1 / 1e6,
+            plan_b as f64 / f2 / 1e6,
+        ));
         // Errors: every peer's last frame against OpenSubdiv's (PrimvarRefiner) of the same base.
         let want = outs[0].clone();
         let s_once = median(rows[SUBSURF].once.clone());
+        let s_cold = median(rows[SUBSURF].cold.clone());
         let (s_setup, s_frame) = (
             median(rows[SUBSURF].setup.clone()),
             median(rows[SUBSURF].frame.clone()),
@@ -236,7 +300,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 )
             };
             println!(
-                "| {level} | {} | {} | {setup:.2} | {} | {frame:.2} | {} | {:.2}x | {:.2}x | {} | {} | {err} |",
+                "| {level} | {} | {} | {setup:.2} | {} | {frame:.2} | {} | {:.2}x | {:.2}x | {} | {} | {} | {} | {} | {err} |",
                 PEERS[i],
                 outs[i].len(),
                 opt(row.setup2),
@@ -249,8 +313,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 } else {
                     format!("{:.2}x", median(row.once) / s_once)
                 },
+                opt(row.cold.clone()),
+                if row.cold.is_empty() {
+                    "—".to_string()
+                } else {
+                    format!("{:.2}x", median(row.cold) / s_cold)
+                },
+                if row.peak.is_empty() {
+                    "—".to_string()
+                } else {
+                    format!("{:.0}", median(row.peak))
+                },
             );
         }
+    }
+    println!();
+    println!("subsurf frame traffic (lower bound: indices read, each value read and written once; memcpy of a buffer half that size, read + write):");
+    println!();
+    println!("| level | bytes / output vertex (smooth plan) | bytes / output vertex (stored rows) | frame 1T (ms) | stored rows 1T (ms) | stored / plan | frame 1T GB/s | frame 2T GB/s | memcpy GB/s |");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for l in &traffic_lines {
+        println!("{l}");
     }
     println!();
     println!("load average {} at end", load_average());

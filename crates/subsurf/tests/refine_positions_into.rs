@@ -88,3 +88,23 @@ fn wrong_lengths_are_typed_errors() {
         other => panic!("expected LengthMismatch, got {other:?}"),
     }
 }
+
+#[test]
+fn bit_identical_on_every_regression_shape() {
+    // Smooth rows evaluated from their indices, the others from their stored rows: the same
+    // bits as the tables on every rule OpenSubdiv's shapes exercise (creases, corners, holes,
+    // non-manifold, valence 2 and 360, smooth triangles, Chaikin, bilinear).
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
+    let paths = subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_"]).unwrap();
+    assert!(paths.len() > 50);
+    let mut scratch = Vec::new();
+    for path in paths {
+        let m = subsurf::io::read_path(&path).unwrap();
+        let r = Refiner::new(Topology::new(&m).unwrap(), 2).unwrap();
+        let want = r.refine_positions(&m.positions);
+        let mut out = vec![[f32::NAN; 3]; want.len()];
+        r.refine_positions_into(&m.positions, &mut out, &mut scratch)
+            .unwrap();
+        assert_eq!(bits(&out), bits(&want), "{}", path.display());
+    }
+}

@@ -1,6 +1,7 @@
 //! [`Refiner::refine_positions_into`]: the per-frame evaluation of [`Refiner::refine_positions`]
 //! into buffers the caller keeps, so that an animated mesh allocates nothing per frame.
 
+use super::smooth_frame::StepPlan;
 use super::Refiner;
 use crate::error::{MeshError, Result};
 
@@ -12,6 +13,10 @@ impl Refiner {
     /// Levels alternate between `out` and `scratch` from the last one down: level `L` fills
     /// `out`, level `L - 1` the front of `scratch`, level `L - 2` the front of `out`, and so on,
     /// so the one scratch buffer holds at most the second-to-last level.
+    ///
+    /// Rows that follow the smooth rules (most of them) are evaluated from their input indices
+    /// alone, their weights known from their class; only the other rows read their stored
+    /// weights. The per-step plans saying which is which are found on the first call and kept.
     ///
     /// Errors with [`MeshError::LengthMismatch`] when `base` does not hold one value per base
     /// vertex or `out` one value per last-level vertex.
@@ -62,8 +67,11 @@ impl Refiner {
                 scratch.resize(need, [0.0; N]);
             }
         }
+        let plans = self
+            .frame_plans
+            .get_or_init(|| self.stencils.iter().map(StepPlan::new).collect());
         // Level k (1-based) goes to `out` when `steps - k` is even, else to `scratch`.
-        for (i, s) in self.stencils.iter().enumerate() {
+        for (i, (s, plan)) in self.stencils.iter().zip(plans).enumerate() {
             let k = i + 1;
             let n = s.num_rows();
             let prev = if i == 0 {
@@ -73,10 +81,10 @@ impl Refiner {
             };
             if (steps - k) % 2 == 0 {
                 let src: &[[f32; N]] = if i == 0 { base } else { &scratch[..prev] };
-                s.apply(src, &mut out[..n]);
+                plan.apply(s, src, &mut out[..n]);
             } else {
                 let src: &[[f32; N]] = if i == 0 { base } else { &out[..prev] };
-                s.apply(src, &mut scratch[..n]);
+                plan.apply(s, src, &mut scratch[..n]);
             }
         }
         Ok(())

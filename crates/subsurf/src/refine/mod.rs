@@ -30,6 +30,7 @@ mod level;
 mod level_tags;
 mod masks;
 pub(crate) mod par;
+mod smooth_frame;
 mod stencil;
 mod uv;
 
@@ -134,6 +135,9 @@ pub struct Refiner {
     pub stencils: Vec<LevelStencils>,
     /// Limit stencils of the last level, built on first use of [`Refiner::limit`].
     limit_table: std::sync::OnceLock<StencilTable>,
+    /// Smooth rows and exceptions of each step, found on first use of
+    /// [`Refiner::refine_positions_into`].
+    frame_plans: std::sync::OnceLock<Vec<smooth_frame::StepPlan>>,
     options: RefineOptions,
 }
 
@@ -228,6 +232,7 @@ impl Refiner {
             levels,
             stencils,
             limit_table: std::sync::OnceLock::new(),
+            frame_plans: std::sync::OnceLock::new(),
             options,
         })
     }
