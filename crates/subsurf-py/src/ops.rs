@@ -90,12 +90,18 @@ pub struct PyRefiner {
 /// `flat` (rows of `N` values, read in place) through `r`.
 fn apply<const N: usize>(r: &Refiner, flat: &[f32], limit: bool) -> Vec<f32> {
     let v: &[[f32; N]] = bytemuck::cast_slice(flat);
-    let out = if limit {
-        r.limit(v)
-    } else {
-        r.refine_positions(v)
-    };
-    out.into_flattened()
+    if limit {
+        return r.limit(v).into_flattened();
+    }
+    // Into a fresh buffer that becomes the returned array; the smooth rows of each step are
+    // applied from their indices alone (`Refiner::refine_positions_into`).
+    let mut out = vec![[0.0f32; N]; r.last().num_vertices()];
+    let mut scratch = Vec::new();
+    match r.refine_positions_into(v, &mut out, &mut scratch) {
+        Ok(()) => out.into_flattened(),
+        // Unreachable with the shape checked by the caller; the table path as a fallback.
+        Err(_) => r.refine_positions(v).into_flattened(),
+    }
 }
 
 fn apply_n(r: &Refiner, flat: &[f32], w: usize, limit: bool) -> Vec<f32> {
