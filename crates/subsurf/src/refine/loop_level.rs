@@ -85,7 +85,82 @@ fn child_lists(p: &Topology) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>) {
 pub fn refine_tri_topology(p: &Topology) -> Result<Topology> {
     let (nv, ne, nc) = (p.num_vertices(), p.num_edges(), p.num_corners());
     let (face_verts, face_edges, edge_verts) = child_lists(p);
-    let cv = nv + ne;
+    let ce = edge_verts.len();
+    let manifold = p.vert_tags.iter().all(|&t| t & tags::V_NON_MANIFOLD == 0)
+        && p.edge_tags.iter().all(|&t| t & tags::E_NON_MANIFOLD == 0);
+    let (mut c, mut etags) = if manifold {
+        let c = super::loop_rings::direct_relations(p, face_verts, face_edges, edge_verts);
+        (c, vec![0u8; ce])
+    } else {
+        relations_from_faces(p, face_verts, face_edges, edge_verts)?
+    };
+
+    // Sharpness: interior edges smooth, children of edges decayed by the crease method.
+    let mut es = vec![0.0f32; ce];
+    child_edge_sharpness(p, &mut es[nc..], &mut etags[nc..]);
+    for e in 0..nc {
+        if c.edge_faces(e).len() != 2 {
+            etags[e] |= tags::E_BOUNDARY;
+        }
+    }
+    c.edge_sharpness = es;
+    c.edge_tags = etags;
+    for v in 0..nv {
+        c.vert_sharpness[v] = crease::decrement(p.vert_sharpness[v]);
+    }
+
+    // Tags and rules: children of vertices inherit, recounted where features decayed.
+    for v in 0..nv {
+        let (mut inf, mut semi) = (0usize, 0usize);
+        for &e in c.vertex_edges(v) {
+            let et = c.edge_tags[e as usize];
+            inf += (et & tags::E_INF_SHARP != 0) as usize;
+            semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+        }
+        let (t, r) = vertex_child_tags(p, v, c.vert_sharpness[v], inf, semi);
+        c.vert_tags[v] = t & !tags::V_INCIDENT_HOLE;
+        c.vert_rule[v] = r;
+    }
+    for e in 0..ne {
+        let et = p.edge_tags[e];
+        let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
+        let (mut t, r) = edge_point_tags(et, t0, t1);
+        if et & tags::E_BOUNDARY != 0 {
+            t |= tags::V_BOUNDARY;
+        }
+        let ev = p.edge_verts[e];
+        if et & tags::E_NON_MANIFOLD != 0 || ev[0] == ev[1] || p.edge_faces(e).len() > 2 {
+            t |= tags::V_NON_MANIFOLD;
+        }
+        c.vert_tags[nv + e] = t;
+        c.vert_rule[nv + e] = r;
+    }
+
+    // Holes: the four children of a hole.
+    for f in 0..p.num_faces() {
+        if p.face_is_hole[f] {
+            for k in 4 * f..4 * f + 4 {
+                c.face_is_hole[k] = true;
+                for i in 3 * k..3 * k + 3 {
+                    let v = c.face_verts[i] as usize;
+                    c.vert_tags[v] |= tags::V_INCIDENT_HOLE;
+                }
+            }
+        }
+    }
+    Ok(c)
+}
+
+/// The child's relations from its face lists, for a non-manifold parent: the rings as
+/// [`Topology::from_face_lists`] orders them, the edges renumbered as OpenSubdiv's. Returns the
+/// child and its edges' non-manifold tags.
+fn relations_from_faces(
+    p: &Topology,
+    face_verts: Vec<u32>,
+    face_edges: Vec<u32>,
+    edge_verts: Vec<[u32; 2]>,
+) -> Result<(Topology, Vec<u8>)> {
+    let cv = p.num_vertices() + p.num_edges();
     let ce = edge_verts.len();
     let nf = face_verts.len() / 3;
     let face_offsets: Vec<u32> = (0..=nf as u32).map(|f| 3 * f).collect();
@@ -169,59 +244,5 @@ pub fn refine_tri_topology(p: &Topology) -> Result<Topology> {
     c.edge_face_offsets = efo;
     c.edge_faces = ef;
     c.edge_face_local = el;
-
-    // Sharpness: interior edges smooth, children of edges decayed by the crease method.
-    let mut es = vec![0.0f32; ce];
-    child_edge_sharpness(p, &mut es[nc..], &mut etags[nc..]);
-    for e in 0..nc {
-        if c.edge_faces(e).len() != 2 {
-            etags[e] |= tags::E_BOUNDARY;
-        }
-    }
-    c.edge_sharpness = es;
-    c.edge_tags = etags;
-    for v in 0..nv {
-        c.vert_sharpness[v] = crease::decrement(p.vert_sharpness[v]);
-    }
-
-    // Tags and rules: children of vertices inherit, recounted where features decayed.
-    for v in 0..nv {
-        let (mut inf, mut semi) = (0usize, 0usize);
-        for &e in c.vertex_edges(v) {
-            let et = c.edge_tags[e as usize];
-            inf += (et & tags::E_INF_SHARP != 0) as usize;
-            semi += (et & tags::E_SEMI_SHARP != 0) as usize;
-        }
-        let (t, r) = vertex_child_tags(p, v, c.vert_sharpness[v], inf, semi);
-        c.vert_tags[v] = t & !tags::V_INCIDENT_HOLE;
-        c.vert_rule[v] = r;
-    }
-    for e in 0..ne {
-        let et = p.edge_tags[e];
-        let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
-        let (mut t, r) = edge_point_tags(et, t0, t1);
-        if et & tags::E_BOUNDARY != 0 {
-            t |= tags::V_BOUNDARY;
-        }
-        let ev = p.edge_verts[e];
-        if et & tags::E_NON_MANIFOLD != 0 || ev[0] == ev[1] || p.edge_faces(e).len() > 2 {
-            t |= tags::V_NON_MANIFOLD;
-        }
-        c.vert_tags[nv + e] = t;
-        c.vert_rule[nv + e] = r;
-    }
-
-    // Holes: the four children of a hole.
-    for f in 0..p.num_faces() {
-        if p.face_is_hole[f] {
-            for k in 4 * f..4 * f + 4 {
-                c.face_is_hole[k] = true;
-                for i in 3 * k..3 * k + 3 {
-                    let v = c.face_verts[i] as usize;
-                    c.vert_tags[v] |= tags::V_INCIDENT_HOLE;
-                }
-            }
-        }
-    }
-    Ok(c)
+    Ok((c, etags))
 }
