@@ -46,6 +46,7 @@ pub enum CreaseArg {
 pub enum SchemeArg {
     Catmark,
     Bilinear,
+    Loop,
 }
 
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -81,6 +82,7 @@ impl SchemeArgs {
             mesh.options.scheme = match s {
                 SchemeArg::Catmark => Scheme::Catmark,
                 SchemeArg::Bilinear => Scheme::Bilinear,
+                SchemeArg::Loop => Scheme::Loop,
             };
         }
         if let Some(t) = self.triangles {

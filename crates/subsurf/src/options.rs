@@ -1,6 +1,6 @@
 //! Subdivision options, with OpenSubdiv's defaults (as used by its regression shapes).
 
-/// The subdivision scheme. Loop meshes load, but only Catmull-Clark and bilinear refine.
+/// The subdivision scheme. All three refine uniformly; limit patches are Catmull-Clark only.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Scheme {
     /// Catmull-Clark (Catmull & Clark 1978), OpenSubdiv's `SCHEME_CATMARK`.
@@ -8,7 +8,7 @@ pub enum Scheme {
     Catmark,
     /// Bilinear subdivision: every new point is an average of its parents.
     Bilinear,
-    /// Loop subdivision (triangles). Parsed and reported; not refined.
+    /// Loop subdivision (triangles only): uniform refinement, stencils and limit stencils.
     Loop,
 }
 

@@ -315,6 +315,11 @@ impl Refiner {
         num_values: usize,
         mode: FVarLinearInterpolation,
     ) -> Result<FVarRefinement> {
+        if self.levels[0].options.scheme == crate::options::Scheme::Loop {
+            return Err(crate::error::Error::Unsupported(
+                "face-varying data of the Loop scheme".into(),
+            ));
+        }
         let mut levels = vec![FVarTopology::new(
             &self.levels[0],
             indices,

@@ -67,6 +67,17 @@ fn refine_once_with<const N: usize>(
         }
         .into());
     }
+    if base.options.scheme == crate::options::Scheme::Loop {
+        // Loop levels are refined through their tables (see `Refiner::new_loop`).
+        let mut r = super::Refiner::new_loop(base, level)?;
+        let values = r.refine_positions(data);
+        let t = r
+            .levels
+            .pop()
+            .ok_or_else(|| Error::Internal("no base level".into()))?;
+        let tags = if tagged { Some(level_tags(&t)?) } else { None };
+        return Ok((t, values, tags));
+    }
     let mut tags = None;
     if tagged && level == 0 {
         tags = Some(level_tags(&base)?);

@@ -28,6 +28,9 @@ mod into;
 mod last_level;
 mod level;
 mod level_tags;
+mod loop_level;
+mod loop_masks;
+mod loop_rings;
 mod masks;
 pub(crate) mod par;
 mod smooth_frame;
@@ -41,6 +44,8 @@ pub use interpolate::{refine_once, refine_once_mesh};
 use last_level::{refine_face_lists, ChildSharpnessBuf};
 pub use level::refine_topology;
 pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
+pub use loop_level::{check_triangles, refine_tri_topology};
+pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 use masks::level_stencils_with;
 pub use masks::{level_stencils, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
@@ -174,13 +179,11 @@ fn human(bytes: u64) -> String {
     format!("{v:.1} {}", units[u])
 }
 
-/// Refuses the Loop scheme, and up front, with the estimated size, a level whose tables would
-/// not fit in memory or overflow 32-bit indices.
+/// Refuses a Loop mesh with a face other than a triangle, and up front, with the estimated
+/// size, a level whose tables would not fit in memory or overflow 32-bit indices.
 fn check_size(base: &Topology, level: usize) -> Result<()> {
     if base.options.scheme == Scheme::Loop {
-        return Err(Error::Unsupported(
-            "Loop subdivision is not implemented; use the catmark or bilinear scheme".into(),
-        ));
+        check_triangles(base)?;
     }
     let bytes = estimate_bytes(base, level);
     let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
@@ -212,6 +215,9 @@ impl Refiner {
     /// As [`Refiner::new`], under `options`.
     pub fn with_options(base: Topology, level: usize, options: RefineOptions) -> Result<Refiner> {
         check_size(&base, level)?;
+        if base.options.scheme == Scheme::Loop {
+            return Self::new_loop(base, level);
+        }
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
         for k in 0..level {
@@ -250,7 +256,7 @@ impl Refiner {
     /// Level `k` with its full topology: borrowed, or rebuilt from level `k - 1` where the
     /// refiner keeps it lean.
     pub(crate) fn full_level(&self, k: usize) -> std::borrow::Cow<'_, Topology> {
-        if self.is_full(k) {
+        if self.is_full(k) || self.levels[0].options.scheme == Scheme::Loop {
             std::borrow::Cow::Borrowed(&self.levels[k])
         } else {
             std::borrow::Cow::Owned(refine_topology(&self.levels[k - 1]))
@@ -310,8 +316,14 @@ impl Refiner {
     /// built on first use and kept: an animated mesh applies them every frame, on the CPU
     /// ([`Self::limit`]) or uploaded to a GPU.
     pub fn limit_table(&self) -> &StencilTable {
-        self.limit_table
-            .get_or_init(|| limit_stencils(&self.full_level(self.max_level())))
+        self.limit_table.get_or_init(|| {
+            let last = self.full_level(self.max_level());
+            if last.options.scheme == Scheme::Loop {
+                loop_limit_stencils(&last)
+            } else {
+                limit_stencils(&last)
+            }
+        })
     }
 
     /// Moves last-level vertex data to the limit surface.

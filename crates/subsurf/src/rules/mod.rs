@@ -4,3 +4,4 @@
 
 pub mod catmark;
 pub mod crease;
+pub mod r#loop;

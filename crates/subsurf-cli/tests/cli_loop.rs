@@ -1,0 +1,63 @@
+//! `subsurf refine` with the Loop scheme: from the `loop_` file-name prefix and from
+//! `--scheme loop`, the written level is the library's Loop refinement (itself tested against
+//! OpenSubdiv in `osd-ref`), with `--limit` its limit positions; a quad under `--scheme loop`
+//! is refused naming the face.
+
+mod common;
+
+use common::{bin, repo, run_ok, tmp};
+use subsurf::{Refiner, Scheme, Topology};
+
+fn refine(input: &std::path::Path, flags: &[&str], out: &str) -> subsurf::Mesh {
+    let path = tmp(out);
+    run_ok(
+        bin()
+            .arg("refine")
+            .arg(input)
+            .args(flags)
+            .arg("-o")
+            .arg(&path),
+    );
+    subsurf::io::read_path(&path).unwrap()
+}
+
+#[test]
+fn refine_writes_the_loop_refinement() {
+    let input = repo("testdata/shapes/loop_cube_creases1.obj");
+    let mut mesh = subsurf::io::read_path(&input).unwrap();
+    assert_eq!(mesh.options.scheme, Scheme::Loop);
+    mesh.uvs = None;
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    let want = refiner.refine_positions(&mesh.positions);
+    let limit = refiner.limit(&want);
+    // The same OBJ under a name without the prefix, with the scheme given on the command line.
+    let renamed = tmp("cube_creases1.obj");
+    std::fs::copy(&input, &renamed).unwrap();
+    for (path, flags, expect) in [
+        (&input, vec!["--level", "2"], &want),
+        (&renamed, vec!["--level", "2", "--scheme", "loop"], &want),
+        (&input, vec!["--level", "2", "--limit"], &limit),
+    ] {
+        let got = refine(path, &flags, "out.obj");
+        assert_eq!(got.face_indices, refiner.last().face_verts, "{flags:?}");
+        assert_eq!(got.positions.len(), expect.len(), "{flags:?}");
+        for (i, (a, b)) in got.positions.iter().zip(expect.iter()).enumerate() {
+            let d = (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0f32, f32::max);
+            assert!(d <= 1e-6, "{flags:?} vertex {i}: {a:?} vs {b:?}");
+        }
+    }
+}
+
+#[test]
+fn loop_refuses_a_quad_naming_it() {
+    let out = bin()
+        .arg("refine")
+        .arg(repo("testdata/shapes/catmark_cube.obj"))
+        .args(["--level", "1", "--scheme", "loop", "-o"])
+        .arg(tmp("quad.obj"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("face 0 has 4 vertices"), "{err}");
+}
