@@ -41,7 +41,7 @@ use last_level::{refine_face_lists, ChildSharpnessBuf};
 pub use level::refine_topology;
 pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
 use masks::level_stencils_with;
-pub use masks::{level_stencils, limit_stencils, LevelStencils};
+pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
