@@ -345,7 +345,7 @@ impl PatchTable {
         selection: Selection,
         budget: Budget,
     ) -> Result<PatchTable> {
-        PatchTable::build_generic(base, options, selection, budget)
+        PatchTable::build_within_real(base, options, selection, budget)
     }
 }
 
@@ -354,7 +354,7 @@ impl<R: Real> PatchTable<R> {
     /// builds the double-precision table (the same patches; `f32` gives the same bits as
     /// [`PatchTable::build`]).
     pub fn build_real(base: &Topology, options: &PatchOptions) -> Result<PatchTable<R>> {
-        Self::build_generic(
+        Self::build_within_real(
             base,
             options,
             Selection::Sparse,
@@ -362,7 +362,7 @@ impl<R: Real> PatchTable<R> {
         )
     }
 
-    fn build_generic(
+    pub(crate) fn build_within_real(
         base: &Topology,
         options: &PatchOptions,
         selection: Selection,
