@@ -5,7 +5,7 @@
 //! # Levels
 //!
 //! Level 0 is the base mesh. Level `d + 1` is one uniform refinement step
-//! ([`refine_topology`], [`level_stencils`]) of a *sub-mesh* `M_d` of level `d`: the faces
+//! ([`refine_topology`], [`level_stencils_real`]) of a *sub-mesh* `M_d` of level `d`: the faces
 //! `F_d` selected for isolation at level `d` ([`face_has_features`], evaluated on the faces
 //! the quadtree walk visits) and one ring of faces around them,
 //!
