@@ -5,9 +5,11 @@
 use crate::cmd_limit::SurfaceArgs;
 use crate::common::{check_output_folder, create_output, gpu_context, shown, Backend};
 use anyhow::Context;
+use std::fmt::Display;
 use std::io::Write;
 use std::path::PathBuf;
 use subsurf::limit::{LimitPoint, LimitSurface};
+use subsurf::Real;
 
 /// Sample the limit surface and its derivatives.
 #[derive(Debug, clap::Args)]
@@ -29,17 +31,15 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         "--samples {} not in 2..=4096",
         a.samples
     );
-    let (mesh, table) = a.surface.load_table()?;
-    let n = a.samples;
-    let d = (n - 1) as f32;
-    let mut queries = Vec::with_capacity(table.num_ptex_faces() * n * n);
-    for f in 0..table.num_ptex_faces() as u32 {
-        for j in 0..n {
-            for i in 0..n {
-                queries.push((f, i as f32 / d, j as f32 / d));
-            }
-        }
+    if a.surface.f64 {
+        let (mesh, table) = a.surface.load_table_real::<f64>()?;
+        let queries = grid_queries(table.num_ptex_faces(), a.samples);
+        let surface = LimitSurface::new(table, &mesh.positions);
+        let results = surface.eval_batch(&queries);
+        return write_samples(a, &queries, &results, surface.table.num_ptex_faces());
     }
+    let (mesh, table) = a.surface.load_table()?;
+    let queries = grid_queries(table.num_ptex_faces(), a.samples);
     let results = match a.surface.backend {
         Backend::Cpu => LimitSurface::new(table.clone(), &mesh.positions).eval_batch(&queries),
         Backend::Gpu => {
@@ -69,9 +69,34 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
                 .collect::<Vec<Option<LimitPoint>>>()
         }
     };
+    write_samples(a, &queries, &results, table.num_ptex_faces())
+}
+
+/// `(ptex, i/(n−1), j/(n−1))` for every ptex face, `j` the outer loop.
+fn grid_queries<R: Real>(num_ptex: usize, n: usize) -> Vec<(u32, R, R)> {
+    let d = R::from_f64((n - 1) as f64);
+    let mut queries = Vec::with_capacity(num_ptex * n * n);
+    for f in 0..num_ptex as u32 {
+        for j in 0..n {
+            for i in 0..n {
+                let at = |k: usize| R::from_f64(k as f64) / d;
+                queries.push((f, at(i), at(j)));
+            }
+        }
+    }
+    queries
+}
+
+/// One line per sample (holes write nothing), values in their shortest round-trip form.
+fn write_samples<R: Real + Display>(
+    a: &EvalArgs,
+    queries: &[(u32, R, R)],
+    results: &[Option<LimitPoint<R>>],
+    num_ptex: usize,
+) -> anyhow::Result<()> {
     let mut w = create_output(&a.output)?;
     let mut written = 0usize;
-    for (&(f, u, v), r) in queries.iter().zip(&results) {
+    for (&(f, u, v), r) in queries.iter().zip(results) {
         let Some(r) = r else { continue };
         writeln!(
             w,
@@ -82,8 +107,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     }
     w.flush()?;
     crate::say!(
-        "{written} samples on {} ptex faces -> {}",
-        table.num_ptex_faces(),
+        "{written} samples on {num_ptex} ptex faces -> {}",
         shown(&a.output, true)
     );
     Ok(())

@@ -27,22 +27,32 @@ pub struct SurfaceArgs {
     /// evaluation as wgpu kernels (same samples, f32 rounding of the device).
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
+    /// Double precision: refinement masks, end-cap points and evaluation in f64 (CPU only;
+    /// `eval` prints f64 values, `limit` rounds the f64 surface to f32 once, when writing).
+    #[arg(long)]
+    pub f64: bool,
 }
 
 impl SurfaceArgs {
     /// Reads the mesh and builds its patch table.
     pub fn load_table(&self) -> anyhow::Result<(Mesh, PatchTable)> {
+        self.load_table_real()
+    }
+
+    /// [`SurfaceArgs::load_table`] with `f32` or `f64` tables; `--f64` needs the CPU.
+    pub fn load_table_real<R: subsurf::Real>(&self) -> anyhow::Result<(Mesh, PatchTable<R>)> {
+        anyhow::ensure!(
+            !(self.f64 && self.backend == Backend::Gpu),
+            "--f64 evaluates on the CPU: it cannot be combined with --backend gpu"
+        );
         let mesh = self.scheme.read(&self.input)?;
         let topo = Topology::new(&mesh)?;
-        let table = PatchTable::build(
-            &topo,
-            &PatchOptions {
-                isolation_level: self.isolation,
-                single_crease: !self.no_single_crease,
-                ..Default::default()
-            },
-        )?;
-        Ok((mesh, table))
+        let options = PatchOptions {
+            isolation_level: self.isolation,
+            single_crease: !self.no_single_crease,
+            ..Default::default()
+        };
+        Ok((mesh, PatchTable::build_real(&topo, &options)?))
     }
 
     /// Uploads the patch table to the GPU and computes its points from `mesh`'s positions.
@@ -80,19 +90,32 @@ pub struct LimitArgs {
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
-    let (mesh, table) = a.surface.load_table()?;
-    let tess = surface_backend(a.surface.backend)?.limit(&table, &mesh.positions, a.tess)?;
+    let (tess, c, patches, ptex) = if a.surface.f64 {
+        let (mesh, table) = a.surface.load_table_real::<f64>()?;
+        let (c, p, x) = (table.counts(), table.num_patches(), table.num_ptex_faces());
+        let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
+        (surface.tessellate(a.tess)?, c, p, x)
+    } else {
+        let (mesh, table) = a.surface.load_table()?;
+        let backend = surface_backend(a.surface.backend)?;
+        let tess = backend.limit(&table, &mesh.positions, a.tess)?;
+        (
+            tess,
+            table.counts(),
+            table.num_patches(),
+            table.num_ptex_faces(),
+        )
+    };
     let out = tess.to_mesh(a.quads);
     write_mesh(&a.output, &out, Some(&tess.normals))?;
-    let c = table.counts();
     crate::say!(
         "{} patches ({} regular, {} single-crease, {} Gregory) on {} ptex faces; \
          {} samples per side: {} vertices, {} faces -> {}",
-        table.num_patches(),
+        patches,
         c.regular,
         c.single_crease,
         c.gregory,
-        table.num_ptex_faces(),
+        ptex,
         tess.samples_per_side,
         out.positions.len(),
         out.num_faces(),

@@ -89,3 +89,53 @@ fn bad_arguments_fail_cleanly() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("isolation"));
 }
+
+/// `eval --f64` prints the double-precision library samples (all 17 significant digits
+/// survive the round trip), `limit --f64` the `f64` surface rounded to `f32`; `--f64` with
+/// `--backend gpu` is refused, naming both flags.
+#[test]
+fn f64_flags_write_the_double_precision_surface() {
+    let out_path = tmp("chaikin_f64.txt");
+    run_ok(
+        bin()
+            .arg("eval")
+            .arg(shape("catmark_chaikin1"))
+            .args(["--samples", "2", "--f64", "-o"])
+            .arg(&out_path),
+    );
+    let mesh = subsurf::io::read_path(shape("catmark_chaikin1")).unwrap();
+    let t = Topology::new(&mesh).unwrap();
+    let table = PatchTable::<f64>::build_real(&t, &PatchOptions::default()).unwrap();
+    let s = LimitSurface::new(table, &mesh.positions);
+    let text = std::fs::read_to_string(&out_path).unwrap();
+    assert_eq!(text.lines().count(), s.table.num_ptex_faces() * 4);
+    for l in text.lines() {
+        let x: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+        let r = s.eval(x[0] as usize, x[1], x[2]).unwrap();
+        assert_eq!(&x[3..], &[r.p, r.du, r.dv].concat()[..], "{l}");
+    }
+    let obj = tmp("chaikin_f64.obj");
+    run_ok(
+        bin()
+            .arg("limit")
+            .arg(shape("catmark_chaikin1"))
+            .args(["--tess", "3", "--f64", "-o"])
+            .arg(&obj),
+    );
+    let m = subsurf::io::read_path(&obj).unwrap();
+    let want = s.tessellate(3).unwrap();
+    assert_eq!(m.positions, want.positions);
+    let out = bin()
+        .arg("limit")
+        .arg(shape("catmark_chaikin1"))
+        .args(["--f64", "--backend", "gpu", "-o"])
+        .arg(tmp("x64.obj"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--f64") && err.contains("--backend gpu"),
+        "{err}"
+    );
+}

@@ -56,6 +56,15 @@ pub enum MeshError {
         /// Second vertex of the pair.
         v1: u32,
     },
+    /// A sharpness edit ([`crate::limit::SharpnessEdit`]) names an element that does not
+    /// exist or a value that is not a sharpness.
+    #[error("sharpness edit {edit}: {reason}")]
+    BadSharpnessEdit {
+        /// The edit's index in the list given.
+        edit: usize,
+        /// What is wrong, naming the element or the value.
+        reason: String,
+    },
     /// A tag refers to an element that does not exist.
     #[error("{kind} tag {tag}: index {index} is out of range (there are {count})")]
     TagIndexOutOfRange {

@@ -1,7 +1,8 @@
 //! Evaluation of the limit surface at any `(ptex face, u, v)`: the patch map finds the patch,
 //! [`crate::patch::patch_weights`] gives its basis weights (derivatives already with respect
 //! to the ptex face's own `(u, v)`), and the weights are applied to the patch's control points.
-//! Weights and sums are `f32`, as on a GPU.
+//! Weights and sums are `R`: `f32` as on a GPU, or `f64` on a table built with
+//! [`PatchTable::build_real`].
 //!
 //! The weights are applied to the control points relative to the patch's first one,
 //!
@@ -18,33 +19,36 @@
 
 use rayon::prelude::*;
 
+use super::patch_map::clamp01;
 use super::table::PatchTable;
 use crate::patch::patch_weights;
+use crate::real::Real;
 
 /// A point of the limit surface.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct LimitPoint {
+pub struct LimitPoint<R = f32> {
     /// Position.
-    pub p: [f32; 3],
+    pub p: [R; 3],
     /// `∂P/∂u` (ptex face parameter).
-    pub du: [f32; 3],
+    pub du: [R; 3],
     /// `∂P/∂v`.
-    pub dv: [f32; 3],
+    pub dv: [R; 3],
     /// Unit normal `du × dv / |du × dv|`; where that vanishes (a degenerate corner), the
     /// normal a little inside the face; `[0, 0, 0]` if that fails too.
-    pub n: [f32; 3],
+    pub n: [R; 3],
 }
 
-/// A patch table with the point array of one set of base positions.
+/// A patch table with the point array of one set of base positions (`R`: see
+/// [`PatchTable`]).
 #[derive(Debug, Clone)]
-pub struct LimitSurface {
+pub struct LimitSurface<R = f32> {
     /// The patches.
-    pub table: PatchTable,
+    pub table: PatchTable<R>,
     /// The flat point array ([`PatchTable::points`]).
-    pub points: Vec<[f32; 3]>,
+    pub points: Vec<[R; 3]>,
 }
 
-fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -52,14 +56,14 @@ fn cross(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
-fn unit(a: [f32; 3]) -> Option<[f32; 3]> {
+fn unit<R: Real>(a: [R; 3]) -> Option<[R; 3]> {
     let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    (l > 1e-30 && l.is_finite()).then(|| [a[0] / l, a[1] / l, a[2] / l])
+    (l > R::from_f64(1e-30) && l.is_finite()).then(|| [a[0] / l, a[1] / l, a[2] / l])
 }
 
-impl LimitSurface {
+impl<R: Real> LimitSurface<R> {
     /// Builds the points of `table` for base positions `positions`.
-    pub fn new(table: PatchTable, positions: &[[f32; 3]]) -> LimitSurface {
+    pub fn new(table: PatchTable<R>, positions: &[[f32; 3]]) -> LimitSurface<R> {
         let points = table.points(positions);
         LimitSurface { table, points }
     }
@@ -67,15 +71,15 @@ impl LimitSurface {
     /// Position and first derivatives at `(u, v)` of ptex face `ptex`, without the normal;
     /// `None` in a hole, for a ptex index out of range or a non-finite parameter. `u` and `v`
     /// are clamped to `[0, 1]`.
-    pub fn eval_raw(&self, ptex: usize, u: f32, v: f32) -> Option<LimitPoint> {
+    pub fn eval_raw(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
         if !(u.is_finite() && v.is_finite()) {
             return None;
         }
-        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+        let (u, v) = (clamp01(u), clamp01(v));
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
         let kind = t.patch_type(p).kind();
-        let w = patch_weights(kind, &t.params[p], t.sharpness[p], u, v);
+        let w = patch_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
         let cvs = t.patch_cvs(p);
         // Relative to the first control point (see the module documentation).
         let x0 = self.points[cvs[0] as usize];
@@ -96,24 +100,25 @@ impl LimitSurface {
     }
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
-    pub fn eval(&self, ptex: usize, u: f32, v: f32) -> Option<LimitPoint> {
+    pub fn eval(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
         let mut r = self.eval_raw(ptex, u, v)?;
-        let (u, v) = (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0));
+        let (u, v) = (clamp01(u), clamp01(v));
         let fallback = || {
             // Step a little towards the face centre, where the tangent plane is regular.
-            let (a, b) = (u + (0.5 - u) * 1e-3, v + (0.5 - v) * 1e-3);
+            let (h, s) = (R::from_f64(0.5), R::from_f64(1e-3));
+            let (a, b) = (u + (h - u) * s, v + (h - v) * s);
             let q = self.eval_raw(ptex, a, b)?;
             unit(cross(q.du, q.dv))
         };
         r.n = match unit(cross(r.du, r.dv)) {
             Some(n) => n,
-            None => fallback().unwrap_or([0.0; 3]),
+            None => fallback().unwrap_or([R::ZERO; 3]),
         };
         Some(r)
     }
 
     /// [`LimitSurface::eval`] for many `(ptex, u, v)` in parallel (rayon).
-    pub fn eval_batch(&self, queries: &[(u32, f32, f32)]) -> Vec<Option<LimitPoint>> {
+    pub fn eval_batch(&self, queries: &[(u32, R, R)]) -> Vec<Option<LimitPoint<R>>> {
         queries
             .par_iter()
             .map(|&(f, u, v)| self.eval(f as usize, u, v))

@@ -20,6 +20,7 @@ use super::patch_map::{EMPTY, LEAF};
 use super::sparse::Level;
 use super::table::PatchType;
 use crate::error::{Error, Result};
+use crate::real::Real;
 use rayon::prelude::*;
 
 /// How leaves become patches.
@@ -51,18 +52,18 @@ pub struct Leaf {
 
 /// The patches of the leaves of one level.
 #[derive(Debug, Clone, Default)]
-pub struct LevelPatches {
+pub struct LevelPatches<W = f32> {
     /// Per face of the level, what the walk finds there: `LEAF | leaf` for a leaf, its first
     /// child face for a refined face, [`EMPTY`] for a hole and [`UNWALKED`] for a face the
     /// walk does not reach (one array, so that the walk reads one word per face and level).
     pub slot: Vec<u32>,
     /// The leaves in chunks of 512 (the last one shorter), as they were computed.
-    pub parts: Vec<Part>,
+    pub parts: Vec<Part<W>>,
 }
 
-impl LevelPatches {
+impl<W> LevelPatches<W> {
     /// Leaf `i` and the part holding its points.
-    pub fn leaf(&self, i: u32) -> (&Part, &Leaf) {
+    pub fn leaf(&self, i: u32) -> (&Part<W>, &Leaf) {
         let p = &self.parts[i as usize / CHUNK];
         (p, &p.leaves[i as usize % CHUNK])
     }
@@ -70,7 +71,7 @@ impl LevelPatches {
 
 /// The patches of a chunk of leaves.
 #[derive(Debug, Clone, Default)]
-pub struct Part {
+pub struct Part<W = f32> {
     /// The leaves.
     pub leaves: Vec<Leaf>,
     /// 16 flat point indices per regular leaf.
@@ -80,7 +81,7 @@ pub struct Part {
     /// Flat point index of each end-cap row entry.
     pub local_indices: Vec<u32>,
     /// Weight of each end-cap row entry.
-    pub local_weights: Vec<f32>,
+    pub local_weights: Vec<W>,
 }
 
 /// [`LevelPatches::slot`] of a face the walk does not reach (above every child index, which
@@ -98,13 +99,13 @@ const CHUNK: usize = 512;
 
 /// The patches of the leaf faces `faces` of level `d` (`lv`), whose vertices start at `off`
 /// in the flat point array; chunks of faces in parallel, joined in order.
-pub fn level_patches(
+pub fn level_patches<W: Real>(
     lv: &Level,
     d: usize,
     off: u32,
     faces: &[u32],
     o: &LeafOptions,
-) -> Result<LevelPatches> {
+) -> Result<LevelPatches<W>> {
     let t = &lv.topo;
     let slot = || -> Vec<u32> {
         (0..t.num_faces())
@@ -123,7 +124,7 @@ pub fn level_patches(
         faces
             .par_chunks(CHUNK)
             .map(|c| chunk_patches(lv, d, off, c, o))
-            .collect::<Result<Vec<Part>>>()
+            .collect::<Result<Vec<Part<W>>>>()
     });
     for (i, &f) in faces.iter().enumerate() {
         slot[f as usize] = LEAF | i as u32;
@@ -135,7 +136,13 @@ pub fn level_patches(
 }
 
 /// The patches of a chunk of leaf faces.
-fn chunk_patches(lv: &Level, d: usize, off: u32, faces: &[u32], o: &LeafOptions) -> Result<Part> {
+fn chunk_patches<W: Real>(
+    lv: &Level,
+    d: usize,
+    off: u32,
+    faces: &[u32],
+    o: &LeafOptions,
+) -> Result<Part<W>> {
     let (t, tags) = (&lv.topo, &lv.tags);
     let mut out = Part {
         leaves: Vec::with_capacity(faces.len()),
@@ -191,7 +198,7 @@ fn chunk_patches(lv: &Level, d: usize, off: u32, faces: &[u32], o: &LeafOptions)
                         return Err(not_exact("an end-cap input", d, f));
                     }
                     out.local_indices.push(x + off);
-                    out.local_weights.push(w as f32);
+                    out.local_weights.push(W::from_f64(w));
                 }
                 out.local_offsets.push(out.local_indices.len() as u32);
             }

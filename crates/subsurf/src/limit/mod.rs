@@ -17,7 +17,8 @@
 //! - [`span`]: manifold fans around non-manifold vertices;
 //! - [`patch_map`]: the quadtree per ptex face;
 //! - [`points`]: the patch points from base values (stencil rows relative to their first input);
-//! - [`eval`]: evaluation; [`tessellate`]: watertight sampling.
+//! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
+//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]).
 //!
 //! # Ptex faces
 //!
@@ -75,6 +76,7 @@
 //! ```
 
 pub mod budget;
+pub mod edit;
 pub mod endcap;
 pub mod eval;
 pub mod features;
@@ -87,6 +89,7 @@ pub mod sparse;
 pub mod table;
 pub mod tessellate;
 
+pub use edit::SharpnessEdit;
 pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};

@@ -14,16 +14,17 @@
 
 use rayon::prelude::*;
 
+use crate::real::Real;
 use crate::refine::{LevelStencils, StencilTable};
 
 const CHUNK: usize = 4096;
 
 /// Rows of `t` into `out` (`out.len() == t.num_rows()`), input `k` read as `x(k)`, each
 /// relative to its first input, in parallel over chunks of rows.
-pub fn apply_relative<'s, const N: usize>(
-    t: &StencilTable,
-    out: &mut [[f32; N]],
-    x: impl Fn(usize) -> &'s [f32; N] + Sync,
+pub fn apply_relative<'s, R: Real, const N: usize>(
+    t: &StencilTable<R>,
+    out: &mut [[R; N]],
+    x: impl Fn(usize) -> &'s [R; N] + Sync,
 ) {
     out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
         for (i, y) in o.iter_mut().enumerate() {
@@ -35,16 +36,16 @@ pub fn apply_relative<'s, const N: usize>(
 }
 
 /// `x_0 + Σ_k w_k (x_k − x_0)` over one row (`[0; N]` for an empty one).
-fn row<'s, const N: usize>(
+fn row<'s, R: Real, const N: usize>(
     idx: &[u32],
-    wts: &[f32],
-    x: &impl Fn(usize) -> &'s [f32; N],
-) -> [f32; N] {
+    wts: &[R],
+    x: &impl Fn(usize) -> &'s [R; N],
+) -> [R; N] {
     let Some(&first) = idx.first() else {
-        return [0.0; N];
+        return [R::ZERO; N];
     };
     let x0 = *x(first as usize);
-    let mut acc = [0.0f32; N];
+    let mut acc = [R::ZERO; N];
     for (&k, &w) in idx.iter().zip(wts) {
         let v = x(k as usize);
         for c in 0..N {
@@ -56,17 +57,17 @@ fn row<'s, const N: usize>(
 
 /// One refinement step (face points, then children of vertices and edge points over the
 /// parents and face points, child layout `[vertex | face | edge]`), rows relative.
-pub fn level_apply_relative<const N: usize>(
-    s: &LevelStencils,
-    src: &[[f32; N]],
-    dst: &mut [[f32; N]],
+pub fn level_apply_relative<R: Real, const N: usize>(
+    s: &LevelStencils<R>,
+    src: &[[R; N]],
+    dst: &mut [[R; N]],
 ) {
     let nv = s.vertex.num_rows();
     let nf = s.face.num_rows();
     let (vd, rest) = dst.split_at_mut(nv);
     let (fd, ed) = rest.split_at_mut(nf);
     apply_relative(&s.face, fd, |k| &src[k]);
-    let fd: &[[f32; N]] = fd;
+    let fd: &[[R; N]] = fd;
     let p = s.num_parent_vertices;
     let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
     apply_relative(&s.vertex, vd, x);

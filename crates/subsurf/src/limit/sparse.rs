@@ -5,7 +5,7 @@
 //! # Levels
 //!
 //! Level 0 is the base mesh. Level `d + 1` is one uniform refinement step
-//! ([`refine_topology`], [`level_stencils`]) of a *sub-mesh* `M_d` of level `d`: the faces
+//! ([`refine_topology`], [`level_stencils_real`]) of a *sub-mesh* `M_d` of level `d`: the faces
 //! `F_d` selected for isolation at level `d` ([`face_has_features`], evaluated on the faces
 //! the quadtree walk visits) and one ring of faces around them,
 //!
@@ -57,7 +57,8 @@ use super::budget::Budget;
 use super::features::{face_has_features, level_tags, FeatureMask, VTag};
 use crate::error::{Error, MeshError, Result};
 use crate::options::CreaseMethod;
-use crate::refine::{level_stencils, refine_topology, LevelStencils};
+use crate::real::Real;
+use crate::refine::{level_stencils_real, refine_topology, LevelStencils};
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
 use crate::SHARPNESS_INFINITE;
@@ -103,11 +104,11 @@ pub struct Level {
 /// released once its leaves and the stencils that make it are computed, so that the next
 /// levels reuse its memory).
 #[derive(Debug, Clone)]
-pub struct Hierarchy {
+pub struct Hierarchy<W = f32> {
     /// Number of vertices of each level; `num_vertices[0]` is the base's.
     pub num_vertices: Vec<usize>,
     /// `stencils[d]`: level `d + 1` from the vertices of the sub-mesh of level `d`.
-    pub stencils: Vec<LevelStencils>,
+    pub stencils: Vec<LevelStencils<W>>,
     /// `inputs[d][i]`: the level-`d` vertex that is vertex `i` of its sub-mesh.
     pub inputs: Vec<Vec<u32>>,
 }
@@ -141,14 +142,14 @@ pub type LeafFn<'a, T> = dyn Fn(&Level, usize, u32, &[u32]) -> Result<T> + Sync 
 /// refined further) and the offset of its vertices in the flat point array; its results are
 /// returned per level. It runs while the next level is refined (in parallel where rayon has
 /// threads), on the level whose tables were just read by the selection.
-pub fn build<T: Send>(
+pub fn build<W: Real, T: Send>(
     base: &Topology,
     max_level: usize,
     mask: &FeatureMask,
     selection: Selection,
     budget: &mut Budget,
     leaves: &LeafFn<'_, T>,
-) -> Result<(Hierarchy, Vec<T>)> {
+) -> Result<(Hierarchy<W>, Vec<T>)> {
     let mut h = Hierarchy {
         num_vertices: vec![base.num_vertices()],
         stencils: Vec::new(),
@@ -188,7 +189,7 @@ pub fn build<T: Send>(
             let cur: &Level = cur;
             let (patches, stencils) = rayon::join(
                 || leaves(cur, d, offset, &leaf_faces),
-                || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+                || prev_sub.as_ref().map(|p| level_stencils_real(p, &cur.topo)),
             );
             out.push(patches?);
             h.stencils.extend(stencils);
@@ -232,7 +233,7 @@ pub fn build<T: Send>(
             || {
                 rayon::join(
                     || leaves(cur, d, offset, &leaf_faces),
-                    || prev_sub.as_ref().map(|p| level_stencils(p, &cur.topo)),
+                    || prev_sub.as_ref().map(|p| level_stencils_real(p, &cur.topo)),
                 )
             },
             || {

@@ -274,7 +274,7 @@ fn a_construction_over_its_memory_budget_is_refused_with_the_estimate() {
     let mask = FeatureMask::new(o.single_crease);
     // The running total of the levels' estimates, without a limit.
     let mut free = Budget::with_limit(u64::MAX);
-    build(&t, 6, &mask, Selection::Sparse, &mut free, &|_, _, _, _| {
+    build::<f32, _>(&t, 6, &mask, Selection::Sparse, &mut free, &|_, _, _, _| {
         Ok(())
     })
     .unwrap();

@@ -58,6 +58,7 @@ use super::sparse::{self, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
+use crate::real::Real;
 use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
 use rayon::prelude::*;
@@ -124,15 +125,20 @@ impl PatchType {
 }
 
 /// Patches of a mesh (see the module documentation for the layout).
+///
+/// The stencil weights, and so the points and the evaluation, are `R`: `f32` (the default,
+/// [`PatchTable::build`]: what the GPU reads) or `f64` ([`PatchTable::build_real`]: masks,
+/// end-cap weights, points and basis in double precision, as OpenSubdiv's tables templated
+/// on `double`). The patches, their types, parameters and sharpness are the same for both.
 #[derive(Debug, Clone)]
-pub struct PatchTable {
+pub struct PatchTable<R = f32> {
     /// The options used.
     pub options: PatchOptions,
     /// The base topology.
     pub base: Topology,
     /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
     /// `d` that was refined ([`super::sparse`]).
-    pub level_stencils: Vec<LevelStencils>,
+    pub level_stencils: Vec<LevelStencils<R>>,
     /// `level_inputs[d][i]`: the level-`d` vertex that is vertex `i` of that sub-mesh (the
     /// input of `level_stencils[d]`).
     pub level_inputs: Vec<Vec<u32>>,
@@ -140,7 +146,7 @@ pub struct PatchTable {
     /// levels, which stops early where nothing is left to isolate).
     pub level_offsets: Vec<u32>,
     /// End-cap points as stencils over the level vertices (flat indices).
-    pub local_points: StencilTable,
+    pub local_points: StencilTable<R>,
     /// [`PatchType`] per patch.
     pub kinds: Vec<u8>,
     /// `P + 1` offsets into `cvs`.
@@ -170,8 +176,8 @@ pub struct PatchCounts {
 
 /// The walk of a chunk of base faces: its patches' types, parameters and quadtree, and
 /// which leaf each patch is (its points are copied once, when the chunks are joined).
-struct Builder<'a> {
-    patches: &'a [LevelPatches],
+struct Builder<'a, R> {
+    patches: &'a [LevelPatches<R>],
     kinds: Vec<u8>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
@@ -183,21 +189,21 @@ struct Builder<'a> {
 
 /// The arrays of all walked base faces, joined in base face order.
 #[derive(Default)]
-struct Joined {
+struct Joined<R> {
     kinds: Vec<u8>,
     cv_offsets: Vec<u32>,
     cvs: Vec<u32>,
     params: Vec<PatchParam>,
     sharpness: Vec<f32>,
-    local: StencilTable,
+    local: StencilTable<R>,
     nodes: Vec<[u32; 4]>,
     roots: Vec<u32>,
 }
 
-impl Joined {
+impl<R: Real> Joined<R> {
     /// Reserves room for every chunk (`rows`, `entries`: end-cap rows and their entries).
-    fn reserve(&mut self, parts: &[Builder], rows: usize, entries: usize) {
-        let sum = |f: &dyn Fn(&Builder) -> usize| parts.iter().map(f).sum::<usize>();
+    fn reserve(&mut self, parts: &[Builder<R>], rows: usize, entries: usize) {
+        let sum = |f: &dyn Fn(&Builder<R>) -> usize| parts.iter().map(f).sum::<usize>();
         let patches = sum(&|b| b.kinds.len());
         self.kinds.reserve(patches);
         self.cv_offsets.reserve(patches);
@@ -213,7 +219,7 @@ impl Joined {
 
     /// Appends one chunk's arrays, renumbering its patches and nodes, and copies its
     /// patches' points, placing local points after the `num_level_points` level vertices.
-    fn append(&mut self, b: Builder, num_level_points: u32) {
+    fn append(&mut self, b: Builder<R>, num_level_points: u32) {
         let (p0, n0) = (self.kinds.len() as u32, self.nodes.len() as u32);
         let handle = |h: u32| match h {
             EMPTY => EMPTY,
@@ -252,7 +258,7 @@ impl Joined {
     }
 }
 
-impl Builder<'_> {
+impl<R> Builder<'_, R> {
     fn visit(
         &mut self,
         d: usize,
@@ -337,8 +343,31 @@ impl PatchTable {
         base: &Topology,
         options: &PatchOptions,
         selection: Selection,
-        mut budget: Budget,
+        budget: Budget,
     ) -> Result<PatchTable> {
+        PatchTable::build_within_real(base, options, selection, budget)
+    }
+}
+
+impl<R: Real> PatchTable<R> {
+    /// [`PatchTable::build`] with stencil weights of type `R`: `PatchTable::<f64>::build_real`
+    /// builds the double-precision table (the same patches; `f32` gives the same bits as
+    /// [`PatchTable::build`]).
+    pub fn build_real(base: &Topology, options: &PatchOptions) -> Result<PatchTable<R>> {
+        Self::build_within_real(
+            base,
+            options,
+            Selection::Sparse,
+            Budget::of_available_memory(),
+        )
+    }
+
+    pub(crate) fn build_within_real(
+        base: &Topology,
+        options: &PatchOptions,
+        selection: Selection,
+        mut budget: Budget,
+    ) -> Result<PatchTable<R>> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
                 "limit patches are implemented for the Catmull-Clark scheme only".into(),
@@ -416,7 +445,7 @@ impl PatchTable {
                 }
                 Ok(b)
             })
-            .collect::<Result<Vec<Builder>>>()?;
+            .collect::<Result<Vec<Builder<R>>>>()?;
         let mut all = Joined {
             local: StencilTable {
                 offsets: vec![0],
@@ -446,7 +475,7 @@ impl PatchTable {
             nodes,
             roots,
         } = all;
-        Ok(PatchTable {
+        Ok(PatchTable::<R> {
             options: *options,
             base: base.clone(),
             level_stencils: h.stencils,
@@ -462,7 +491,9 @@ impl PatchTable {
             patch_map: PatchMap { roots, nodes },
         })
     }
+}
 
+impl<R: Real> PatchTable<R> {
     /// Number of patches.
     pub fn num_patches(&self) -> usize {
         self.kinds.len()
@@ -531,9 +562,9 @@ impl PatchTable {
     /// The flat point array for base vertex data `base` (`N` components): every level's
     /// vertices, then the local points; every stencil row is applied relative to its first
     /// input ([`super::points`]), so the rounding is relative to the patch, not the origin.
-    pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
+    pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[R; N]> {
         let mut all = Vec::with_capacity(self.num_points());
-        all.extend_from_slice(base);
+        all.extend(base.iter().map(|x| x.map(R::from_f32)));
         for (d, (s, inputs)) in self
             .level_stencils
             .iter()
@@ -541,12 +572,12 @@ impl PatchTable {
             .enumerate()
         {
             let start = self.level_offsets[d] as usize;
-            let src: Vec<[f32; N]> = inputs.iter().map(|&i| all[start + i as usize]).collect();
-            let mut dst = vec![[0.0; N]; s.num_rows()];
+            let src: Vec<[R; N]> = inputs.iter().map(|&i| all[start + i as usize]).collect();
+            let mut dst = vec![[R::ZERO; N]; s.num_rows()];
             super::points::level_apply_relative(s, &src, &mut dst);
             all.extend_from_slice(&dst);
         }
-        let mut local = vec![[0.0; N]; self.local_points.num_rows()];
+        let mut local = vec![[R::ZERO; N]; self.local_points.num_rows()];
         super::points::apply_relative(&self.local_points, &mut local, |k| &all[k]);
         all.extend_from_slice(&local);
         all

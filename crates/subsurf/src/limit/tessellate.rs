@@ -19,6 +19,7 @@ use super::patch_map::EMPTY;
 use super::table::PatchTable;
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
+use crate::real::Real;
 
 /// Triangles (two per grid cell) with per-vertex positions and unit normals.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -108,7 +109,7 @@ fn quad_triangles(quads: &[[u32; 4]]) -> Vec<[u32; 3]> {
     out
 }
 
-impl PatchTable {
+impl<R: Real> PatchTable<R> {
     /// The samples and quads of the `N × N` watertight tessellation (see the module
     /// documentation); `N` outside `2..=4096` is refused, an even `N` is raised by one on
     /// meshes with non-quad faces.
@@ -186,28 +187,33 @@ impl PatchTable {
     }
 }
 
-impl LimitSurface {
+impl<R: Real> LimitSurface<R> {
     /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the
     /// grids into one watertight mesh (see the module documentation and
-    /// [`PatchTable::tessellation_plan`]).
+    /// [`PatchTable::tessellation_plan`]). A double-precision surface is evaluated in `f64`
+    /// at the plan's parameters and rounded to `f32` once, at the end.
     pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
         let plan = self.table.tessellation_plan(samples_per_side)?;
         let evaluated: Vec<_> = plan
             .queries
             .par_iter()
-            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
+            .map(|&(f, u, v)| {
+                let r = self.eval(f as usize, R::from_f32(u), R::from_f32(v));
+                r.unwrap_or_default()
+            })
             .collect();
+        let narrow = |x: [R; 3]| x.map(|c| c.to_f64() as f32);
         Ok(Tessellation {
             samples_per_side: plan.samples_per_side,
-            positions: evaluated.iter().map(|e| e.p).collect(),
-            normals: evaluated.iter().map(|e| e.n).collect(),
+            positions: evaluated.iter().map(|e| narrow(e.p)).collect(),
+            normals: evaluated.iter().map(|e| narrow(e.n)).collect(),
             quads: plan.quads,
         })
     }
 }
 
 impl Keys {
-    fn new(s: &PatchTable, n: usize) -> Keys {
+    fn new<R: Real>(s: &PatchTable<R>, n: usize) -> Keys {
         let t = &s.base;
         let m = n.div_ceil(2);
         let nv = t.num_vertices();
@@ -248,7 +254,7 @@ impl Keys {
     }
 
     /// Sample `p` (from the edge's first vertex) of base edge `e`.
-    fn edge(&self, s: &PatchTable, e: usize, p: usize) -> usize {
+    fn edge<R: Real>(&self, s: &PatchTable<R>, e: usize, p: usize) -> usize {
         let ev = s.base.edge_verts[e];
         if p == 0 {
             ev[0] as usize
@@ -261,14 +267,21 @@ impl Keys {
     }
 
     /// Sample `p` counted from corner `from` of face `f`'s edge `k`.
-    fn face_edge(&self, s: &PatchTable, f: usize, k: usize, from: usize, p: usize) -> usize {
+    fn face_edge<R: Real>(
+        &self,
+        s: &PatchTable<R>,
+        f: usize,
+        k: usize,
+        from: usize,
+        p: usize,
+    ) -> usize {
         let t = &s.base;
         let e = t.face_edges(f)[k] as usize;
         let forward = t.edge_verts[e][0] == t.face_vertices(f)[from];
         self.edge(s, e, if forward { p } else { self.n - 1 - p })
     }
 
-    fn quad(&self, s: &PatchTable, f: usize, i: usize, j: usize) -> usize {
+    fn quad<R: Real>(&self, s: &PatchTable<R>, f: usize, i: usize, j: usize) -> usize {
         let n = self.n;
         if j == 0 {
             self.face_edge(s, f, 0, 0, i)
@@ -284,7 +297,7 @@ impl Keys {
     }
 
     /// Sample `q` of spoke `k` of n-gon `f` (0: midpoint of edge `k`, `M − 1`: centre).
-    fn spoke(&self, s: &PatchTable, f: usize, k: usize, q: usize) -> usize {
+    fn spoke<R: Real>(&self, s: &PatchTable<R>, f: usize, k: usize, q: usize) -> usize {
         if q == 0 {
             let e = s.base.face_edges(f)[k] as usize;
             self.edge(s, e, (self.n - 1) / 2)
@@ -295,7 +308,7 @@ impl Keys {
         }
     }
 
-    fn sub(&self, s: &PatchTable, f: usize, k: usize, i: usize, j: usize) -> usize {
+    fn sub<R: Real>(&self, s: &PatchTable<R>, f: usize, k: usize, i: usize, j: usize) -> usize {
         let (m, n) = (self.m, s.base.face_size(f));
         let prev = (k + n - 1) % n;
         if j == 0 {

@@ -9,19 +9,20 @@ use super::level::child_end_at_vertex;
 use super::par;
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::Scheme;
+use crate::real::Real;
 use crate::rules::catmark::{edge_mask, limit_mask, vertex_mask, VertexMask, VertexNeighbourhood};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
 /// Builds a table of `rows` rows over `num_inputs` inputs, in parallel chunks.
-pub(crate) fn build_rows<F>(rows: usize, num_inputs: usize, row: F) -> StencilTable
+pub(crate) fn build_rows<W: Real, F>(rows: usize, num_inputs: usize, row: F) -> StencilTable<W>
 where
-    F: Fn(usize, &mut RowBuilder, &mut Scratch) + Sync,
+    F: Fn(usize, &mut RowBuilder, &mut Scratch<W>) + Sync,
 {
     let threads = rayon::current_num_threads().max(1);
     let chunk = rows.div_ceil(threads * 4).max(1024);
-    let parts: Vec<(Vec<u32>, Vec<u32>, Vec<f32>)> = (0..rows.div_ceil(chunk))
+    let parts: Vec<(Vec<u32>, Vec<u32>, Vec<W>)> = (0..rows.div_ceil(chunk))
         .into_par_iter()
         .map(|c| {
             let mut b = RowBuilder::new(num_inputs);
@@ -60,19 +61,24 @@ where
 
 /// Per-thread scratch buffers.
 #[derive(Debug, Default)]
-pub(crate) struct Scratch {
-    pub(crate) mask: VertexMask,
-    child_mask: VertexMask,
+pub(crate) struct Scratch<W = f32> {
+    pub(crate) mask: VertexMask<W>,
+    child_mask: VertexMask<W>,
     pub(crate) pe: Vec<f32>,
     ce: Vec<f32>,
     /// Face-varying values around a vertex.
     pub(crate) values: Vec<u32>,
 }
 
-impl Scratch {
+impl<W: Real> Scratch<W> {
     /// The vertex-point mask of parent vertex `v` (edges in ring order), from the sharpness and
     /// rules of the parent level `p` and the child level `c`.
-    pub(crate) fn vertex_mask_at(&mut self, p: &Topology, c: &Topology, v: usize) -> &VertexMask {
+    pub(crate) fn vertex_mask_at(
+        &mut self,
+        p: &Topology,
+        c: &Topology,
+        v: usize,
+    ) -> &VertexMask<W> {
         self.vertex_mask_with(p, ChildSharpness::of_child(p, c), v)
     }
 
@@ -82,7 +88,7 @@ impl Scratch {
         p: &Topology,
         c: ChildSharpness<'_>,
         v: usize,
-    ) -> &VertexMask {
+    ) -> &VertexMask<W> {
         let pe = p.vertex_edges(v);
         self.pe.clear();
         self.pe
@@ -116,21 +122,21 @@ impl Scratch {
 /// Rows are sized first (`rows.len(r)` where the size is known without forming the row, else
 /// the row is formed once to count it), then written in parallel, entry by entry, into
 /// disjoint slices of tables allocated once at their exact size.
-fn build_direct(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable {
+fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable<W> {
     let b = par::bounds(rows);
     let mut offsets = vec![0u32; rows + 1];
     par::ranges(&b)
         .into_par_iter()
         .zip(par::split(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
-            let mut scratch = Scratch::default();
+            let mut scratch = Scratch::<W>::default();
             let base = r.start;
             for i in r {
                 out[i - base] = match kind.len(i) {
                     Some(n) => n as u32,
                     None => {
                         let mut n = 0u32;
-                        kind.row(i, &mut scratch, &mut |_, _| n += 1);
+                        kind.row(i, &mut scratch, &mut |_, _: W| n += 1);
                         n
                     }
                 };
@@ -143,7 +149,7 @@ fn build_direct(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTab
     }
     let total = acc as usize;
     let mut indices = vec![0u32; total];
-    let mut weights = vec![0f32; total];
+    let mut weights = vec![W::ZERO; total];
     let start = |r: usize| offsets[r] as usize;
     par::ranges(&b)
         .into_par_iter()
@@ -187,7 +193,7 @@ impl RowKind<'_> {
     }
 
     #[inline]
-    fn row(&self, i: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
+    fn row<W: Real>(&self, i: usize, s: &mut Scratch<W>, add: &mut impl FnMut(u32, W)) {
         match self {
             RowKind::Face(r) => r.face(i, add),
             RowKind::Vertex(r) => r.vertex(i, s, add),
@@ -205,19 +211,21 @@ impl RowKind<'_> {
 ///    point of parent face `f`).
 ///
 /// Child vertex data is laid out `[vertex rows | face rows | edge rows]`, OpenSubdiv's order.
+///
+/// Weights are `W` (`f32` by default, `f64` for [`level_stencils_real`]).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct LevelStencils {
+pub struct LevelStencils<W = f32> {
     /// Number of parent vertices `P`.
     pub num_parent_vertices: usize,
     /// Face points over parent vertices.
-    pub face: StencilTable,
+    pub face: StencilTable<W>,
     /// Children of vertices over parent vertices and face points.
-    pub vertex: StencilTable,
+    pub vertex: StencilTable<W>,
     /// Edge points over parent vertices and face points.
-    pub edge: StencilTable,
+    pub edge: StencilTable<W>,
 }
 
-impl LevelStencils {
+impl<W> LevelStencils<W> {
     /// Number of child vertices.
     pub fn num_rows(&self) -> usize {
         self.face.num_rows() + self.vertex.num_rows() + self.edge.num_rows()
@@ -232,7 +240,9 @@ impl LevelStencils {
     pub fn size_bytes(&self) -> usize {
         self.face.size_bytes() + self.vertex.size_bytes() + self.edge.size_bytes()
     }
+}
 
+impl LevelStencils {
     /// Applies one refinement step to `N`-component values, in parallel.
     pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
         self.apply_with(src, dst, true)
@@ -301,11 +311,21 @@ impl LevelStencils {
 
 /// The stencils mapping parent vertex data to child vertex data (see [`LevelStencils`]).
 pub fn level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    level_stencils_real(p, c)
+}
+
+/// [`level_stencils`] with weights of any [`Real`] type (`f64`: the masks evaluated in double
+/// precision, as OpenSubdiv's `PrimvarRefinerReal<double>`; `f32` gives the same bits as
+/// [`level_stencils`]).
+pub fn level_stencils_real<W: Real>(p: &Topology, c: &Topology) -> LevelStencils<W> {
     level_stencils_with(p, ChildSharpness::of_child(p, c))
 }
 
 /// [`level_stencils`] with only the child's sharpness and rules, not its topology.
-pub(crate) fn level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
+pub(crate) fn level_stencils_with<W: Real>(
+    p: &Topology,
+    c: ChildSharpness<'_>,
+) -> LevelStencils<W> {
     let rows = LevelRows::new(p, c);
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
     let inputs = nv + nf;
@@ -350,9 +370,9 @@ impl<'a> LevelRows<'a> {
 
     /// Face point of face `f`: the average of its vertices.
     #[inline]
-    pub(crate) fn face(&self, f: usize, add: &mut impl FnMut(u32, f32)) {
+    pub(crate) fn face<W: Real>(&self, f: usize, add: &mut impl FnMut(u32, W)) {
         let fv = self.p.face_vertices(f);
-        let w = 1.0 / fv.len() as f32;
+        let w = W::ONE / W::from_f64(fv.len() as f64);
         for &v in fv {
             add(v, w);
         }
@@ -374,10 +394,15 @@ impl<'a> LevelRows<'a> {
 
     /// The row of the child of vertex `v`.
     #[inline]
-    pub(crate) fn vertex(&self, v: usize, s: &mut Scratch, add: &mut impl FnMut(u32, f32)) {
+    pub(crate) fn vertex<W: Real>(
+        &self,
+        v: usize,
+        s: &mut Scratch<W>,
+        add: &mut impl FnMut(u32, W),
+    ) {
         let p = self.p;
         if self.bilinear {
-            add(v as u32, 1.0);
+            add(v as u32, W::ONE);
             return;
         }
         let pe = p.vertex_edges(v);
@@ -386,24 +411,25 @@ impl<'a> LevelRows<'a> {
         if (pr == rule::SMOOTH || pr == rule::DART) && faces.len() == pe.len() {
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
             let n = faces.len();
-            let w = 1.0 / (n * n) as f32;
+            let w = W::ONE / W::from_f64((n * n) as f64);
             for &f in faces {
                 add(self.fp(f), w);
             }
             for &e in pe {
                 add(p.other_vertex(e as usize, v as u32), w);
             }
-            add(v as u32, (n as f32 - 2.0) / n as f32);
+            let nw = W::from_f64(n as f64);
+            add(v as u32, (nw - W::from_f64(2.0)) / nw);
             return;
         }
         let mask = s.vertex_mask_with(p, self.c, v);
         for (&f, &w) in faces.iter().zip(&mask.faces) {
-            if w != 0.0 {
+            if w != W::ZERO {
                 add(self.fp(f), w);
             }
         }
         for (&e, &w) in pe.iter().zip(&mask.edges) {
-            if w != 0.0 {
+            if w != W::ZERO {
                 add(p.other_vertex(e as usize, v as u32), w);
             }
         }
@@ -424,12 +450,12 @@ impl<'a> LevelRows<'a> {
 
     /// The row of the edge point of edge `e`.
     #[inline]
-    pub(crate) fn edge(&self, e: usize, add: &mut impl FnMut(u32, f32)) {
+    pub(crate) fn edge<W: Real>(&self, e: usize, add: &mut impl FnMut(u32, W)) {
         let p = self.p;
         let ev = p.edge_verts[e];
         if self.bilinear {
-            add(ev[0], 0.5);
-            add(ev[1], 0.5);
+            add(ev[0], W::from_f64(0.5));
+            add(ev[1], W::from_f64(0.5));
             return;
         }
         let faces = p.edge_faces(e);
@@ -438,14 +464,14 @@ impl<'a> LevelRows<'a> {
             faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
         ];
         let (nv, nf) = (p.num_vertices(), p.num_faces());
-        let m = edge_mask(
+        let m = edge_mask::<W>(
             p.edge_sharpness[e],
             self.c.rule(nv + nf + e),
             faces.len(),
             tri,
             p.options.triangle_subdivision,
         );
-        if m.face != 0.0 {
+        if m.face != W::ZERO {
             for &f in faces {
                 add(self.fp(f), m.face);
             }

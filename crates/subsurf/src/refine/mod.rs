@@ -47,7 +47,7 @@ pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
 pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 use masks::level_stencils_with;
-pub use masks::{level_stencils, limit_stencils, LevelStencils};
+pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 

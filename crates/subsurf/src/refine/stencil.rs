@@ -4,6 +4,7 @@
 //! `indices[offsets[i]..offsets[i + 1]]` and the matching `weights`. Applying a table computes
 //! `dst[i] = Σ_j weights[j] · src[indices[j]]`, accumulated in `f32` in index order.
 
+use crate::real::Real;
 use rayon::prelude::*;
 
 /// A sparse row-major matrix from input vertices to output vertices.
@@ -36,19 +37,22 @@ use rayon::prelude::*;
 /// }
 /// # Ok::<(), subsurf::Error>(())
 /// ```
+///
+/// Weights are `W`: `f32` (the default, what the GPU reads), or `f64` for double-precision
+/// tables ([`crate::limit::PatchTable::build_real`]).
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct StencilTable {
+pub struct StencilTable<W = f32> {
     /// `rows + 1` offsets into `indices` / `weights`.
     pub offsets: Vec<u32>,
     /// Input vertex of each entry.
     pub indices: Vec<u32>,
     /// Weight of each entry.
-    pub weights: Vec<f32>,
+    pub weights: Vec<W>,
     /// Number of input vertices the indices refer to.
     pub num_inputs: usize,
 }
 
-impl StencilTable {
+impl<W> StencilTable<W> {
     /// Number of output vertices.
     pub fn num_rows(&self) -> usize {
         self.offsets.len().saturating_sub(1)
@@ -61,9 +65,12 @@ impl StencilTable {
 
     /// Bytes held by the three arrays.
     pub fn size_bytes(&self) -> usize {
-        4 * (self.offsets.len() + self.indices.len() + self.weights.len())
+        4 * (self.offsets.len() + self.indices.len())
+            + std::mem::size_of::<W>() * self.weights.len()
     }
+}
 
+impl StencilTable {
     /// Applies the table to `N`-component values (positions: `N = 3`, UVs: `N = 2`),
     /// in parallel over rows.
     pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
@@ -178,8 +185,8 @@ impl RowBuilder {
         }
     }
     #[inline]
-    pub(crate) fn add(&mut self, i: u32, w: f32) {
-        self.add_f64(i, w as f64);
+    pub(crate) fn add<W: Real>(&mut self, i: u32, w: W) {
+        self.add_f64(i, w.to_f64());
     }
     /// Adds with a weight kept in double precision until the row is drained.
     #[inline]
@@ -196,12 +203,12 @@ impl RowBuilder {
     pub(crate) fn len(&self) -> usize {
         self.idx.len()
     }
-    pub(crate) fn drain_into(&mut self, idx: &mut Vec<u32>, wts: &mut Vec<f32>) {
+    pub(crate) fn drain_into<W: Real>(&mut self, idx: &mut Vec<u32>, wts: &mut Vec<W>) {
         for &i in &self.idx {
             self.marker[i as usize] = u32::MAX;
         }
         idx.extend_from_slice(&self.idx);
-        wts.extend(self.wts.iter().map(|&w| w as f32));
+        wts.extend(self.wts.iter().map(|&w| W::from_f64(w)));
         self.idx.clear();
         self.wts.clear();
     }

@@ -139,6 +139,13 @@ impl Topology {
         Ok(t)
     }
 
+    /// Re-derives tags, rules and boundary sharpening after `edge_sharpness` or
+    /// `vert_sharpness` changed (what [`Topology::new`] does after reading the tags; applying
+    /// it again to a sharpened topology changes nothing else, holes included).
+    pub(crate) fn retag(&mut self) {
+        sharpen::apply_tags_and_boundary_sharpness(self);
+    }
+
     /// Builds relations only (no sharpness from tags, no tag pass); sharpness arrays are zero.
     pub(crate) fn from_face_lists(
         num_vertices: usize,

@@ -1,0 +1,85 @@
+//! A crease slider: every crease of a mesh moved through a range of sharpness values with
+//! `PatchTable::set_sharpness`, the limit surface re-evaluated at each step, then back to
+//! the mesh's own values; the time of each edit next to a fresh `PatchTable::build`.
+//!
+//! `cargo run --release -p subsurf --example crease_slider [-- FILE RUNS]` (default
+//! `testdata/shapes/catmark_car.obj`, 11 runs). Prints the medians of: the edit of every
+//! crease to 3.5 and back (two edits per run), a fresh build, and the point update after an
+//! edit. `set_sharpness` currently rebuilds the table from the edited base topology, so the
+//! edit costs about one build.
+
+use std::time::Instant;
+
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, SharpnessEdit};
+use subsurf::Topology;
+
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(f64::total_cmp);
+    times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args
+        .get(1)
+        .map(String::as_str)
+        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let runs: usize = args
+        .get(2)
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(11)
+        .max(1);
+    let mesh = subsurf::io::read_path(path)?;
+    let topo = Topology::new(&mesh)?;
+    let options = PatchOptions::default();
+    let mut table = PatchTable::build(&topo, &options)?;
+    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> {
+        mesh.creases
+            .iter()
+            .map(|c| SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness: s.unwrap_or(c.sharpness),
+            })
+            .collect()
+    };
+
+    // The slider loop: one edit and one evaluation per step, at the centre of a face on the
+    // first crease.
+    let c = mesh.creases.first().ok_or("the mesh has no crease")?;
+    let e = topo.find_edge(c.v0, c.v1).ok_or("crease without an edge")?;
+    let f = topo.edge_faces(e as usize)[0] as usize;
+    let ptex = table.ptex_offsets[f] as usize;
+    println!("{path}: {} creases", mesh.creases.len());
+    for step in 0..=8 {
+        let s = 0.5 * step as f32;
+        table.set_sharpness(&edits(Some(s)))?;
+        let surface = LimitSurface::new(table.clone(), &mesh.positions);
+        let p = surface.eval(ptex, 0.5, 0.5).map(|r| r.p);
+        println!("  sharpness {s:3.1}: face {f} centre at {p:?}");
+    }
+    table.set_sharpness(&edits(None))?;
+
+    let (mut edit, mut build, mut points) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..runs {
+        for s in [Some(3.5), None] {
+            let e = edits(s);
+            let t = Instant::now();
+            table.set_sharpness(&e)?;
+            edit.push(t.elapsed().as_secs_f64() * 1e3);
+            let t = Instant::now();
+            std::hint::black_box(table.points(&mesh.positions));
+            points.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+        let t = Instant::now();
+        std::hint::black_box(PatchTable::build(&Topology::new(&mesh)?, &options)?);
+        build.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    let (e, b, p) = (median(&mut edit), median(&mut build), median(&mut points));
+    println!(
+        "medians of {runs} runs: edit {e:.2} ms, fresh build {b:.2} ms \
+         (build / edit = {:.2}), points after an edit {p:.2} ms",
+        b / e
+    );
+    Ok(())
+}

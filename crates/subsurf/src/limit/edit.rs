@@ -1,0 +1,138 @@
+//! Crease edits on a built [`PatchTable`]: new sharpness for edges and vertices of the base
+//! mesh, the table made equal, bit for bit, to a fresh [`PatchTable::build`] of the edited
+//! mesh.
+//!
+//! Sharpness enters a table in three places: which faces are isolated (a semi-sharp edge is
+//! an irregular feature unless it makes a single-crease patch), the stored sharpness of the
+//! single-crease patches, and the refinement stencils of every level around the crease (the
+//! crease and corner masks, and the fractional blends of a decaying crease, change the refined
+//! points to the isolation level). All the edits are checked before any work: an edge must
+//! exist, a value must be finite and non-negative (values above
+//! [`crate::SHARPNESS_INFINITE`] are clamped, as [`crate::Topology::new`] clamps the tags).
+//!
+//! The table is then rebuilt from the edited base topology. Edits that change nothing (the
+//! same values, or edges and vertices that boundary and non-manifold sharpening keep
+//! infinitely sharp) leave it untouched.
+
+use super::budget::Budget;
+use super::sparse::Selection;
+use super::table::PatchTable;
+use crate::error::{Error, MeshError, Result};
+use crate::options::BoundaryInterpolation;
+use crate::real::Real;
+use crate::topology::{clamp_sharpness, Topology};
+
+/// One sharpness edit of [`PatchTable::set_sharpness`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SharpnessEdit {
+    /// The crease sharpness of the edge joining two base vertices (either order).
+    Edge {
+        /// One end.
+        v0: u32,
+        /// The other end.
+        v1: u32,
+        /// New sharpness (`0` smooth, `>= 10` infinitely sharp).
+        sharpness: f32,
+    },
+    /// The corner sharpness of a base vertex.
+    Vertex {
+        /// The vertex.
+        vertex: u32,
+        /// New sharpness.
+        sharpness: f32,
+    },
+}
+
+fn bad(edit: usize, reason: String) -> Error {
+    MeshError::BadSharpnessEdit { edit, reason }.into()
+}
+
+/// The base topology with `edits` applied, or the first bad edit (nothing is changed then).
+fn edited(base: &Topology, edits: &[SharpnessEdit]) -> Result<Topology> {
+    // Every edit is checked first.
+    let mut resolved = Vec::with_capacity(edits.len());
+    for (i, e) in edits.iter().enumerate() {
+        let s = match *e {
+            SharpnessEdit::Edge { sharpness, .. } | SharpnessEdit::Vertex { sharpness, .. } => {
+                sharpness
+            }
+        };
+        if !(s.is_finite() && s >= 0.0) {
+            return Err(bad(
+                i,
+                format!("sharpness {s} is not a finite non-negative value"),
+            ));
+        }
+        match *e {
+            SharpnessEdit::Edge { v0, v1, .. } => {
+                let nv = base.num_vertices() as u32;
+                let edge = (v0 < nv && v1 < nv)
+                    .then(|| base.find_edge(v0, v1))
+                    .flatten()
+                    .ok_or_else(|| {
+                        bad(
+                            i,
+                            format!("vertices {v0} and {v1} are not joined by an edge"),
+                        )
+                    })?;
+                if base.options.boundary == BoundaryInterpolation::None
+                    && base.is_boundary_edge(edge as usize)
+                {
+                    // The holes of that mode are decided on the boundary edges' own tags,
+                    // which sharpening has replaced.
+                    return Err(Error::Unsupported(format!(
+                        "sharpness edit {i}: boundary edge {v0}-{v1} under boundary \
+                         interpolation None (its tag decides holes: rebuild from the mesh)"
+                    )));
+                }
+                resolved.push((true, edge as usize, clamp_sharpness(s)));
+            }
+            SharpnessEdit::Vertex { vertex, .. } => {
+                if vertex as usize >= base.num_vertices() {
+                    return Err(bad(
+                        i,
+                        format!(
+                            "vertex {vertex} does not exist ({} vertices)",
+                            base.num_vertices()
+                        ),
+                    ));
+                }
+                resolved.push((false, vertex as usize, clamp_sharpness(s)));
+            }
+        }
+    }
+    let mut t = base.clone();
+    for (edge, k, s) in resolved {
+        if edge {
+            t.edge_sharpness[k] = s;
+        } else {
+            t.vert_sharpness[k] = s;
+        }
+    }
+    t.retag();
+    Ok(t)
+}
+
+impl<R: Real> PatchTable<R> {
+    /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
+    /// same element winning) and updates the table to equal a fresh build of the edited mesh
+    /// (see the [module documentation](super::edit)). Returns whether the table changed.
+    ///
+    /// Bad edits are refused before any work with [`MeshError::BadSharpnessEdit`], naming
+    /// the edit and the value or element; the table is then unchanged.
+    pub fn set_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<bool> {
+        let t = edited(&self.base, edits)?;
+        if t.edge_sharpness == self.base.edge_sharpness
+            && t.vert_sharpness == self.base.vert_sharpness
+        {
+            return Ok(false);
+        }
+        *self = PatchTable::build_within_real(
+            &t,
+            &self.options,
+            Selection::Sparse,
+            Budget::of_available_memory(),
+        )?;
+        Ok(true)
+    }
+}

@@ -1,0 +1,247 @@
+//! Crease edits (`PatchTable::set_sharpness`): the edited table equals, bit for bit, a fresh
+//! build of the mesh with the edited tags; bad edits are refused before any work.
+
+mod limit_common;
+
+use limit_common::{load_shape, shape_names};
+use subsurf::limit::{PatchOptions, PatchTable, SharpnessEdit};
+use subsurf::mesh::{Corner, Crease};
+use subsurf::{Error, Mesh, MeshError, Real, StencilTable, Topology};
+
+/// A small deterministic generator (64-bit LCG, high bits).
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self, n: usize) -> usize {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 33) as usize) % n
+    }
+}
+
+fn same_weights<R: Real>(a: &StencilTable<R>, b: &StencilTable<R>) -> bool {
+    let bits = |t: &StencilTable<R>| {
+        t.weights
+            .iter()
+            .map(|w| w.to_f64().to_bits())
+            .collect::<Vec<_>>()
+    };
+    a.offsets == b.offsets
+        && a.indices == b.indices
+        && a.num_inputs == b.num_inputs
+        && bits(a) == bits(b)
+}
+
+/// Every array of the two tables is the same, weights compared by their bits.
+fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
+    assert_eq!(a.base.edge_sharpness, b.base.edge_sharpness, "{what}");
+    assert_eq!(a.base.vert_sharpness, b.base.vert_sharpness, "{what}");
+    assert_eq!(a.base.vert_rule, b.base.vert_rule, "{what}");
+    assert_eq!(a.base.edge_tags, b.base.edge_tags, "{what}");
+    assert_eq!(a.base.vert_tags, b.base.vert_tags, "{what}");
+    assert_eq!(a.base.face_is_hole, b.base.face_is_hole, "{what}");
+    assert_eq!(a.kinds, b.kinds, "{what}");
+    assert_eq!(a.cv_offsets, b.cv_offsets, "{what}");
+    assert_eq!(a.cvs, b.cvs, "{what}");
+    assert_eq!(a.params, b.params, "{what}");
+    let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&a.sharpness), bits(&b.sharpness), "{what}");
+    assert_eq!(a.ptex_offsets, b.ptex_offsets, "{what}");
+    assert_eq!(a.patch_map, b.patch_map, "{what}");
+    assert_eq!(a.level_offsets, b.level_offsets, "{what}");
+    assert_eq!(a.level_inputs, b.level_inputs, "{what}");
+    assert_eq!(a.level_stencils.len(), b.level_stencils.len(), "{what}");
+    for (x, y) in a.level_stencils.iter().zip(&b.level_stencils) {
+        assert_eq!(x.num_parent_vertices, y.num_parent_vertices, "{what}");
+        assert!(same_weights(&x.face, &y.face), "{what}: face stencils");
+        assert!(
+            same_weights(&x.vertex, &y.vertex),
+            "{what}: vertex stencils"
+        );
+        assert!(same_weights(&x.edge, &y.edge), "{what}: edge stencils");
+    }
+    assert!(
+        same_weights(&a.local_points, &b.local_points),
+        "{what}: end caps"
+    );
+}
+
+/// `mesh` with the edits applied to its tags (the fresh build's input).
+fn edit_mesh(mesh: &Mesh, edits: &[SharpnessEdit]) -> Mesh {
+    let mut m = mesh.clone();
+    for e in edits {
+        match *e {
+            SharpnessEdit::Edge { v0, v1, sharpness } => {
+                m.creases
+                    .retain(|c| !((c.v0, c.v1) == (v0, v1) || (c.v0, c.v1) == (v1, v0)));
+                m.creases.push(Crease { v0, v1, sharpness });
+            }
+            SharpnessEdit::Vertex { vertex, sharpness } => {
+                m.corners.retain(|c| c.vertex != vertex);
+                m.corners.push(Corner { vertex, sharpness });
+            }
+        }
+    }
+    m
+}
+
+const VALUES: [f32; 8] = [0.0, 0.3, 1.0, 1.7, 2.0, 3.5, 7.25, 10.0];
+
+/// Random edits on a creased mesh: tagged creases and corners moved, untagged edges and
+/// vertices made sharp.
+fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg) -> Vec<SharpnessEdit> {
+    let mut edits = Vec::new();
+    for _ in 0..1 + rng.next(6) {
+        let sharpness = VALUES[rng.next(VALUES.len())];
+        edits.push(match rng.next(4) {
+            0 | 1 if !mesh.creases.is_empty() => {
+                let c = mesh.creases[rng.next(mesh.creases.len())];
+                SharpnessEdit::Edge {
+                    v0: c.v0,
+                    v1: c.v1,
+                    sharpness,
+                }
+            }
+            2 => {
+                let [v0, v1] = t.edge_verts[rng.next(t.num_edges())];
+                SharpnessEdit::Edge { v0, v1, sharpness }
+            }
+            _ => SharpnessEdit::Vertex {
+                vertex: rng.next(t.num_vertices()) as u32,
+                sharpness,
+            },
+        });
+    }
+    edits
+}
+
+/// Every creased catmark shape, three rounds of random edits each (edges and vertices, one
+/// or many at once, single-crease patches on and off): the edited table is the fresh build
+/// of the edited mesh, bit for bit.
+#[test]
+fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
+    let mut rng = Lcg(0x5eed);
+    let mut shapes = 0;
+    for name in shape_names() {
+        let mesh = load_shape(&name);
+        if mesh.creases.is_empty() && mesh.corners.is_empty() {
+            continue;
+        }
+        if mesh.options.boundary == subsurf::BoundaryInterpolation::None {
+            continue;
+        }
+        shapes += 1;
+        let topo = Topology::new(&mesh).unwrap();
+        let options = PatchOptions {
+            single_crease: rng.next(3) != 0,
+            ..Default::default()
+        };
+        let mut table = PatchTable::build(&topo, &options).unwrap();
+        let mut current = mesh.clone();
+        for round in 0..3 {
+            let edits = random_edits(&mesh, &topo, &mut rng);
+            table.set_sharpness(&edits).unwrap();
+            current = edit_mesh(&current, &edits);
+            let fresh = PatchTable::build(&Topology::new(&current).unwrap(), &options).unwrap();
+            assert_same(&format!("{name} round {round} {edits:?}"), &table, &fresh);
+        }
+    }
+    assert!(shapes >= 20, "{shapes} creased shapes");
+}
+
+/// The car's 314 creases from their sharpness to 3.5 and back, on the `f64` table: the
+/// fresh build each way, and the original table at the end.
+#[test]
+fn car_creases_there_and_back_on_the_f64_table() {
+    let mesh = load_shape("catmark_car");
+    let topo = Topology::new(&mesh).unwrap();
+    let o = PatchOptions::default();
+    let original = PatchTable::<f64>::build_real(&topo, &o).unwrap();
+    let mut table = original.clone();
+    let to = |s: Option<f32>| -> Vec<SharpnessEdit> {
+        mesh.creases
+            .iter()
+            .map(|c| SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness: s.unwrap_or(c.sharpness),
+            })
+            .collect()
+    };
+    assert!(table.set_sharpness(&to(Some(3.5))).unwrap());
+    let moved = edit_mesh(&mesh, &to(Some(3.5)));
+    let fresh = PatchTable::<f64>::build_real(&Topology::new(&moved).unwrap(), &o).unwrap();
+    assert_same("car at 3.5", &table, &fresh);
+    assert!(table.set_sharpness(&to(None)).unwrap());
+    assert_same("car back", &table, &original);
+    // The same values again change nothing.
+    assert!(!table.set_sharpness(&to(None)).unwrap());
+}
+
+/// A missing edge, a vertex out of range, NaN and negative sharpness: a `BadSharpnessEdit`
+/// naming the edit and the value, the table untouched even when good edits come first.
+#[test]
+fn bad_edits_are_refused_before_any_work() {
+    let mesh = load_shape("catmark_cube_creases1");
+    let topo = Topology::new(&mesh).unwrap();
+    let table = PatchTable::build(&topo, &PatchOptions::default()).unwrap();
+    let good = SharpnessEdit::Vertex {
+        vertex: 0,
+        sharpness: 2.0,
+    };
+    for (bad, words) in [
+        (
+            SharpnessEdit::Edge {
+                v0: 0,
+                v1: 7,
+                sharpness: 1.0,
+            },
+            vec!["0", "7", "not joined"],
+        ),
+        (
+            SharpnessEdit::Edge {
+                v0: 0,
+                v1: 99,
+                sharpness: 1.0,
+            },
+            vec!["99"],
+        ),
+        (
+            SharpnessEdit::Vertex {
+                vertex: 8,
+                sharpness: 1.0,
+            },
+            vec!["vertex 8"],
+        ),
+        (
+            SharpnessEdit::Edge {
+                v0: 0,
+                v1: 1,
+                sharpness: f32::NAN,
+            },
+            vec!["NaN"],
+        ),
+        (
+            SharpnessEdit::Vertex {
+                vertex: 1,
+                sharpness: -0.5,
+            },
+            vec!["-0.5"],
+        ),
+    ] {
+        let mut t = table.clone();
+        let err = t.set_sharpness(&[good, bad]).unwrap_err();
+        let msg = err.to_string();
+        assert!(
+            matches!(
+                err,
+                Error::Mesh(MeshError::BadSharpnessEdit { edit: 1, .. })
+            ),
+            "{err:?}"
+        );
+        assert!(words.iter().all(|w| msg.contains(w)), "{msg}");
+        assert_same("refused", &t, &table);
+    }
+}
