@@ -93,9 +93,10 @@ fn wrong_lengths_are_typed_errors() {
 fn bit_identical_on_every_regression_shape() {
     // Smooth rows evaluated from their indices, the others from their stored rows: the same
     // bits as the tables on every rule OpenSubdiv's shapes exercise (creases, corners, holes,
-    // non-manifold, valence 2 and 360, smooth triangles, Chaikin, bilinear).
+    // non-manifold, valence 2 and 360, smooth triangles, Chaikin, bilinear, Loop).
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
-    let paths = subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_"]).unwrap();
+    let paths =
+        subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_", "loop_"]).unwrap();
     assert!(paths.len() > 50);
     let mut scratch = Vec::new();
     for path in paths {

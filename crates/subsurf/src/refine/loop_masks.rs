@@ -121,6 +121,7 @@ impl super::Refiner {
             levels,
             stencils,
             limit_table: std::sync::OnceLock::new(),
+            frame_plans: std::sync::OnceLock::new(),
             options: super::RefineOptions::default(),
         })
     }
