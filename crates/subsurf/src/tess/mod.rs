@@ -1,0 +1,17 @@
+//! Adaptive tessellation of the limit surface: one integer rate per base edge (and an
+//! interior rate per face), every edge sampled once and shared by index by its faces, so the
+//! mesh is watertight with any mix of rates.
+//!
+//! ```text
+//! EdgeRates ──mesh::plan──▶ AdaptivePlan ──eval──▶ triangles
+//! ```
+//!
+//! - [`pattern`]: the pattern of one quad ptex face (the sample set and facet count of
+//!   OpenSubdiv's `Bfr::Tessellation`), with its transition strips;
+//! - [`mesh`]: the ptex faces' patterns joined through shared edge samples.
+
+pub mod mesh;
+pub mod pattern;
+
+pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
+pub use pattern::QuadPattern;
