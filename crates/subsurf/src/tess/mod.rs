@@ -3,15 +3,19 @@
 //! mesh is watertight with any mix of rates.
 //!
 //! ```text
-//! EdgeRates ──mesh::plan──▶ AdaptivePlan ──eval──▶ triangles
+//! RatePolicy ──rates──▶ EdgeRates ──mesh::plan──▶ AdaptivePlan ──eval──▶ triangles
 //! ```
 //!
 //! - [`pattern`]: the pattern of one quad ptex face (the sample set and facet count of
 //!   OpenSubdiv's `Bfr::Tessellation`), with its transition strips;
-//! - [`mesh`]: the ptex faces' patterns joined through shared edge samples.
+//! - [`mesh`]: the ptex faces' patterns joined through shared edge samples;
+//! - [`rates`]: policies (uniform, maximum edge length, chordal tolerance, screen space,
+//!   explicit rates) turned into per-edge rates.
 
 pub mod mesh;
 pub mod pattern;
+pub mod rates;
 
 pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;
+pub use rates::{parse_edge_rates, RatePolicy, ScreenCamera};
