@@ -20,6 +20,7 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=shim/shim.cpp");
     println!("cargo:rerun-if-changed=shim/shim.h");
+    println!("cargo:rerun-if-changed=shim/tessellation.cpp");
     for var in ["CI", "OSD_INCLUDE_DIR", "OSD_LIB_DIR"] {
         println!("cargo:rerun-if-env-changed={var}");
     }
@@ -50,6 +51,7 @@ fn main() {
         .include(&include)
         .include("shim")
         .file("shim/shim.cpp")
+        .file("shim/tessellation.cpp")
         .warnings(true)
         .compile("osd_ref_shim");
     println!("cargo:rustc-link-search=native={}", lib.display());

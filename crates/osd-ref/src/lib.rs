@@ -7,7 +7,8 @@
 //! - [`refine_uniform`]: every level of a uniform refinement (topology, positions, UVs);
 //! - [`limit_stencil_positions`]: the last level's vertices projected to the limit;
 //! - [`eval_limit_grid`] / [`patch_counts`]: adaptive refinement + patch table evaluation;
-//! - [`OsdRefiner`] / [`OsdStencils`]: handles that separate topology and positions costs.
+//! - [`OsdRefiner`] / [`OsdStencils`]: handles that separate topology and positions costs;
+//! - [`bfr_tessellation`]: `Bfr::Tessellation`'s pattern of one face for given rates.
 //!
 //! When OpenSubdiv was not found at build time the crate still compiles: [`available`]
 //! returns `false` and every entry point returns [`Error::Unavailable`].
@@ -22,6 +23,7 @@ mod adaptive_f64;
 mod ffi;
 mod from_subsurf;
 mod mesh;
+mod tessellation;
 mod uniform;
 
 pub use adaptive::{
@@ -30,6 +32,7 @@ pub use adaptive::{
 };
 pub use adaptive_f64::{eval_limit_grid_f64, LimitSampleF64};
 pub use mesh::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
+pub use tessellation::{bfr_tessellation, BfrParam, BfrPattern};
 pub use uniform::{
     limit_stencil_positions, refine_uniform, OsdLevel, OsdRefiner, OsdStencils, MAX_LEVEL,
 };

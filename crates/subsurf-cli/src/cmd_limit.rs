@@ -86,10 +86,22 @@ pub struct LimitArgs {
     /// Write the grid quads instead of triangles.
     #[arg(long)]
     pub quads: bool,
+    #[command(flatten)]
+    pub adaptive: crate::tess_args::AdaptiveArgs,
+    #[command(flatten)]
+    pub screen: crate::tess_args::ScreenArgs,
 }
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
+    if a.adaptive.any() {
+        anyhow::ensure!(
+            !a.surface.f64,
+            "--f64 works with a uniform --tess only (adaptive rates evaluate in f32)"
+        );
+        let (mesh, table) = a.surface.load_table()?;
+        return run_adaptive(a, mesh, table);
+    }
     let (tess, c, patches, ptex) = if a.surface.f64 {
         let (mesh, table) = a.surface.load_table_real::<f64>()?;
         let (c, p, x) = (table.counts(), table.num_patches(), table.num_ptex_faces());
@@ -117,6 +129,37 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
         c.gregory,
         ptex,
         tess.samples_per_side,
+        out.positions.len(),
+        out.num_faces(),
+        shown(&a.output, true)
+    );
+    Ok(())
+}
+
+/// `limit` with per-edge rates (evaluated on the CPU).
+fn run_adaptive(
+    a: &LimitArgs,
+    mesh: Mesh,
+    table: subsurf::limit::PatchTable,
+) -> anyhow::Result<()> {
+    if a.quads {
+        anyhow::bail!("--quads needs a uniform --tess (adaptive tessellations are triangles)");
+    }
+    let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
+    let (policy, origin) = a
+        .adaptive
+        .policy(&a.screen, &surface, &mesh.positions, a.tess)?;
+    let rates = policy.rates(&surface, &origin)?;
+    let tess = surface.tessellate_rates(&rates, &origin)?;
+    let out = tess.to_mesh();
+    write_mesh(&a.output, &out, Some(&tess.normals))?;
+    let (lo, hi) = tess
+        .edge_rates
+        .iter()
+        .fold((u32::MAX, 0), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    crate::say!(
+        "{origin}: edge rates {lo}..={hi} on {} ptex faces: {} vertices, {} triangles -> {}",
+        surface.table.num_ptex_faces(),
         out.positions.len(),
         out.num_faces(),
         shown(&a.output, true)

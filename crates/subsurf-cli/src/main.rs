@@ -12,6 +12,7 @@ mod cmd_refine;
 mod cmd_render;
 mod common;
 mod progress;
+mod tess_args;
 
 use clap::{Parser, Subcommand};
 

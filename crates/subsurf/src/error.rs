@@ -121,6 +121,57 @@ pub enum MeshError {
     },
 }
 
+/// Bad tessellation input ([`crate::tess`]), naming the value and where it came from.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TessError {
+    /// A tessellation rate outside `1..=4096`.
+    #[error("{origin}: rate {rate} of edge {v0}-{v1} is not in 1..=4096")]
+    RateOutOfRange {
+        /// Where the rate came from (`--tess`, `file:line`, a policy).
+        origin: String,
+        /// The edge's first vertex.
+        v0: u32,
+        /// The edge's second vertex.
+        v1: u32,
+        /// The rate given or needed.
+        rate: u64,
+    },
+    /// A length, tolerance or pixel size that is not a positive finite number.
+    #[error("{origin}: {what} {value} is not a positive finite number")]
+    NotPositive {
+        /// Where the value came from (a flag, a policy).
+        origin: String,
+        /// What the value is (`tolerance`, `maximum edge length`, `pixels`).
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// An edge-rates line naming two vertices that no edge joins.
+    #[error("{origin}: vertices {v0} and {v1} are not joined by an edge of the mesh")]
+    NoSuchEdge {
+        /// `file:line`.
+        origin: String,
+        /// First vertex named.
+        v0: u64,
+        /// Second vertex named.
+        v1: u64,
+    },
+    /// A malformed edge-rates line.
+    #[error("{origin}: {reason}")]
+    BadLine {
+        /// `file:line`.
+        origin: String,
+        /// What is wrong with it.
+        reason: String,
+    },
+    /// A screen-space size without a camera to measure it.
+    #[error("{origin}: a screen-space size needs a camera (--screen WxH and --view)")]
+    NoCamera {
+        /// The flag or policy asking for it.
+        origin: String,
+    },
+}
+
 /// Every error the library returns.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -144,6 +195,9 @@ pub enum Error {
     /// Bad mesh content.
     #[error(transparent)]
     Mesh(#[from] MeshError),
+    /// Bad tessellation input.
+    #[error(transparent)]
+    Tess(#[from] TessError),
     /// A file could not be read or written.
     #[error("I/O error: {0}")]
     Io(#[from] std::io::Error),

@@ -81,9 +81,10 @@ pub mod refine;
 pub mod rules;
 pub mod shapes;
 pub mod surface;
+pub mod tess;
 pub mod topology;
 
-pub use error::{Error, MeshError, Result};
+pub use error::{Error, MeshError, Result, TessError};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
 pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,

@@ -85,7 +85,7 @@ fn available_memory() -> Option<u64> {
 }
 
 /// `bytes` in binary units.
-fn human(bytes: u64) -> String {
+pub fn human(bytes: u64) -> String {
     let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
     let mut v = bytes as f64;
     let mut u = 0;

@@ -1,0 +1,120 @@
+//! Adaptive tessellation flags of `limit`: one rate policy (`--max-edge-length`,
+//! `--tolerance`, `--pixels` with `--screen`, `--edge-rates`), else the uniform `--tess`.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use subsurf::limit::LimitSurface;
+use subsurf::tess::{parse_edge_rates, RatePolicy, ScreenCamera};
+use subsurf_render::{Camera, UpAxis, View};
+
+use crate::cmd_render::{parse_size, UpArg, ViewArg};
+
+/// How the per-edge tessellation rates are chosen (at most one).
+#[derive(Debug, Clone, clap::Args)]
+#[group(multiple = false)]
+pub struct AdaptiveArgs {
+    /// No output edge longer than L world units.
+    #[arg(long, value_name = "L")]
+    pub max_edge_length: Option<f32>,
+    /// Chordal error: every output edge midpoint and facet centroid within E x the bounding
+    /// box diagonal of the limit surface.
+    #[arg(long, value_name = "E")]
+    pub tolerance: Option<f32>,
+    /// No output edge longer than P pixels under the camera of `--screen` and `--view`.
+    #[arg(long, value_name = "P")]
+    pub pixels: Option<f32>,
+    /// Rates per base edge: lines `v0 v1 rate` (0-based vertex indices); unlisted edges take
+    /// `--tess` − 1.
+    #[arg(long, value_name = "FILE")]
+    pub edge_rates: Option<PathBuf>,
+}
+
+/// The camera flags of the screen-space policy (as `render`'s `--size`, `--view`, `--up`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ScreenArgs {
+    /// Image size WIDTHxHEIGHT for `--pixels`.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub screen: Option<(u32, u32)>,
+    /// View direction for `--pixels`.
+    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
+    pub view: ViewArg,
+    /// Model axis pointing up for `--pixels`.
+    #[arg(long, value_enum, default_value_t = UpArg::Y)]
+    pub up: UpArg,
+}
+
+impl AdaptiveArgs {
+    /// Whether any adaptive flag is given.
+    pub fn any(&self) -> bool {
+        self.max_edge_length.is_some()
+            || self.tolerance.is_some()
+            || self.pixels.is_some()
+            || self.edge_rates.is_some()
+    }
+
+    /// The policy and the name of its flag, checked before any work (`cage`: the base mesh's
+    /// points, which frame the camera of `--pixels`).
+    pub fn policy(
+        &self,
+        screen: &ScreenArgs,
+        surface: &LimitSurface,
+        cage: &[[f32; 3]],
+        tess: usize,
+    ) -> anyhow::Result<(RatePolicy, String)> {
+        let t = &surface.table.base;
+        let uniform = u32::try_from(tess.saturating_sub(1)).unwrap_or(u32::MAX);
+        let (policy, origin) = if let Some(l) = self.max_edge_length {
+            (
+                RatePolicy::MaxEdgeLength(l),
+                "--max-edge-length".to_string(),
+            )
+        } else if let Some(e) = self.tolerance {
+            (RatePolicy::Tolerance(e), "--tolerance".to_string())
+        } else if let Some(p) = self.pixels {
+            let camera = screen.screen.map(|(w, h)| {
+                let view = match screen.view {
+                    ViewArg::Front => View::Front,
+                    ViewArg::Back => View::Back,
+                    ViewArg::Left => View::Left,
+                    ViewArg::Right => View::Right,
+                    ViewArg::Top => View::Top,
+                    ViewArg::Iso => View::Iso,
+                };
+                let up = match screen.up {
+                    UpArg::Y => UpAxis::Y,
+                    UpArg::Z => UpAxis::Z,
+                };
+                let defaults = subsurf_render::RenderOptions::default();
+                // Framed on the control points (render frames its output's points).
+                let cam = Camera::frame_points(
+                    cage.iter(),
+                    view,
+                    up,
+                    w as f32 / h.max(1) as f32,
+                    defaults.fov_y_degrees.to_radians(),
+                    defaults.margin,
+                );
+                cam.map(|c| ScreenCamera {
+                    view_proj: c.view_proj(),
+                    width: w,
+                    height: h,
+                })
+            });
+            let origin = "--pixels".to_string();
+            (RatePolicy::screen(camera.flatten(), p, &origin)?, origin)
+        } else if let Some(path) = &self.edge_rates {
+            let text = std::fs::read_to_string(path)
+                .with_context(|| format!("--edge-rates {}", path.display()))?;
+            let file = path.display().to_string();
+            (
+                RatePolicy::Explicit(parse_edge_rates(&text, &file, t, uniform.max(1))?),
+                file,
+            )
+        } else {
+            (RatePolicy::Uniform(uniform), "--tess".to_string())
+        };
+        policy.validate(t, &origin)?;
+        Ok((policy, origin))
+    }
+}

@@ -1,0 +1,21 @@
+//! Adaptive tessellation of the limit surface: one integer rate per base edge (and an
+//! interior rate per face), every edge sampled once and shared by index by its faces, so the
+//! mesh is watertight with any mix of rates.
+//!
+//! ```text
+//! RatePolicy ──rates──▶ EdgeRates ──mesh::plan──▶ AdaptivePlan ──eval──▶ triangles
+//! ```
+//!
+//! - [`pattern`]: the pattern of one quad ptex face (the sample set and facet count of
+//!   OpenSubdiv's `Bfr::Tessellation`), with its transition strips;
+//! - [`mesh`]: the ptex faces' patterns joined through shared edge samples;
+//! - [`rates`]: policies (uniform, maximum edge length, chordal tolerance, screen space,
+//!   explicit rates) turned into per-edge rates.
+
+pub mod mesh;
+pub mod pattern;
+pub mod rates;
+
+pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
+pub use pattern::QuadPattern;
+pub use rates::{parse_edge_rates, RatePolicy, ScreenCamera};

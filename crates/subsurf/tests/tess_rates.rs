@@ -1,0 +1,207 @@
+//! Rate policies: what each promises, measured on the tessellation it makes, and bad input
+//! refused with a typed error naming the value and its origin.
+
+mod limit_common;
+
+use limit_common::{bbox_diagonal, load_shape};
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::tess::{parse_edge_rates, plan, RatePolicy, ScreenCamera};
+use subsurf::{Error, TessError, Topology};
+
+fn surface(name: &str) -> LimitSurface {
+    let mesh = load_shape(name);
+    let t = Topology::new(&mesh).unwrap();
+    let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+    LimitSurface::new(table, &mesh.positions)
+}
+
+fn dist(a: [f32; 3], b: [f32; 3]) -> f64 {
+    (0..3)
+        .map(|k| f64::from(a[k] - b[k]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+fn mid(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
+    [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]))
+}
+
+/// `--tolerance E`: every output edge's midpoint and every triangle's centroid lies within
+/// `E ×` the diagonal of the limit surface point at the same parameters (an upper bound of
+/// the distance to the surface); a uniform tessellation with as many triangles misses it.
+#[test]
+fn tolerance_bounds_edge_midpoints_and_centroids() {
+    for (name, e) in [("catmark_torus", 1e-3f32), ("catmark_pawn", 2e-3)] {
+        let s = surface(name);
+        let diag = f64::from(bbox_diagonal(&s.points));
+        let rates = RatePolicy::Tolerance(e).rates(&s, "--tolerance").unwrap();
+        let p = plan(&s.table, &rates, "--tolerance").unwrap();
+        let uv = p.triangle_uv.clone();
+        let out = s.eval_plan(p);
+        let mut worst = 0.0f64;
+        for (tri, (ptex, c)) in out.triangles.iter().zip(&uv) {
+            let x = tri.map(|i| out.positions[i as usize]);
+            let at = |u: f32, v: f32| s.eval(*ptex as usize, u, v).unwrap().p;
+            for k in 0..3 {
+                let (a, b) = (k, (k + 1) % 3);
+                let m = at(0.5 * (c[a][0] + c[b][0]), 0.5 * (c[a][1] + c[b][1]));
+                worst = worst.max(dist(mid(x[a], x[b]), m));
+            }
+            let g = at(
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            );
+            let cen = [0, 1, 2].map(|k| (x[0][k] + x[1][k] + x[2][k]) / 3.0);
+            worst = worst.max(dist(cen, g));
+        }
+        eprintln!(
+            "{name} E={e}: {} triangles, worst deviation {:.2e} of the diagonal",
+            out.triangles.len(),
+            worst / diag
+        );
+        assert!(
+            worst <= f64::from(e) * diag,
+            "{name}: {} > {e}",
+            worst / diag
+        );
+    }
+}
+
+fn longest_edge(
+    out: &subsurf::tess::AdaptiveTessellation,
+    map: impl Fn([f32; 3]) -> [f32; 3],
+) -> f64 {
+    out.triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .map(|(a, b)| {
+            dist(
+                map(out.positions[a as usize]),
+                map(out.positions[b as usize]),
+            )
+        })
+        .fold(0.0, f64::max)
+}
+
+/// `--max-edge-length L` and `--pixels P`: no output edge longer than `L` world units, or
+/// than `P` pixels under the camera.
+#[test]
+fn length_policies_bound_every_edge() {
+    let s = surface("catmark_pawn");
+    let diag = bbox_diagonal(&s.points);
+    let l = diag / 40.0;
+    let out = s
+        .tessellate_rates(
+            &RatePolicy::MaxEdgeLength(l)
+                .rates(&s, "--max-edge-length")
+                .unwrap(),
+            "",
+        )
+        .unwrap();
+    let longest = longest_edge(&out, |p| p);
+    eprintln!(
+        "max edge length {l}: longest {longest}, {} triangles",
+        out.triangles.len()
+    );
+    assert!(longest <= f64::from(l), "{longest} > {l}");
+
+    // A camera on +z looking at the origin (an orthographic-like matrix with w = 1).
+    let k = 2.0 / diag;
+    let camera = ScreenCamera {
+        view_proj: [
+            [k, 0.0, 0.0, 0.0],
+            [0.0, k, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.5, 1.0],
+        ],
+        width: 800,
+        height: 800,
+    };
+    let pixels = 6.0;
+    let policy = RatePolicy::screen(Some(camera), pixels, "--pixels").unwrap();
+    let out = s
+        .tessellate_rates(&policy.rates(&s, "--pixels").unwrap(), "")
+        .unwrap();
+    let longest = longest_edge(&out, |p| {
+        let q = camera.project(p).unwrap();
+        [q[0], q[1], 0.0]
+    });
+    eprintln!(
+        "{pixels} pixels: longest {longest}, {} triangles",
+        out.triangles.len()
+    );
+    assert!(longest <= f64::from(pixels), "{longest} > {pixels}");
+}
+
+/// Each bad value is refused before any work with a typed error naming it and its origin.
+#[test]
+fn bad_rates_and_values_are_typed_errors() {
+    let s = surface("catmark_cube");
+    let t = &s.table.base;
+    #[track_caller]
+    fn err(r: subsurf::Result<()>) -> TessError {
+        match r {
+            Err(Error::Tess(e)) => e,
+            other => panic!("expected a TessError, got {other:?}"),
+        }
+    }
+    for bad in [0u32, 4097] {
+        let e = err(RatePolicy::Uniform(bad).rates(&s, "--tess").map(|_| ()));
+        assert!(matches!(e, TessError::RateOutOfRange { rate, .. } if rate == u64::from(bad)));
+        assert!(e.to_string().starts_with("--tess: rate"), "{e}");
+    }
+    for bad in [0.0f32, -1.0, f32::NAN, f32::INFINITY] {
+        let e = err(RatePolicy::Tolerance(bad)
+            .rates(&s, "--tolerance")
+            .map(|_| ()));
+        assert!(
+            matches!(
+                e,
+                TessError::NotPositive {
+                    what: "tolerance",
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = err(RatePolicy::MaxEdgeLength(bad)
+            .rates(&s, "--max-edge-length")
+            .map(|_| ()));
+        assert!(matches!(e, TessError::NotPositive { .. }), "{e}");
+    }
+    let e = err(RatePolicy::screen(None, 4.0, "--pixels").map(|_| ()));
+    assert!(matches!(e, TessError::NoCamera { .. }), "{e}");
+    // A tolerance too fine for the highest rate is refused, naming an edge.
+    let e = err(RatePolicy::Tolerance(1e-12)
+        .rates(&s, "--tolerance")
+        .map(|_| ()));
+    assert!(matches!(e, TessError::RateOutOfRange { .. }), "{e}");
+
+    // Edge-rates files: file and line in every error.
+    let ok = parse_edge_rates("# rates\n0 1 7\n\n1 3 2 # comment\n", "r.txt", t, 3).unwrap();
+    let e01 = t.find_edge(0, 1).unwrap() as usize;
+    assert_eq!(ok.edges[e01], 7);
+    assert_eq!(
+        ok.edges.iter().filter(|&&r| r == 3).count(),
+        t.num_edges() - 2
+    );
+    let apart = (1..t.num_vertices() as u32)
+        .find(|&v| t.find_edge(0, v).is_none())
+        .unwrap();
+    let not_an_edge = format!("0 1 7\n0 {apart} 2\n");
+    for (text, line, want) in [
+        (not_an_edge.as_str(), 2, "not joined by an edge"),
+        ("0 1 7\n0 1\n", 2, "expected `v0 v1 rate`"),
+        ("0 1 0\n", 1, "not in 1..=4096"),
+        ("0 1 5000\n", 1, "not in 1..=4096"),
+        ("0 x 2\n", 1, "not a non-negative integer"),
+        ("0 99 2\n", 1, "not joined by an edge"),
+    ] {
+        let e = err(parse_edge_rates(text, "r.txt", t, 3).map(|_| ()));
+        let msg = e.to_string();
+        assert!(
+            msg.starts_with(&format!("r.txt:{line}: ")) && msg.contains(want),
+            "{msg}"
+        );
+    }
+}
