@@ -31,9 +31,10 @@ pub fn parse_options(
     o.scheme = match scheme {
         "catmark" => Scheme::Catmark,
         "bilinear" => Scheme::Bilinear,
+        "loop" => Scheme::Loop,
         s => {
             return Err(value_error(format!(
-                "scheme {s:?}: use 'catmark' or 'bilinear'"
+                "scheme {s:?}: use 'catmark', 'bilinear' or 'loop'"
             )))
         }
     };
@@ -86,7 +87,8 @@ fn option_names(m: &Mesh) -> [&'static str; 5] {
     [
         match o.scheme {
             Scheme::Bilinear => "bilinear",
-            _ => "catmark",
+            Scheme::Loop => "loop",
+            Scheme::Catmark => "catmark",
         },
         match o.boundary {
             BoundaryInterpolation::None => "none",
