@@ -42,7 +42,9 @@ fn raise_with(
 /// A mesh error with the element named.
 pub fn mesh_error(py: Python<'_>, e: &MeshError) -> PyErr {
     let (face, corner, vertex) = match e {
-        MeshError::FaceTooSmall { face, .. } => (Some(*face), None, None),
+        MeshError::FaceTooSmall { face, .. } | MeshError::NotTriangle { face, .. } => {
+            (Some(*face), None, None)
+        }
         MeshError::VertexIndexOutOfRange {
             face,
             corner,

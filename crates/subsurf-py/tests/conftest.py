@@ -18,6 +18,7 @@ SHAPE_NAMES = [
     "catmark_edgecorner", "catmark_nonman_edge100", "catmark_pole8", "catmark_smoothtris0",
     "catmark_fvar_bound1", "catmark_pyramid_creases2", "catmark_torus_creases0",
     "catmark_xord_boundary", "bilinear_nonquads1", "catmark_car",
+    "loop_pole8",
 ]
 
 

@@ -28,6 +28,16 @@ def test_mesh_error_names_the_element():
     assert e.value.vertex == 2
 
 
+def test_loop_refuses_a_quad_naming_it():
+    tris = [[0, 1, 2], [1, 3, 2]]
+    assert subsurf.refine(subsurf.Mesh(TRI, tris, scheme="loop"), 1).num_faces == 8
+    m = subsurf.Mesh(TRI, [[0, 1, 2], [1, 3, 2], [0, 1, 3, 2]], scheme="loop")
+    assert m.options["scheme"] == "loop"
+    with pytest.raises(subsurf.MeshError) as e:
+        subsurf.refine(m, 1)
+    assert e.value.face == 2 and "face 2 has 4 vertices" in str(e.value)
+
+
 def test_parse_error_has_path_and_line(tmp_path):
     p = tmp_path / "bad.obj"
     p.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 x 0\nf 1 2 3\n")

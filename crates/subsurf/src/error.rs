@@ -95,6 +95,15 @@ pub enum MeshError {
         /// Where the mesh falls short.
         details: String,
     },
+    /// Loop subdivision was asked of a mesh with a face that is not a triangle (the first
+    /// such face), as OpenSubdiv refuses it.
+    #[error("Loop subdivision needs triangles only: face {face} has {corners} vertices")]
+    NotTriangle {
+        /// The face (0-based).
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
     /// A caller's buffer does not have the length the operation needs.
     #[error("{what}: {found} values given, {expected} expected")]
     LengthMismatch {

@@ -28,10 +28,9 @@ use crate::topology::Topology;
 pub fn check_triangles(t: &Topology) -> Result<()> {
     match (0..t.num_faces()).find(|&f| t.face_size(f) != 3) {
         None => Ok(()),
-        Some(f) => Err(MeshError::Unsupported {
-            construction: "Loop subdivision",
-            requirement: "triangles only",
-            details: format!("face {f} has {} vertices", t.face_size(f)),
+        Some(f) => Err(MeshError::NotTriangle {
+            face: f,
+            corners: t.face_size(f),
         }
         .into()),
     }
