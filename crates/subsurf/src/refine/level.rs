@@ -60,7 +60,6 @@ pub fn refine_topology(p: &Topology) -> Topology {
         p.num_edges(),
         p.num_corners(),
     );
-    let fchild = |f: usize| (nv + f) as u32;
     let echild = |e: usize| (nv + nf + e) as u32;
     let cv = nv + nf + ne;
     let (cf, ce) = (nc, nc + 2 * ne);
@@ -83,27 +82,13 @@ pub fn refine_topology(p: &Topology) -> Topology {
             let base = fo(r.start);
             for f in r {
                 let (s, n) = (fo(f), fo(f + 1) - fo(f));
-                let fv = &p.face_verts[s..s + n];
-                let fe = &p.face_edges[s..s + n];
-                // Which child of face edge j touches corner j (the other touches corner j+1).
-                let end_at = |j: usize| child_end(p.edge_verts[fe[j] as usize], fv[j], true);
-                let last = end_at(n - 1);
-                let mut prev = last;
-                for j in 0..n {
-                    let jp = if j == 0 { n - 1 } else { j - 1 };
-                    let a = if j + 1 == n { last } else { end_at(j) };
-                    let c = 4 * (s + j - base);
-                    let q = |slot| c + pos(n, j, slot) as usize;
-                    cfv[q(0)] = fv[j];
-                    cfv[q(1)] = echild(fe[j] as usize);
-                    cfv[q(2)] = fchild(f);
-                    cfv[q(3)] = echild(fe[jp] as usize);
-                    cfe[q(0)] = (nc + 2 * fe[j] as usize) as u32 + a;
-                    cfe[q(1)] = (s + j) as u32;
-                    cfe[q(2)] = (s + jp) as u32;
-                    cfe[q(3)] = (nc + 2 * fe[jp] as usize) as u32 + (1 - prev);
-                    cev[s + j - base] = [fchild(f), echild(fe[j] as usize)];
-                    prev = a;
+                // The same code with n = 4 known (quads, nearly every face after one step)
+                // unrolls and folds the corner positions.
+                let out = (&mut *cfv, &mut *cfe, &mut *cev);
+                if n == 4 {
+                    face_children(p, f, s, 4, base, out);
+                } else {
+                    face_children(p, f, s, n, base, out);
                 }
             }
         });
@@ -340,6 +325,44 @@ pub fn refine_topology(p: &Topology) -> Topology {
         edge_tags,
         vert_tags,
         vert_rule,
+    }
+}
+
+/// Child face vertices and edges of parent face `f` (corners `s..s + n`), and the child
+/// edges from its face point, into chunk slices starting at corner `base`.
+#[inline(always)]
+fn face_children(
+    p: &Topology,
+    f: usize,
+    s: usize,
+    n: usize,
+    base: usize,
+    (cfv, cfe, cev): (&mut [u32], &mut [u32], &mut [[u32; 2]]),
+) {
+    let (nv, nf, nc) = (p.num_vertices(), p.num_faces(), p.num_corners());
+    let fchild = (nv + f) as u32;
+    let echild = |e: u32| (nv + nf) as u32 + e;
+    let fv = &p.face_verts[s..s + n];
+    let fe = &p.face_edges[s..s + n];
+    // Which child of face edge j touches corner j (the other touches corner j+1).
+    let end_at = |j: usize| child_end(p.edge_verts[fe[j] as usize], fv[j], true);
+    let last = end_at(n - 1);
+    let mut prev = last;
+    for j in 0..n {
+        let jp = if j == 0 { n - 1 } else { j - 1 };
+        let a = if j + 1 == n { last } else { end_at(j) };
+        let c = 4 * (s + j - base);
+        let q = |slot| c + pos(n, j, slot) as usize;
+        cfv[q(0)] = fv[j];
+        cfv[q(1)] = echild(fe[j]);
+        cfv[q(2)] = fchild;
+        cfv[q(3)] = echild(fe[jp]);
+        cfe[q(0)] = (nc + 2 * fe[j] as usize) as u32 + a;
+        cfe[q(1)] = (s + j) as u32;
+        cfe[q(2)] = (s + jp) as u32;
+        cfe[q(3)] = (nc + 2 * fe[jp] as usize) as u32 + (1 - prev);
+        cev[s + j - base] = [fchild, echild(fe[j])];
+        prev = a;
     }
 }
 

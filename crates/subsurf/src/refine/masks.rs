@@ -174,10 +174,35 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
     }
 }
 
-/// One of the three tables of a step, as rows to build.
+/// The face-point table: row `f` is the vertices of face `f` in order, each of weight
+/// `1 / n` ([`LevelRows::face`]), so its offsets and indices are the parent's face lists,
+/// copied rather than formed row by row.
+fn face_table(p: &Topology) -> StencilTable {
+    let nf = p.num_faces();
+    let b = par::bounds(nf);
+    let mut weights = vec![0f32; p.num_corners()];
+    let start = |f: usize| p.face_offsets[f] as usize;
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut weights, &b, start))
+        .for_each(|(r, wo)| {
+            let base = start(r.start);
+            for f in r {
+                let (s, e) = (start(f), start(f + 1));
+                wo[s - base..e - base].fill(1.0 / (e - s) as f32);
+            }
+        });
+    StencilTable {
+        offsets: p.face_offsets.clone(),
+        indices: p.face_verts.clone(),
+        weights,
+        num_inputs: p.num_vertices(),
+    }
+}
+
+/// The vertex or edge table of a step, as rows to build.
 #[derive(Debug, Clone, Copy)]
 enum RowKind<'a> {
-    Face(LevelRows<'a>),
     Vertex(LevelRows<'a>),
     Edge(LevelRows<'a>),
 }
@@ -186,7 +211,6 @@ impl RowKind<'_> {
     #[inline]
     fn len(&self, i: usize) -> Option<usize> {
         match self {
-            RowKind::Face(r) => Some(r.parent().face_size(i)),
             RowKind::Vertex(r) => r.vertex_len(i),
             RowKind::Edge(r) => r.edge_len(i),
         }
@@ -195,7 +219,6 @@ impl RowKind<'_> {
     #[inline]
     fn row<W: Real>(&self, i: usize, s: &mut Scratch<W>, add: &mut impl FnMut(u32, W)) {
         match self {
-            RowKind::Face(r) => r.face(i, add),
             RowKind::Vertex(r) => r.vertex(i, s, add),
             RowKind::Edge(r) => r.edge(i, add),
         }
@@ -331,7 +354,7 @@ pub(crate) fn level_stencils_with<W: Real>(
     let inputs = nv + nf;
     LevelStencils {
         num_parent_vertices: nv,
-        face: build_direct(nf, nv, RowKind::Face(rows)),
+        face: face_table(p),
         vertex: build_direct(nv, inputs, RowKind::Vertex(rows)),
         edge: build_direct(ne, inputs, RowKind::Edge(rows)),
     }
