@@ -177,10 +177,10 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
 /// The face-point table: row `f` is the vertices of face `f` in order, each of weight
 /// `1 / n` ([`LevelRows::face`]), so its offsets and indices are the parent's face lists,
 /// copied rather than formed row by row.
-fn face_table(p: &Topology) -> StencilTable {
+fn face_table<W: Real>(p: &Topology) -> StencilTable<W> {
     let nf = p.num_faces();
     let b = par::bounds(nf);
-    let mut weights = vec![0f32; p.num_corners()];
+    let mut weights = vec![W::ZERO; p.num_corners()];
     let start = |f: usize| p.face_offsets[f] as usize;
     par::ranges(&b)
         .into_par_iter()
@@ -189,7 +189,7 @@ fn face_table(p: &Topology) -> StencilTable {
             let base = start(r.start);
             for f in r {
                 let (s, e) = (start(f), start(f + 1));
-                wo[s - base..e - base].fill(1.0 / (e - s) as f32);
+                wo[s - base..e - base].fill(W::ONE / W::from_f64((e - s) as f64));
             }
         });
     StencilTable {
