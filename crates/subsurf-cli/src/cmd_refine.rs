@@ -1,6 +1,8 @@
-//! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
+//! `subsurf refine`: uniform subdivision to a level, written as OBJ, PLY, glTF or USD (a USD
+//! stage refines every mesh prim, or `--prim`, and is written back whole).
 
 use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
+use crate::usd_stage::{is_usd, read_stage, select};
 use anyhow::Context as _;
 use std::path::PathBuf;
 use subsurf::refine::refine_once_mesh;
@@ -9,13 +11,14 @@ use subsurf::{FVarLinearInterpolation, FaceVarying, RefineOptions, Refiner, Topo
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
 pub struct RefineArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
-    /// from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf, .glb, or a USD stage (.usda,
+    /// .usdc, .usd, .usdz); `-` reads OBJ, PLY or GLB from standard input.
     pub input: PathBuf,
     /// Number of refinement steps.
     #[arg(short, long, default_value_t = 2)]
     pub level: usize,
-    /// Output file, format by extension: .obj (with the remaining crease tags), .ply or .glb;
+    /// Output file, format by extension: .obj (with the remaining crease tags), .ply, .glb, or
+    /// .usda/.usdc/.usdz (the input stage with its mesh prims refined, subdivisionScheme none);
     /// `-` writes standard output (`--format obj|ply|glb`, OBJ by default).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -65,24 +68,84 @@ impl From<UvInterp> for FVarLinearInterpolation {
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
-    let mesh = a.scheme.read(&a.input)?;
-    let topo = Topology::new(&mesh)?;
-    // The last level's full topology is only read by the limit and face-varying refinement.
-    let options = RefineOptions {
-        full_topology_in_last_level: a.limit || mesh.uvs.is_some(),
-    };
     let ctx = match a.backend {
         Backend::Cpu => None,
         Backend::Gpu => Some(gpu_context()?),
     };
+    if is_usd(&a.input) {
+        return run_stage(a, ctx.as_ref());
+    }
+    let mesh = a.scheme.read(&a.input)?;
+    let out = refine_mesh(a, &mesh, ctx.as_ref())?;
+    finish(a, &mesh, out)
+}
+
+/// A USD stage: every mesh prim (or `--prim`) refined in place, the stage written back with
+/// its other prims, or the one refined mesh written in another format.
+fn run_stage(a: &RefineArgs, ctx: Option<&subsurf_gpu::GpuContext>) -> anyhow::Result<()> {
+    let mut stage = read_stage(&a.input)?;
+    let prims = select(&stage, &a.input, a.scheme.prim.as_deref())?;
+    let usd_out = is_usd(&a.output);
+    anyhow::ensure!(
+        usd_out || prims.len() == 1,
+        "{}: {} mesh prims; write a USD stage (-o out.usda) or choose one with --prim",
+        a.input.display(),
+        prims.len()
+    );
+    for p in prims {
+        if !p.subdivide {
+            crate::say!("{}: subdivisionScheme none, kept as it is", p.path);
+            continue;
+        }
+        let mut mesh = p.mesh;
+        a.scheme.apply(&mut mesh);
+        let out = match refine_mesh(a, &mesh, ctx) {
+            Ok(out) => out,
+            // A stage may hold meshes of a scheme this build does not refine: kept, said.
+            Err(e) if usd_out && mesh.options.scheme == subsurf::Scheme::Loop => {
+                crate::say!("{}: kept as it is ({e:#})", p.path);
+                continue;
+            }
+            Err(e) => return Err(e.context(format!("refining {}", p.path))),
+        };
+        crate::say!(
+            "{}: refined {} faces to level {}: {} vertices, {} faces",
+            p.path,
+            mesh.num_faces(),
+            a.level,
+            out.positions.len(),
+            out.num_faces()
+        );
+        if !usd_out {
+            return finish(a, &mesh, out);
+        }
+        stage.set_mesh(&p.path, &out, true)?;
+    }
+    stage
+        .write_path(&a.output)
+        .with_context(|| format!("writing {}", a.output.display()))?;
+    crate::say!("-> {}", shown(&a.output, true));
+    Ok(())
+}
+
+/// One mesh refined as the arguments ask.
+fn refine_mesh(
+    a: &RefineArgs,
+    mesh: &subsurf::Mesh,
+    ctx: Option<&subsurf_gpu::GpuContext>,
+) -> anyhow::Result<subsurf::Mesh> {
+    let topo = Topology::new(mesh)?;
+    // The last level's full topology is only read by the limit and face-varying refinement.
+    let options = RefineOptions {
+        full_topology_in_last_level: a.limit || mesh.uvs.is_some(),
+    };
     if ctx.is_none() && !options.full_topology_in_last_level {
         // Positions only, once: no stencil table kept, each parent level dropped as soon as
         // its child exists (bit-identical to the stencil path, about half its peak memory).
-        let out = refine_once_mesh(topo, a.level, &mesh.positions, options)?;
-        return finish(a, &mesh, out);
+        return Ok(refine_once_mesh(topo, a.level, &mesh.positions, options)?);
     }
     let refiner = Refiner::with_options(topo, a.level, options)?;
-    let positions = match &ctx {
+    let positions = match ctx {
         None if a.limit => refiner.limit(&refiner.refine_positions(&mesh.positions)),
         None => refiner.refine_positions(&mesh.positions),
         // Refinement and the limit step on the GPU, read back once.
@@ -107,7 +170,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
             .uv_interp
             .map_or(mesh.options.fvar_interpolation, Into::into);
         let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-        let last = match &ctx {
+        let last = match ctx {
             None => {
                 let mut last = fvar.refine(&fv.values)?.pop().expect("base level present");
                 if a.limit {
@@ -140,12 +203,21 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         out.options.fvar_interpolation = mode;
         out.uvs = Some(last);
     }
-    finish(a, &mesh, out)
+    Ok(out)
 }
 
 /// Writes the refined mesh and reports what was made.
 fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::Result<()> {
-    write_mesh(&a.output, &out, None)?;
+    if is_usd(&a.output) {
+        // A refined mesh in USD is a polygon mesh (subdivisionScheme none).
+        let mut stage = subsurf::io::usd::Stage::from_mesh(&out);
+        stage.set_mesh("/Mesh", &out, true)?;
+        stage
+            .write_path(&a.output)
+            .with_context(|| format!("writing {}", a.output.display()))?;
+    } else {
+        write_mesh(&a.output, &out, None)?;
+    }
     crate::say!(
         "refined {} faces to level {}: {} vertices, {} faces -> {}",
         mesh.num_faces(),

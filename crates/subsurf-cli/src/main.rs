@@ -12,6 +12,7 @@ mod cmd_refine;
 mod cmd_render;
 mod common;
 mod progress;
+mod usd_stage;
 
 use clap::{Parser, Subcommand};
 
