@@ -9,8 +9,8 @@ use subsurf::Topology;
 /// Print counts, histograms, features and problems of a mesh.
 #[derive(Debug, clap::Args)]
 pub struct InfoArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
-    /// from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf, .glb, or a USD stage (its mesh
+    /// prims listed); `-` reads OBJ, PLY, GLB or USD from standard input.
     pub input: PathBuf,
     /// Print JSON instead of text.
     #[arg(long)]
@@ -46,9 +46,64 @@ struct Info {
     all_quads: bool,
     bbox_min: [f32; 3],
     bbox_max: [f32; 3],
+    /// USD input: the stage's mesh prims.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    prims: Option<Vec<PrimInfo>>,
+}
+
+/// One mesh prim of a USD stage.
+#[derive(Debug, serde::Serialize)]
+struct PrimInfo {
+    path: String,
+    vertices: usize,
+    faces: usize,
+    scheme: String,
+}
+
+/// The mesh prims of a USD stage; printed (text) when they are several and none is chosen.
+fn usd_prims(a: &InfoArgs) -> anyhow::Result<(Vec<PrimInfo>, bool)> {
+    let stage = crate::usd_stage::read_stage(&a.input)?;
+    let meshes = stage.meshes()?;
+    let prims: Vec<PrimInfo> = meshes
+        .iter()
+        .map(|m| PrimInfo {
+            path: m.path.clone(),
+            vertices: m.mesh.num_vertices(),
+            faces: m.mesh.num_faces(),
+            scheme: if m.subdivide {
+                format!("{:?}", m.mesh.options.scheme)
+            } else {
+                "None".into()
+            },
+        })
+        .collect();
+    let whole = prims.len() == 1 || a.scheme.prim.is_some() || a.scheme.flatten;
+    Ok((prims, whole))
 }
 
 pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
+    let mut prims = None;
+    if crate::usd_stage::is_usd(&a.input) {
+        let (list, whole) = usd_prims(a)?;
+        if !whole {
+            if a.json {
+                let out =
+                    serde_json::json!({ "file": a.input.display().to_string(), "prims": list });
+                println!("{}", serde_json::to_string_pretty(&out)?);
+            } else {
+                println!("file              {}", a.input.display());
+                println!("mesh prims        {} (--prim PATH for one)", list.len());
+                for p in &list {
+                    println!(
+                        "  {}  {} vertices, {} faces, scheme {}",
+                        p.path, p.vertices, p.faces, p.scheme
+                    );
+                }
+            }
+            return Ok(());
+        }
+        prims = Some(list);
+    }
     let mesh = a.scheme.read(&a.input)?;
     let t = Topology::new(&mesh)?;
     let mut face_sizes = BTreeMap::new();
@@ -96,6 +151,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
         all_quads: t.is_all_quads(),
         bbox_min: lo,
         bbox_max: hi,
+        prims,
     };
     if a.json {
         println!("{}", serde_json::to_string_pretty(&info)?);
@@ -148,5 +204,11 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
         "bounding box      {:?} .. {:?}",
         info.bbox_min, info.bbox_max
     );
+    for p in info.prims.iter().flatten() {
+        println!(
+            "mesh prim         {}  {} vertices, {} faces, scheme {}",
+            p.path, p.vertices, p.faces, p.scheme
+        );
+    }
     Ok(())
 }

@@ -12,8 +12,8 @@ use subsurf::{Mesh, Topology};
 /// `limit` and `eval`.
 #[derive(Debug, clap::Args)]
 pub struct SurfaceArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
-    /// from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf, .glb or USD (.usda, .usdc, .usdz;
+    /// one mesh prim, or `--prim`); `-` reads OBJ, PLY or GLB from standard input.
     pub input: PathBuf,
     /// Isolation level of extraordinary and irregular features (0..=10).
     #[arg(long, default_value_t = 4)]

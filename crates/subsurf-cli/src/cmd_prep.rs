@@ -17,7 +17,7 @@ use subsurf::Mesh;
 /// Arguments of `subsurf prep`.
 #[derive(clap::Args, Debug, Clone)]
 pub struct PrepArgs {
-    /// Input mesh (.obj, .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB from standard input): a
+    /// Input mesh (.obj, .ply, .gltf, .glb, or USD with one mesh prim; `-` reads OBJ, PLY or GLB from standard input): a
     /// closed, oriented quad mesh.
     pub input: PathBuf,
     /// Samples per patch side of the tessellation (>= 2).

@@ -1,21 +1,25 @@
-//! `subsurf refine`: uniform subdivision to a level, written as OBJ or PLY.
+//! `subsurf refine`: uniform subdivision to a level, written as OBJ, PLY, glTF or USD (a USD
+//! stage refines every mesh prim, or `--prim`, and is written back whole).
 
 use crate::cmd_limit::surface_backend;
 use crate::common::{check_mesh_output, shown, write_mesh, Backend, SchemeArgs};
+use crate::usd_stage::{is_usd, read_stage, select};
+use anyhow::Context as _;
 use std::path::PathBuf;
-use subsurf::surface::refine_mesh;
+use subsurf::surface::{self, refine_mesh};
 use subsurf::FVarLinearInterpolation;
 
 /// Refine a mesh uniformly.
 #[derive(Debug, clap::Args)]
 pub struct RefineArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
-    /// from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf, .glb, or a USD stage (.usda,
+    /// .usdc, .usd, .usdz); `-` reads OBJ, PLY or GLB from standard input.
     pub input: PathBuf,
     /// Number of refinement steps.
     #[arg(short, long, default_value_t = 2)]
     pub level: usize,
-    /// Output file, format by extension: .obj (with the remaining crease tags), .ply or .glb;
+    /// Output file, format by extension: .obj (with the remaining crease tags), .ply, .glb, or
+    /// .usda/.usdc/.usdz (the input stage with its mesh prims refined, subdivisionScheme none);
     /// `-` writes standard output (`--format obj|ply|glb`, OBJ by default).
     #[arg(short, long)]
     pub output: PathBuf,
@@ -65,24 +69,86 @@ impl From<UvInterp> for FVarLinearInterpolation {
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
-    let mut mesh = a.scheme.read(&a.input)?;
+    let backend = surface_backend(a.backend)?;
+    if is_usd(&a.input) {
+        return run_stage(a, backend.as_ref());
+    }
+    let mesh = a.scheme.read(&a.input)?;
+    let out = refine_one(a, mesh.clone(), backend.as_ref())?;
+    finish(a, &mesh, out)
+}
+
+/// A USD stage: every mesh prim (or `--prim`) refined in place, the stage written back with
+/// its other prims, or the one refined mesh written in another format.
+fn run_stage(a: &RefineArgs, backend: &dyn surface::Backend) -> anyhow::Result<()> {
+    let mut stage = read_stage(&a.input)?;
+    let prims = select(&stage, &a.input, a.scheme.prim.as_deref())?;
+    let usd_out = is_usd(&a.output);
+    anyhow::ensure!(
+        usd_out || prims.len() == 1,
+        "{}: {} mesh prims; write a USD stage (-o out.usda) or choose one with --prim",
+        a.input.display(),
+        prims.len()
+    );
+    for p in prims {
+        if !p.subdivide {
+            crate::say!("{}: subdivisionScheme none, kept as it is", p.path);
+            continue;
+        }
+        let mut mesh = p.mesh;
+        a.scheme.apply(&mut mesh);
+        let out =
+            refine_one(a, mesh.clone(), backend).with_context(|| format!("refining {}", p.path))?;
+        crate::say!(
+            "{}: refined {} faces to level {}: {} vertices, {} faces",
+            p.path,
+            mesh.num_faces(),
+            a.level,
+            out.positions.len(),
+            out.num_faces()
+        );
+        if !usd_out {
+            return finish(a, &mesh, out);
+        }
+        stage.set_mesh(&p.path, &out, true)?;
+    }
+    stage
+        .write_path(&a.output)
+        .with_context(|| format!("writing {}", a.output.display()))?;
+    crate::say!("-> {}", shown(&a.output, true));
+    Ok(())
+}
+
+/// One mesh refined as the arguments ask (the library's `surface::refine_mesh`).
+fn refine_one(
+    a: &RefineArgs,
+    mut mesh: subsurf::Mesh,
+    backend: &dyn surface::Backend,
+) -> anyhow::Result<subsurf::Mesh> {
     if mesh.options.scheme == subsurf::Scheme::Loop && mesh.uvs.take().is_some() {
         crate::say!("note: UVs dropped: face-varying Loop refinement is not implemented");
     }
-    let backend = surface_backend(a.backend)?;
-    let out = refine_mesh(
+    Ok(refine_mesh(
         &mesh,
         a.level,
         a.limit,
         a.uv_interp.map(Into::into),
-        backend.as_ref(),
-    )?;
-    finish(a, &mesh, out)
+        backend,
+    )?)
 }
 
 /// Writes the refined mesh and reports what was made.
 fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::Result<()> {
-    write_mesh(&a.output, &out, None)?;
+    if is_usd(&a.output) {
+        // A refined mesh in USD is a polygon mesh (subdivisionScheme none).
+        let mut stage = subsurf::io::usd::Stage::from_mesh(&out);
+        stage.set_mesh("/Mesh", &out, true)?;
+        stage
+            .write_path(&a.output)
+            .with_context(|| format!("writing {}", a.output.display()))?;
+    } else {
+        write_mesh(&a.output, &out, None)?;
+    }
     crate::say!(
         "refined {} faces to level {}: {} vertices, {} faces -> {}",
         mesh.num_faces(),

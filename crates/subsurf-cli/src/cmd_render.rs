@@ -99,8 +99,9 @@ pub enum FitArg {
 /// Render a subdivision surface to PNG.
 #[derive(Debug, clap::Args)]
 pub struct RenderArgs {
-    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf or .glb; `-` reads OBJ, PLY or GLB
-    /// from standard input.
+    /// Input mesh: .obj (with OpenSubdiv's tags), .ply, .gltf, .glb or a USD stage (.usda,
+    /// .usdc, .usdz: every mesh prim placed by its transforms, or `--prim`); `-` reads OBJ,
+    /// PLY or GLB from standard input.
     pub input: PathBuf,
     /// Output image (.png; `-` writes the PNG to standard output).
     #[arg(short, long)]
@@ -286,7 +287,12 @@ pub fn prepare_spec(
     scheme: &SchemeArgs,
     progress: &Progress,
 ) -> anyhow::Result<RenderMesh> {
-    let mut mesh = read_mesh_with(&spec.path, scheme.flatten)?;
+    // A USD stage renders whole: every mesh prim (or --prim) placed by its transforms.
+    let mut mesh = if crate::usd_stage::is_usd(&spec.path) {
+        crate::usd_stage::read_mesh(&spec.path, scheme.prim.as_deref(), true)?
+    } else {
+        read_mesh_with(&spec.path, scheme.flatten)?
+    };
     scheme.apply(&mut mesh);
     build(&mesh, spec, look, progress)
 }

@@ -22,11 +22,15 @@ pub struct SchemeArgs {
     /// Triangle rule for Catmull-Clark.
     #[arg(long, value_enum)]
     pub triangles: Option<TriArg>,
-    /// glTF input: apply node transforms and merge every mesh of the scene in world space
-    /// (default: each mesh in its own coordinates, an error when the scene places several
-    /// meshes under different transforms).
+    /// glTF and USD input: apply node (prim) transforms and merge every mesh of the scene
+    /// in world space (default: each mesh in its own coordinates, an error when the scene
+    /// places several meshes under different transforms).
     #[arg(long)]
     pub flatten: bool,
+    /// USD input: the mesh prim to use (e.g. `/World/Body`; default: the stage's only mesh
+    /// prim; `refine` and `render` default to all of them).
+    #[arg(long)]
+    pub prim: Option<String>,
 }
 
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
@@ -58,7 +62,11 @@ pub enum TriArg {
 impl SchemeArgs {
     /// Reads a mesh file and applies the overrides.
     pub fn read(&self, path: &Path) -> anyhow::Result<Mesh> {
-        let mut mesh = read_mesh_with(path, self.flatten)?;
+        let mut mesh = if crate::usd_stage::is_usd(path) {
+            crate::usd_stage::read_mesh(path, self.prim.as_deref(), self.flatten)?
+        } else {
+            read_mesh_with(path, self.flatten)?
+        };
         self.apply(&mut mesh);
         Ok(mesh)
     }
@@ -144,7 +152,7 @@ pub fn check_mesh_output(path: &Path) -> anyhow::Result<()> {
     let format = Format::from_path(path).with_context(|| format!("output {}", path.display()))?;
     anyhow::ensure!(
         format.writable(),
-        "output {}: subsurf writes glTF as .glb, not .gltf",
+        "output {}: subsurf writes glTF as .glb, not .gltf, and USD as .usda or .usdz, not .usdc",
         path.display()
     );
     check_folder(path)

@@ -13,6 +13,7 @@ mod cmd_render;
 mod common;
 mod progress;
 mod tess_args;
+mod usd_stage;
 
 use clap::{Parser, Subcommand};
 

@@ -201,6 +201,19 @@ pub enum Error {
         /// What is wrong with it.
         reason: String,
     },
+    /// A malformed USD file: the file, the prim and the attribute at fault (empty when the
+    /// fault is in the file as a whole), and what is wrong there.
+    #[error("USD {file}{}{prim}{}{attribute}: {reason}", if prim.is_empty() { "" } else { ": " }, if attribute.is_empty() { "" } else { "." })]
+    Usd {
+        /// The file (as given to the reader; `<bytes>` when read from memory).
+        file: String,
+        /// The prim path, e.g. `/World/Body`.
+        prim: String,
+        /// The attribute name, e.g. `faceVertexIndices`.
+        attribute: String,
+        /// What is wrong with it.
+        reason: String,
+    },
     /// Bad mesh content.
     #[error(transparent)]
     Mesh(#[from] MeshError),

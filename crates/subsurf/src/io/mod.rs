@@ -7,8 +7,11 @@
 //! - [`gltf_read`]: glTF 2.0 in (`.gltf` with its buffers, `.glb`): triangle primitives
 //!   welded into one cage, `TEXCOORD_0` as face-varying UVs.
 //!
+//! - [`usd`]: USD stages (`.usda`, `.usdc`, `.usdz`) in and out, `UsdGeomMesh` prims.
+//!
 //! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault
-//! ([`Error::Gltf`] with the JSON path at fault for glTF); no input makes a reader panic.
+//! ([`Error::Gltf`] with the JSON path at fault for glTF, [`Error::Usd`] with the prim and
+//! attribute for USD); no input makes a reader panic.
 //!
 //! # Example
 //!
@@ -48,6 +51,7 @@ pub mod gltf_read;
 pub mod obj;
 mod obj_tags;
 pub mod ply;
+pub mod usd;
 
 use crate::error::{Error, MeshError, Result};
 use crate::mesh::Mesh;
@@ -64,6 +68,9 @@ pub enum Format {
     Glb,
     /// glTF 2.0 JSON (`.gltf`, buffers in files next to it or `data:` URIs), read only.
     Gltf,
+    /// A USD stage (`.usda`, `.usdc`, `.usd`, `.usdz`): one mesh prim read (see
+    /// [`usd::Stage`] for stages of several), one written (`.usda`, `.usdz`).
+    Usd(usd::UsdFormat),
 }
 
 impl Format {
@@ -79,11 +86,14 @@ impl Format {
             Some("ply") => Ok(Format::Ply),
             Some("glb") => Ok(Format::Glb),
             Some("gltf") => Ok(Format::Gltf),
+            Some(_) if usd::format_of_path(path).is_some() => {
+                Ok(Format::Usd(usd::format_of_path(path).expect("checked")))
+            }
             Some(other) => Err(Error::Unsupported(format!(
-                "mesh file extension '.{other}' (known: .obj, .ply, .glb, .gltf)"
+                "mesh file extension '.{other}' (known: .obj, .ply, .glb, .gltf, .usda, .usdc, .usd, .usdz)"
             ))),
             None => Err(Error::Unsupported(format!(
-                "mesh file '{}' has no extension (known: .obj, .ply, .glb, .gltf)",
+                "mesh file '{}' has no extension (known: .obj, .ply, .glb, .gltf, .usda, .usdc, .usd, .usdz)",
                 path.display()
             ))),
         }
@@ -91,7 +101,8 @@ impl Format {
 }
 
 impl Format {
-    /// The format named `name` (`obj`, `ply`, `glb` or `gltf`, case-insensitive), as a
+    /// The format named `name` (`obj`, `ply`, `glb`, `gltf`, `usda`, `usdc` or `usdz`,
+    /// case-insensitive), as a
     /// command line's `--format` gives it.
     pub fn from_name(name: &str) -> Result<Format> {
         match name.to_ascii_lowercase().as_str() {
@@ -99,16 +110,22 @@ impl Format {
             "ply" => Ok(Format::Ply),
             "glb" => Ok(Format::Glb),
             "gltf" => Ok(Format::Gltf),
+            "usda" => Ok(Format::Usd(usd::UsdFormat::Usda)),
+            "usdc" => Ok(Format::Usd(usd::UsdFormat::Usdc)),
+            "usdz" => Ok(Format::Usd(usd::UsdFormat::Usdz)),
             other => Err(Error::Unsupported(format!(
-                "mesh format '{other}' (known: obj, ply, glb, gltf)"
+                "mesh format '{other}' (known: obj, ply, glb, gltf, usda, usdc, usdz)"
             ))),
         }
     }
 
-    /// The format of a file's bytes, by their magic: GLB (`glTF`), PLY (`ply`), else OBJ
-    /// (which has none). A `.gltf` JSON file cannot be told from text and is never returned.
+    /// The format of a file's bytes, by their magic: GLB (`glTF`), PLY (`ply`), USD
+    /// (`#usda`, `PXR-USDC`, a zip), else OBJ (which has none). A `.gltf` JSON file cannot
+    /// be told from text and is never returned.
     pub fn sniff(bytes: &[u8]) -> Format {
-        if gltf_read::is_glb(bytes) {
+        if let Some(u) = usd::UsdFormat::sniff(bytes) {
+            Format::Usd(u)
+        } else if gltf_read::is_glb(bytes) {
             Format::Glb
         } else if bytes.starts_with(b"ply") {
             Format::Ply
@@ -117,9 +134,9 @@ impl Format {
         }
     }
 
-    /// Whether [`write_to`] can write this format (all but `.gltf`).
+    /// Whether [`write_to`] can write this format (all but `.gltf` and `.usdc`).
     pub fn writable(self) -> bool {
-        self != Format::Gltf
+        !matches!(self, Format::Gltf | Format::Usd(usd::UsdFormat::Usdc))
     }
 }
 
@@ -139,6 +156,7 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
         Format::Obj => obj::read(&String::from_utf8_lossy(bytes)),
         Format::Ply => ply::read(bytes),
         Format::Glb | Format::Gltf => Ok(gltf_read::read(bytes, None, &Default::default())?.mesh),
+        Format::Usd(_) => usd::read(bytes, "<bytes>"),
     }
 }
 
@@ -155,6 +173,7 @@ pub fn write_to(
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,
         (Format::Ply, n) => ply::write(mesh, n, w)?,
         (Format::Glb, n) => gltf::write(mesh, n, w)?,
+        (Format::Usd(u), _) => usd::write(mesh, u, w)?,
         (Format::Gltf, _) => {
             return Err(Error::Unsupported(
                 "writing .gltf; subsurf writes binary glTF (.glb)".into(),
@@ -174,6 +193,7 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
         Format::Obj => obj::read_file(path),
         Format::Ply => ply::read_file(path),
         Format::Glb | Format::Gltf => Ok(gltf_read::read_file(path, &Default::default())?.mesh),
+        Format::Usd(_) => Ok(usd::Stage::read_path(path)?.single_mesh()?.mesh),
     }
 }
 
