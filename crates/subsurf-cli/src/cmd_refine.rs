@@ -65,10 +65,7 @@ impl From<UvInterp> for FVarLinearInterpolation {
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
-    let mut mesh = a.scheme.read(&a.input)?;
-    if mesh.options.scheme == subsurf::Scheme::Loop && mesh.uvs.take().is_some() {
-        crate::say!("note: UVs dropped: face-varying Loop refinement is not implemented");
-    }
+    let mesh = a.scheme.read(&a.input)?;
     let backend = surface_backend(a.backend)?;
     let out = refine_mesh(
         &mesh,
