@@ -1,6 +1,7 @@
 //! Propagation of the face-varying value topology to the next level (OpenSubdiv
 //! `Vtr::FVarRefinement`): no re-analysis, only inheritance through the child numbering of
-//! [`super::refine_topology`], and the decay of semi-sharp values into creases.
+//! [`super::refine_topology`] (quad split) or [`super::refine_tri_topology`]
+//! (triangle split), and the decay of semi-sharp values into creases.
 
 use super::fvar_topology::{
     FVarTopology, E_LINEAR, E_MISMATCH, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP,
@@ -11,7 +12,7 @@ use crate::topology::Topology;
 
 impl FVarTopology {
     /// The face-varying topology of the child level `c` of `p` (numbered as
-    /// [`super::refine_topology`] numbers it): values are numbered by child vertex, siblings
+    /// [`super::refine_topology`] or, for Loop, [`super::refine_tri_topology`] numbers it): values are numbered by child vertex, siblings
     /// first by parent sibling (vertex children) or by incident parent face (edge points on a
     /// seam). Tags are inherited, and semi-sharp values whose sharpness has decayed become
     /// creases (OpenSubdiv `FVarRefinement`).

@@ -5,13 +5,14 @@
 //! values of the next, one row per child value, face points expanded so that every row refers
 //! to parent values only:
 //!
-//! - a face point's value is the average of its face's corner values;
+//! - a face point's value is the average of its face's corner values (Loop makes none);
 //! - an edge point off a seam uses the edge's Catmull-Clark mask (smooth, crease or the
-//!   semi-sharp blend), on the values at its ends and the face points of its faces; on a
-//!   seam (or a linear boundary) each of its values is the midpoint of the edge's end values
-//!   in the matching face;
+//!   semi-sharp blend), on the values at its ends and the face points of its faces, or its
+//!   Loop mask, on the values at its ends and the value opposite the edge in each triangle;
+//!   on a seam (or a linear boundary) each of its values is the midpoint of the edge's end
+//!   values in the matching face;
 //! - a vertex child whose values follow the vertex uses the vertex's own mask (the same
-//!   masks as positions, over the values across its edges); otherwise each value is copied
+//!   masks as positions, Catmull-Clark or Loop, over the values across its edges); otherwise each value is copied
 //!   (a corner) or takes the crease rule `3/4 v + 1/8 (a + b)` along the seam, blended with
 //!   the corner by the fractional weight while semi-sharp features decay (DeRose, Kass &
 //!   Truong 1998).
