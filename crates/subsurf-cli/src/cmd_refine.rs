@@ -74,7 +74,7 @@ pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
         return run_stage(a, backend.as_ref());
     }
     let mesh = a.scheme.read(&a.input)?;
-    let out = refine_one(a, mesh.clone(), backend.as_ref())?;
+    let out = refine_one(a, &mesh, backend.as_ref())?;
     finish(a, &mesh, out)
 }
 
@@ -97,8 +97,7 @@ fn run_stage(a: &RefineArgs, backend: &dyn surface::Backend) -> anyhow::Result<(
         }
         let mut mesh = p.mesh;
         a.scheme.apply(&mut mesh);
-        let out =
-            refine_one(a, mesh.clone(), backend).with_context(|| format!("refining {}", p.path))?;
+        let out = refine_one(a, &mesh, backend).with_context(|| format!("refining {}", p.path))?;
         crate::say!(
             "{}: refined {} faces to level {}: {} vertices, {} faces",
             p.path,
@@ -122,14 +121,11 @@ fn run_stage(a: &RefineArgs, backend: &dyn surface::Backend) -> anyhow::Result<(
 /// One mesh refined as the arguments ask (the library's `surface::refine_mesh`).
 fn refine_one(
     a: &RefineArgs,
-    mut mesh: subsurf::Mesh,
+    mesh: &subsurf::Mesh,
     backend: &dyn surface::Backend,
 ) -> anyhow::Result<subsurf::Mesh> {
-    if mesh.options.scheme == subsurf::Scheme::Loop && mesh.uvs.take().is_some() {
-        crate::say!("note: UVs dropped: face-varying Loop refinement is not implemented");
-    }
     Ok(refine_mesh(
-        &mesh,
+        mesh,
         a.level,
         a.limit,
         a.uv_interp.map(Into::into),

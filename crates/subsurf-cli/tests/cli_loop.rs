@@ -61,3 +61,31 @@ fn loop_refuses_a_quad_naming_it() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("face 0 has 4 vertices"), "{err}");
 }
+
+/// A Loop mesh's UVs are refined with it (the library's face-varying Loop refinement, tested
+/// against OpenSubdiv in `osd-ref`), corner for corner, in the mesh's own mode and with
+/// `--uv-interp`.
+#[test]
+fn refine_keeps_loop_uvs() {
+    let input = repo("testdata/shapes/loop_fvar_bound1.obj");
+    let mesh = subsurf::io::read_path(&input).unwrap();
+    let uvs = mesh.uvs.as_ref().expect("shape has UVs");
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    for (flags, mode) in [
+        (vec!["--level", "2"], mesh.options.fvar_interpolation),
+        (
+            vec!["--level", "2", "--uv-interp", "linear"],
+            subsurf::FVarLinearInterpolation::All,
+        ),
+    ] {
+        let want = refiner.refine_uvs(uvs, mode).unwrap().pop().unwrap();
+        let got = refine(&input, &flags, "uvs.obj");
+        let got = got.uvs.expect("refined UVs written");
+        assert_eq!(got.indices.len(), want.indices.len(), "{flags:?}");
+        for (c, (&i, &j)) in got.indices.iter().zip(&want.indices).enumerate() {
+            let (a, b) = (got.values[i as usize], want.values[j as usize]);
+            let d = (a[0] - b[0]).abs().max((a[1] - b[1]).abs());
+            assert!(d <= 1e-6, "{flags:?} corner {c}: {a:?} vs {b:?}");
+        }
+    }
+}

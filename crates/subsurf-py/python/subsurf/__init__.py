@@ -126,7 +126,7 @@ class Mesh:
     corners : (c,) vertices with ``corner_sharpness``, or one (c, 2) array
     holes : face indices
     uvs : (u, 2) float array; ``uv_indices`` one per face corner (default: the face indices)
-    scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only; no UVs or limit surface yet)
+    scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only; no limit surface yet)
     boundary : "none" | "edge-only" | "edge-and-corner"
     crease_method : "uniform" | "chaikin"
     triangles : "catmark" | "smooth"

@@ -3,7 +3,7 @@
 //!
 //! - A value whose topology matches its vertex's (no seam, no boundary treatment) takes the
 //!   vertex's limit mask (smooth, crease or corner rule of its sharpness; Halstead, Kass &
-//!   DeRose 1993), applied to the face-varying values around it: face weights to the value at
+//!   DeRose 1993; Loop's masks under the Loop scheme), applied to the face-varying values around it: face weights to the value at
 //!   the corner opposite the vertex in each face, edge weights to the value across each edge.
 //! - Every other value is a corner (kept as it is: seam corners, semi-sharp values not yet
 //!   decayed) or a crease along its seam, `2/3 v + 1/6 (a + b)` over the values `a`, `b`
@@ -17,6 +17,7 @@ use super::masks::build_rows;
 use super::stencil::StencilTable;
 use crate::options::{FVarLinearInterpolation, Scheme};
 use crate::rules::catmark::limit_mask;
+use crate::rules::r#loop::limit_mask as loop_limit_mask;
 use crate::topology::Topology;
 
 /// Stencils moving each face-varying value of level `t` (value topology `fv`) to the limit.
@@ -60,7 +61,11 @@ pub fn fvar_limit_stencils(t: &Topology, fv: &FVarTopology) -> StencilTable {
         s.pe.clear();
         s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
         let faces = t.vertex_faces(v);
-        limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
+        if t.options.scheme == Scheme::Loop {
+            loop_limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
+        } else {
+            limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
+        }
         for (&w, (&f, &k)) in s
             .mask
             .faces

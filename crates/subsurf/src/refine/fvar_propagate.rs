@@ -1,6 +1,7 @@
 //! Propagation of the face-varying value topology to the next level (OpenSubdiv
 //! `Vtr::FVarRefinement`): no re-analysis, only inheritance through the child numbering of
-//! [`super::refine_topology`], and the decay of semi-sharp values into creases.
+//! [`super::refine_topology`] (quad split) or [`super::refine_tri_topology`]
+//! (triangle split), and the decay of semi-sharp values into creases.
 
 use super::fvar_topology::{
     FVarTopology, E_LINEAR, E_MISMATCH, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP,
@@ -11,13 +12,15 @@ use crate::topology::Topology;
 
 impl FVarTopology {
     /// The face-varying topology of the child level `c` of `p` (numbered as
-    /// [`super::refine_topology`] numbers it): values are numbered by child vertex, siblings
+    /// [`super::refine_topology`] or, for Loop, [`super::refine_tri_topology`] numbers it): values are numbered by child vertex, siblings
     /// first by parent sibling (vertex children) or by incident parent face (edge points on a
     /// seam). Tags are inherited, and semi-sharp values whose sharpness has decayed become
     /// creases (OpenSubdiv `FVarRefinement`).
     pub fn refine(&self, p: &Topology, c: &Topology) -> FVarTopology {
-        let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
+        let (nv, ne) = (p.num_vertices(), p.num_edges());
         let ncv = c.num_vertices();
+        let split_faces = ChildFaces::of(p);
+        let ep = split_faces.first_edge_point;
         let smooth_boundaries = !matches!(self.mode, Mode::All | Mode::Boundaries);
         let dependent = matches!(self.mode, Mode::CornersPlus1 | Mode::CornersPlus2);
         let mut counts = vec![1u32; ncv];
@@ -28,7 +31,7 @@ impl FVarTopology {
         }
         for e in 0..ne {
             if self.edge_tags[e] & E_MISMATCH != 0 {
-                counts[nv + nf + e] = p.edge_faces(e).len().max(1) as u32;
+                counts[ep + e] = p.edge_faces(e).len().max(1) as u32;
             }
         }
         let offsets = crate::topology::offsets_from_counts(&counts);
@@ -45,7 +48,8 @@ impl FVarTopology {
             edge_tags: vec![0; c.num_edges()],
         };
 
-        // Vertex children: same values, same ring, same tags.
+        // Vertex children: same values, same tags; the same ring, but for its order.
+        let mut perm: Vec<u16> = Vec::new();
         for v in 0..nv {
             let n = counts[v] as usize;
             if self.vertex_value_tags(v)[0] & V_MISMATCH == 0 {
@@ -56,15 +60,36 @@ impl FVarTopology {
                 f.vert_value_offsets[v] as usize,
             );
             f.value_tags[co..co + n].copy_from_slice(&self.value_tags[po..po + n]);
-            f.crease_ends[co..co + n].copy_from_slice(&self.crease_ends[po..po + n]);
-            if n > 1 {
-                let (ps, cs) = (
-                    p.vert_face_offsets[v] as usize,
-                    c.vert_face_offsets[v] as usize,
-                );
-                let k = p.vertex_faces(v).len();
-                f.vert_face_siblings[cs..cs + k]
-                    .copy_from_slice(&self.vert_face_siblings[ps..ps + k]);
+            // Each child face takes the sibling of the parent corner it comes from, and span
+            // ends (ring positions) move with the ring: the child's ring follows the parent's
+            // (as OpenSubdiv builds it) except where it was rebuilt from the face lists.
+            let (ps, cs) = (
+                p.vert_face_offsets[v] as usize,
+                c.vert_face_offsets[v] as usize,
+            );
+            let ring = c.vertex_faces(v);
+            let pcorners = p
+                .vertex_faces(v)
+                .iter()
+                .zip(p.vertex_faces_local(v))
+                .map(|(&pf, &k)| p.face_offsets[pf as usize] + k as u32);
+            perm.clear();
+            for (i, pc) in pcorners.enumerate() {
+                let from = |cf: &u32| split_faces.parent_corner(p, *cf) == Some(pc);
+                let j = if ring.get(i).is_some_and(from) {
+                    Some(i)
+                } else {
+                    ring.iter().position(from)
+                };
+                perm.push(j.map_or(i as u16, |j| j as u16));
+                if let (Some(j), true) = (j, n > 1) {
+                    f.vert_face_siblings[cs + j] = self.vert_face_siblings[ps + i];
+                }
+            }
+            let at = |x: u16| perm.get(x as usize).copied().unwrap_or(x);
+            for k in 0..n {
+                let [a, b] = self.crease_ends[po + k];
+                f.crease_ends[co + k] = [at(a), at(b)];
             }
         }
 
@@ -75,7 +100,7 @@ impl FVarTopology {
             if et & (E_MISMATCH | E_LINEAR) == 0 {
                 continue;
             }
-            let cv = nv + nf + e;
+            let cv = ep + e;
             let co = f.vert_value_offsets[cv] as usize;
             let n = counts[cv] as usize;
             f.value_tags[co..co + n].fill(split);
@@ -83,10 +108,9 @@ impl FVarTopology {
             let ring = c.vertex_faces(cv);
             let cs = c.vert_face_offsets[cv] as usize;
             let parent_slot = |cf: u32| -> Option<usize> {
-                faces.iter().rposition(|&pf| {
-                    let r = p.face_offsets[pf as usize]..p.face_offsets[pf as usize + 1];
-                    r.contains(&cf)
-                })
+                faces
+                    .iter()
+                    .rposition(|&pf| split_faces.children(p, pf as usize).contains(&cf))
             };
             if n > 1 {
                 for (i, &cf) in ring.iter().enumerate() {
@@ -95,7 +119,10 @@ impl FVarTopology {
             }
             if smooth_boundaries {
                 for (i, (&pf, &k)) in faces.iter().zip(p.edge_faces_local(e)).enumerate().take(n) {
-                    let (s, size) = (p.face_offsets[pf as usize], p.face_size(pf as usize));
+                    let (s, size) = (
+                        split_faces.children(p, pf as usize).start,
+                        p.face_size(pf as usize),
+                    );
                     let kn = if k as usize + 1 == size {
                         0
                     } else {
@@ -185,6 +212,48 @@ impl FVarTopology {
                     self.value_tags[o + 1] &= !V_DEP_SHARP;
                 }
             }
+        }
+    }
+}
+
+/// Where the children of a parent level live in its child: the index of the first edge point
+/// and the child faces of each parent face, the one at corner `k` first among them at
+/// `start + k`. The quad split makes one face point per face and one child face per corner;
+/// the triangle split (Loop) no face points and four children per triangle, the corner
+/// children first and the middle one last.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ChildFaces {
+    /// Index of the child vertex of parent edge 0.
+    pub first_edge_point: usize,
+    /// Whether the parent is split into triangles (Loop).
+    tri_split: bool,
+}
+
+impl ChildFaces {
+    pub(crate) fn of(p: &Topology) -> ChildFaces {
+        let tri_split = p.options.scheme == crate::options::Scheme::Loop;
+        ChildFaces {
+            first_edge_point: p.num_vertices() + if tri_split { 0 } else { p.num_faces() },
+            tri_split,
+        }
+    }
+
+    /// The parent face corner whose vertex child child face `cf` holds (`None` for the
+    /// middle triangle of a triangle split).
+    pub(crate) fn parent_corner(&self, p: &Topology, cf: u32) -> Option<u32> {
+        if !self.tri_split {
+            return Some(cf);
+        }
+        let (f, k) = (cf / 4, cf % 4);
+        (k < 3).then(|| p.face_offsets[f as usize] + k)
+    }
+
+    /// The child faces of parent face `f`.
+    pub(crate) fn children(&self, p: &Topology, f: usize) -> std::ops::Range<u32> {
+        if self.tri_split {
+            4 * f as u32..4 * f as u32 + 4
+        } else {
+            p.face_offsets[f]..p.face_offsets[f + 1]
         }
     }
 }

@@ -5,20 +5,21 @@
 //! values of the next, one row per child value, face points expanded so that every row refers
 //! to parent values only:
 //!
-//! - a face point's value is the average of its face's corner values;
+//! - a face point's value is the average of its face's corner values (Loop makes none);
 //! - an edge point off a seam uses the edge's Catmull-Clark mask (smooth, crease or the
-//!   semi-sharp blend), on the values at its ends and the face points of its faces; on a
-//!   seam (or a linear boundary) each of its values is the midpoint of the edge's end values
-//!   in the matching face;
+//!   semi-sharp blend), on the values at its ends and the face points of its faces, or its
+//!   Loop mask, on the values at its ends and the value opposite the edge in each triangle;
+//!   on a seam (or a linear boundary) each of its values is the midpoint of the edge's end
+//!   values in the matching face;
 //! - a vertex child whose values follow the vertex uses the vertex's own mask (the same
-//!   masks as positions, over the values across its edges); otherwise each value is copied
+//!   masks as positions, Catmull-Clark or Loop, over the values across its edges); otherwise each value is copied
 //!   (a corner) or takes the crease rule `3/4 v + 1/8 (a + b)` along the seam, blended with
 //!   the corner by the fractional weight while semi-sharp features decay (DeRose, Kass &
 //!   Truong 1998).
 //!
 //! In the `All` mode (and for the bilinear scheme) every rule is linear.
 
-use super::fvar_propagate::span_interior_edges;
+use super::fvar_propagate::{span_interior_edges, ChildFaces};
 use super::fvar_topology::{FVarTopology, V_CREASE, V_DEP_SHARP, V_MISMATCH, V_SEMI_SHARP};
 use super::stencil::StencilTable;
 use super::Refiner;
@@ -27,6 +28,7 @@ use crate::mesh::FaceVarying;
 use crate::options::{FVarLinearInterpolation, Scheme};
 use crate::rules::catmark::edge_mask;
 use crate::rules::crease::fractional_weight_at_vertex;
+use crate::rules::r#loop::edge_mask as loop_edge_mask;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
@@ -129,8 +131,10 @@ fn vertex_rows(
     s: &mut Scratch,
     out: &mut Part,
 ) {
-    let (nv, nf) = (p.num_vertices(), p.num_faces());
+    let nv = p.num_vertices();
+    let ep = ChildFaces::of(p).first_edge_point;
     let opts = p.options;
+    let tri_split = opts.scheme == Scheme::Loop;
     let linear = pf.mode == FVarLinearInterpolation::All || opts.scheme == Scheme::Bilinear;
     let add_face = |b: &mut Row, f: usize, w: f64| {
         let (st, n) = (p.face_offsets[f] as usize, p.face_size(f));
@@ -150,6 +154,18 @@ fn vertex_rows(
             b.end_row(out);
         } else if matches && linear {
             b.add(pvals[0], 1.0);
+            b.end_row(out);
+        } else if matches && tri_split {
+            let mask = super::loop_masks::loop_vertex_mask(p, c, v, &mut s.masks);
+            if !mask.edges.is_empty() {
+                pf.vertex_edge_values(p, v, &mut s.edge_values);
+                for (&x, &w) in s.edge_values.iter().zip(&mask.edges) {
+                    if w != 0.0 {
+                        b.add(x, w);
+                    }
+                }
+            }
+            b.add(pvals[0], mask.vertex);
             b.end_row(out);
         } else if matches {
             let faces = p.vertex_faces(v);
@@ -194,17 +210,28 @@ fn vertex_rows(
                 b.end_row(out);
             }
         }
-    } else if cv < nv + nf {
+    } else if cv < ep {
         add_face(b, cv - nv, 1.0);
         b.end_row(out);
     } else {
-        let e = cv - nv - nf;
+        let e = cv - ep;
         let faces = p.edge_faces(e);
         if matches {
             let ends = pf.edge_face_values(p, e, 0);
             if linear {
                 b.add(ends[0], 0.5);
                 b.add(ends[1], 0.5);
+            } else if tri_split {
+                // Loop: the "face" weights go to the value opposite the edge in each face.
+                let m = loop_edge_mask(p.edge_sharpness[e], c.vert_rule[cv], faces.len());
+                b.add(ends[0], m.vertex);
+                b.add(ends[1], m.vertex);
+                if m.opposite != 0.0 {
+                    for (&f, &k) in faces.iter().zip(p.edge_faces_local(e)) {
+                        let (o, n) = (p.face_offsets[f as usize] as usize, p.face_size(f as usize));
+                        b.add(pf.corner_values[o + (k as usize + 2) % n], m.opposite);
+                    }
+                }
             } else {
                 let tri = [
                     faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
@@ -315,11 +342,6 @@ impl Refiner {
         num_values: usize,
         mode: FVarLinearInterpolation,
     ) -> Result<FVarRefinement> {
-        if self.levels[0].options.scheme == crate::options::Scheme::Loop {
-            return Err(crate::error::Error::Unsupported(
-                "face-varying data of the Loop scheme".into(),
-            ));
-        }
         let mut levels = vec![FVarTopology::new(
             &self.levels[0],
             indices,

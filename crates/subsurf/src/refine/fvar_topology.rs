@@ -22,11 +22,12 @@
 //!   semi-sharp; `CornersPlus2` also sharpens both when one is a single-face corner and
 //!   sharpens darts.
 //!
-//! Values of vertices with no seam or boundary treatment keep the vertex's own Catmull-Clark
-//! rule. Child levels are not re-analysed: the classification is propagated through the
-//! child numbering of [`super::refine_topology`] (vertex children keep their parent's values
-//! and ring order; an edge point on a seam gets one value per incident face; face points get
-//! one value).
+//! Values of vertices with no seam or boundary treatment keep the vertex's own rule of the
+//! scheme (Catmull-Clark or Loop). Child levels are not re-analysed: the classification is
+//! propagated through the child numbering of [`super::refine_topology`] or
+//! [`super::refine_tri_topology`] (vertex children keep their parent's values, each child
+//! face the sibling of the parent corner it comes from; an edge point on a seam gets one
+//! value per incident face; face points get one value).
 
 use crate::error::{MeshError, Result};
 use crate::options::FVarLinearInterpolation as Mode;

@@ -15,48 +15,19 @@ use crate::topology::Topology;
 /// [`super::loop_level::refine_tri_topology`] builds it): children of vertices, then edge
 /// points.
 pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
-    let (nv, ne, nc) = (p.num_vertices(), p.num_edges(), p.num_corners());
+    let (nv, ne) = (p.num_vertices(), p.num_edges());
     let vertex = build_rows(nv, nv, |v, b, s: &mut Scratch| {
-        let pe = p.vertex_edges(v);
-        let nfaces = p.vertex_faces(v).len();
-        if pe.is_empty() {
+        if p.vertex_edges(v).is_empty() {
             b.add(v as u32, 1.0);
             return;
         }
-        let pr = p.vert_rule[v];
-        if (pr == rule::SMOOTH || pr == rule::DART) && nfaces == pe.len() {
-            let (vw, ew) = smooth_weights(nfaces);
-            for &e in pe {
-                b.add(p.other_vertex(e as usize, v as u32), ew);
-            }
-            b.add(v as u32, vw);
-            return;
-        }
-        s.pe.clear();
-        s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
-        let ce_f: Vec<f32> = (0..pe.len())
-            .map(|i| {
-                c.edge_sharpness
-                    [nc + 2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]
-            })
-            .collect();
-        let mut scratch = crate::rules::catmark::VertexMask::default();
-        vertex_mask(
-            nfaces,
-            [pr, c.vert_rule[v]],
-            [p.vert_sharpness[v], c.vert_sharpness[v]],
-            &s.pe,
-            &ce_f,
-            p.options.crease_method,
-            &mut s.mask,
-            &mut scratch,
-        );
-        for (&e, &w) in pe.iter().zip(&s.mask.edges) {
+        let mask = loop_vertex_mask(p, c, v, s);
+        for (&e, &w) in p.vertex_edges(v).iter().zip(&mask.edges) {
             if w != 0.0 {
                 b.add(p.other_vertex(e as usize, v as u32), w);
             }
         }
-        b.add(v as u32, s.mask.vertex);
+        b.add(v as u32, mask.vertex);
     });
     let edge = build_rows(ne, nv, |e, b, _| {
         let ev = p.edge_verts[e];
@@ -82,6 +53,48 @@ pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
         vertex,
         edge,
     }
+}
+
+/// The Loop vertex-point mask of parent vertex `v` of the triangle level `p` (edge weights in
+/// ring order, applying to the far end of each edge; no face weights), from the sharpness and
+/// rules of `p` and its child `c`. `v` must have edges.
+pub(super) fn loop_vertex_mask<'s>(
+    p: &Topology,
+    c: &Topology,
+    v: usize,
+    s: &'s mut Scratch,
+) -> &'s crate::rules::catmark::VertexMask {
+    let nc = p.num_corners();
+    let pe = p.vertex_edges(v);
+    let nfaces = p.vertex_faces(v).len();
+    let pr = p.vert_rule[v];
+    if (pr == rule::SMOOTH || pr == rule::DART) && nfaces == pe.len() {
+        let (vw, ew) = smooth_weights(nfaces);
+        s.mask.vertex = vw;
+        s.mask.edges.clear();
+        s.mask.edges.resize(pe.len(), ew);
+        s.mask.faces.clear();
+        return &s.mask;
+    }
+    s.pe.clear();
+    s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
+    let ce_f: Vec<f32> = (0..pe.len())
+        .map(|i| {
+            c.edge_sharpness[nc + 2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]
+        })
+        .collect();
+    let mut scratch = crate::rules::catmark::VertexMask::default();
+    vertex_mask(
+        nfaces,
+        [pr, c.vert_rule[v]],
+        [p.vert_sharpness[v], c.vert_sharpness[v]],
+        &s.pe,
+        &ce_f,
+        p.options.crease_method,
+        &mut s.mask,
+        &mut scratch,
+    );
+    &s.mask
 }
 
 /// Stencils moving each vertex of the Loop level `t` to its limit position (OpenSubdiv
