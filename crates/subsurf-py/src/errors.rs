@@ -1,6 +1,6 @@
 //! Library errors as the package's Python exceptions (defined in `subsurf/_errors.py`):
 //! `MeshError(ValueError)` with `.face`, `.corner`, `.vertex`; `ParseError(ValueError)` with
-//! `.path`, `.line` (and `.location` for glTF); `GpuError(RuntimeError)`; `SubsurfError` for the rest.
+//! `.path`, `.line` (`.location` for glTF, `.prim` and `.attribute` for USD); `GpuError(RuntimeError)`; `SubsurfError` for the rest.
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -93,6 +93,21 @@ pub fn lib_error(py: Python<'_>, e: Error, path: Option<&str>) -> PyErr {
                     d.set_item("location", location)
                 },
             )
+        }
+        Error::Usd {
+            ref file,
+            ref prim,
+            ref attribute,
+            ..
+        } => {
+            let path = path.map_or_else(|| file.clone(), str::to_owned);
+            let (prim, attribute) = (prim.clone(), attribute.clone());
+            raise_with(py, "ParseError", e.to_string(), |d| {
+                d.set_item("path", path)?;
+                d.set_item("line", py.None())?;
+                d.set_item("prim", (!prim.is_empty()).then_some(prim))?;
+                d.set_item("attribute", (!attribute.is_empty()).then_some(attribute))
+            })
         }
         Error::Io(io) => {
             let msg = match path {

@@ -1,5 +1,6 @@
 """Round trips through constructors, files and trimesh."""
 
+import os
 import numpy as np
 import pytest
 
@@ -80,3 +81,30 @@ def test_outputs_own_their_buffers_and_inputs_are_not_copied():
     # Inputs already float32 and C-contiguous are passed through without a copy.
     x = np.ascontiguousarray(m.points)
     assert np.asarray(x, dtype=np.float32) is x
+
+
+def test_usd_round_trip_and_errors(tmp_path):
+    # Written by subsurf, read back by subsurf and by Pixar's USD library with the same values.
+    if not os.environ.get("CI"):
+        pytest.importorskip("pxr")
+    from pxr import Usd, UsdGeom
+
+    m = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
+    p = tmp_path / "cube.usda"
+    m.write(p)
+    back = subsurf.read(p)
+    assert np.array_equal(back.points, m.points)
+    assert np.array_equal(back.face_indices, m.face_indices)
+    assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+    stage = Usd.Stage.Open(str(p))
+    mesh = [UsdGeom.Mesh(x) for x in stage.Traverse() if x.IsA(UsdGeom.Mesh)][0]
+    assert np.allclose(np.array(mesh.GetPointsAttr().Get()), m.points)
+    text = p.read_text().replace("faceVertexIndices = [0,", "faceVertexIndices = [99,", 1)
+    text = text.replace("faceVertexIndices = [0, ", "faceVertexIndices = [99, ", 1)
+    bad = tmp_path / "bad.usda"
+    bad.write_text(text)
+    assert text != p.read_text()
+    with pytest.raises(subsurf.ParseError) as e:
+        subsurf.read(bad)
+    assert e.value.path == str(bad) and e.value.attribute == "faceVertexIndices"
+    assert e.value.prim is not None and e.value.prim.startswith("/")

@@ -23,12 +23,15 @@ class MeshError(SubsurfError, ValueError):
 
 class ParseError(SubsurfError, ValueError):
     """A malformed mesh file: ``.path``, and where in it: ``.line`` (1-based) for the text
-    formats, ``.location`` (a glTF JSON path such as ``accessors[3]``) for glTF, ``None``
-    where they do not apply."""
+    formats, ``.location`` (a glTF JSON path such as ``accessors[3]``) for glTF, ``.prim``
+    and ``.attribute`` (``/World/Body``, ``faceVertexIndices``) for USD, ``None`` where
+    they do not apply."""
 
     path: Optional[str] = None
     line: Optional[int] = None
     location: Optional[str] = None
+    prim: Optional[str] = None
+    attribute: Optional[str] = None
 
 
 class GpuError(SubsurfError, RuntimeError):
