@@ -6,29 +6,9 @@
 #[macro_use]
 mod common;
 
-use osd_ref::OsdMesh;
 use subsurf::{FVarLinearInterpolation, Mesh, Refiner, Topology};
 
-use common::MODES;
-
-fn osd_mesh(m: &Mesh, fvar_interp: u8) -> OsdMesh<'_> {
-    let mut o = OsdMesh::from(m);
-    o.options.fvar_interp = fvar_interp;
-    o
-}
-
-/// Largest side of the UVs' bounding box.
-fn uv_extent(values: &[[f32; 2]]) -> f32 {
-    let mut lo = [f32::MAX; 2];
-    let mut hi = [f32::MIN; 2];
-    for v in values {
-        for c in 0..2 {
-            lo[c] = lo[c].min(v[c]);
-            hi[c] = hi[c].max(v[c]);
-        }
-    }
-    (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-30)
-}
+use common::{osd_mesh, uv_extent, MODES};
 
 /// Compares one shape in one mode at levels 1..=`max_level`; returns the worst error
 /// relative to the UV extent, or a description of the first mismatch.

@@ -94,3 +94,23 @@ pub fn shape_names(prefixes: &[&str]) -> Vec<String> {
         .filter_map(|p| Some(p.file_stem()?.to_string_lossy().into_owned()))
         .collect()
 }
+
+/// `m` for OpenSubdiv with face-varying interpolation `fvar_interp` (one of [`MODES`]' codes).
+pub fn osd_mesh(m: &Mesh, fvar_interp: u8) -> osd_ref::OsdMesh<'_> {
+    let mut o = osd_ref::OsdMesh::from(m);
+    o.options.fvar_interp = fvar_interp;
+    o
+}
+
+/// Largest side of the UVs' bounding box.
+pub fn uv_extent(values: &[[f32; 2]]) -> f32 {
+    let mut lo = [f32::MAX; 2];
+    let mut hi = [f32::MIN; 2];
+    for v in values {
+        for c in 0..2 {
+            lo[c] = lo[c].min(v[c]);
+            hi[c] = hi[c].max(v[c]);
+        }
+    }
+    (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-30)
+}
