@@ -87,7 +87,11 @@ fn refine_writes_every_mesh_prim_back_into_its_stage() {
             .arg(&obj)
             .arg(stage_path()),
     );
-    assert_eq!(subsurf::io::read_path(&obj).unwrap().num_faces(), 5 * 4);
+    // All 6 x 4 faces of level 1, the 4 children of the hole face tagged as holes (as
+    // `refine` writes every OBJ).
+    let one = subsurf::io::read_path(&obj).unwrap();
+    assert_eq!(one.num_faces(), 6 * 4);
+    assert_eq!(one.holes.len(), 4);
 }
 
 #[test]
