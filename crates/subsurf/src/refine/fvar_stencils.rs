@@ -155,21 +155,14 @@ fn vertex_rows(
         } else if matches && linear {
             b.add(pvals[0], 1.0);
             b.end_row(out);
-        } else if matches && tri_split {
-            let mask = super::loop_masks::loop_vertex_mask(p, c, v, &mut s.masks);
-            if !mask.edges.is_empty() {
-                pf.vertex_edge_values(p, v, &mut s.edge_values);
-                for (&x, &w) in s.edge_values.iter().zip(&mask.edges) {
-                    if w != 0.0 {
-                        b.add(x, w);
-                    }
-                }
-            }
-            b.add(pvals[0], mask.vertex);
-            b.end_row(out);
         } else if matches {
             let faces = p.vertex_faces(v);
-            let mask = s.masks.vertex_mask_at(p, c, v);
+            // Loop's mask has no face weights (no face points): the face loop adds nothing.
+            let mask = if tri_split {
+                super::loop_masks::loop_vertex_mask(p, c, v, &mut s.masks)
+            } else {
+                s.masks.vertex_mask_at(p, c, v)
+            };
             for (&f, &w) in faces.iter().zip(&mask.faces) {
                 if w != 0.0 {
                     add_face(b, f as usize, w as f64);

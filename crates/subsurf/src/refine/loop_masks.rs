@@ -78,21 +78,20 @@ pub(super) fn loop_vertex_mask<'s>(
     }
     s.pe.clear();
     s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
-    let ce_f: Vec<f32> = (0..pe.len())
-        .map(|i| {
-            c.edge_sharpness[nc + 2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]
-        })
-        .collect();
-    let mut scratch = crate::rules::catmark::VertexMask::default();
+    // The per-thread scratch, not fresh vectors: this runs once per vertex of every level.
+    s.ce.clear();
+    s.ce.extend((0..pe.len()).map(|i| {
+        c.edge_sharpness[nc + 2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]
+    }));
     vertex_mask(
         nfaces,
         [pr, c.vert_rule[v]],
         [p.vert_sharpness[v], c.vert_sharpness[v]],
         &s.pe,
-        &ce_f,
+        &s.ce,
         p.options.crease_method,
         &mut s.mask,
-        &mut scratch,
+        &mut s.child_mask,
     );
     &s.mask
 }

@@ -63,9 +63,9 @@ where
 #[derive(Debug, Default)]
 pub(crate) struct Scratch<W = f32> {
     pub(crate) mask: VertexMask<W>,
-    child_mask: VertexMask<W>,
+    pub(crate) child_mask: VertexMask<W>,
     pub(crate) pe: Vec<f32>,
-    ce: Vec<f32>,
+    pub(crate) ce: Vec<f32>,
     /// Face-varying values around a vertex.
     pub(crate) values: Vec<u32>,
 }
