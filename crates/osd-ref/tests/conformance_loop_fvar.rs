@@ -126,43 +126,26 @@ fn loop_uvs_linear_modes_match_opensubdiv() {
 #[test]
 fn loop_random_uv_topologies_match_opensubdiv() {
     require_osd!();
-    let mut state = 0x2545_f491_4f6c_dd1du64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        state
-    };
     let mut failures = Vec::new();
-    for name in [
-        "loop_cube_creases1",
-        "loop_cubes_semisharp",
-        "loop_icos_semisharp",
-        "loop_chaikin1",
-        "loop_nonman_verts",
-        "loop_nonman_edges",
-        "loop_triangle_edgecorner",
-        "loop_xord_boundary",
-    ] {
-        let mut mesh =
-            subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();
-        for pool in [2u64, 3, 5] {
-            let values: Vec<[f32; 2]> = (0..pool)
-                .map(|k| [(k as f32 * 0.37).fract(), (k as f32 * 0.61).fract()])
-                .collect();
-            let indices = mesh
-                .face_indices
-                .iter()
-                .map(|_| (next() % pool) as u32)
-                .collect();
-            mesh.uvs = Some(subsurf::FaceVarying { values, indices });
+    common::for_random_uv_layouts(
+        &[
+            "loop_cube_creases1",
+            "loop_cubes_semisharp",
+            "loop_icos_semisharp",
+            "loop_chaikin1",
+            "loop_nonman_verts",
+            "loop_nonman_edges",
+            "loop_triangle_edgecorner",
+            "loop_xord_boundary",
+        ],
+        |name, pool, mesh| {
             for (mode, code) in MODES {
-                if let Err(e) = compare(name, &mesh, mode, code, 2) {
+                if let Err(e) = compare(name, mesh, mode, code, 2) {
                     failures.push(format!("pool {pool}: {e}"));
                 }
             }
-        }
-    }
+        },
+    );
     assert!(
         failures.is_empty(),
         "{} cases differ:\n{}",

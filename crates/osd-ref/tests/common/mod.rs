@@ -114,3 +114,32 @@ pub fn uv_extent(values: &[[f32; 2]]) -> f32 {
     }
     (hi[0] - lo[0]).max(hi[1] - lo[1]).max(1e-30)
 }
+
+/// Calls `each(name, pool, mesh)` for each shape of `names` with random face-varying layouts
+/// (fixed seed): every corner draws its value index from a pool of 2, 3 or 5 values, so
+/// seams, darts, disjoint values and repeated values around a vertex are everywhere.
+pub fn for_random_uv_layouts(names: &[&str], mut each: impl FnMut(&str, u64, &Mesh)) {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for name in names {
+        let mut mesh =
+            subsurf::io::obj::read_file(shapes_dir().join(format!("{name}.obj"))).unwrap();
+        for pool in [2u64, 3, 5] {
+            let values: Vec<[f32; 2]> = (0..pool)
+                .map(|k| [(k as f32 * 0.37).fract(), (k as f32 * 0.61).fract()])
+                .collect();
+            let indices = mesh
+                .face_indices
+                .iter()
+                .map(|_| (next() % pool) as u32)
+                .collect();
+            mesh.uvs = Some(subsurf::FaceVarying { values, indices });
+            each(name, pool, &mesh);
+        }
+    }
+}
