@@ -191,31 +191,23 @@ pub(super) fn write_mesh(data: &mut sdf::Data, prim: &sdf::Path, mesh: &Mesh, re
         FVarLinearInterpolation::Boundaries => "boundaries",
         FVarLinearInterpolation::All => "all",
     };
-    if refined {
-        set(
-            data,
-            prim,
-            "subdivisionScheme",
-            "token",
-            true,
-            token("none"),
-            &[],
-        );
-    } else {
-        let scheme = match o.scheme {
-            Scheme::Catmark => "catmullClark",
-            Scheme::Bilinear => "bilinear",
-            Scheme::Loop => "loop",
-        };
-        set(
-            data,
-            prim,
-            "subdivisionScheme",
-            "token",
-            true,
-            token(scheme),
-            &[],
-        );
+    // A refined mesh is a polygon mesh; a cage states its scheme.
+    let scheme = match o.scheme {
+        _ if refined => "none",
+        Scheme::Catmark => "catmullClark",
+        Scheme::Bilinear => "bilinear",
+        Scheme::Loop => "loop",
+    };
+    set(
+        data,
+        prim,
+        "subdivisionScheme",
+        "token",
+        true,
+        token(scheme),
+        &[],
+    );
+    if !refined {
         let boundary = match o.boundary {
             BoundaryInterpolation::None => "none",
             BoundaryInterpolation::EdgeOnly => "edgeOnly",
