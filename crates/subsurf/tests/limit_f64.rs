@@ -12,6 +12,8 @@
 
 mod limit_common;
 
+use limit_common::{angle, cross, dot};
+
 use limit_common::{load_shape, osd_or_skip, shape_names};
 use osd_ref::{EndCap, OsdMesh, PatchOptions as OsdPatchOptions};
 use subsurf::limit::{LimitPoint, LimitSurface, PatchOptions, PatchTable, PatchType};
@@ -35,24 +37,6 @@ struct Deviation {
     end_cap_normal: f64,
     /// Single-crease patches among the samples' patches.
     single_crease_samples: usize,
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Angle between two non-zero vectors, accurate for small angles.
-fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
-    let c = cross(a, b);
-    dot(c, c).sqrt().atan2(dot(a, b))
 }
 
 /// Like OpenSubdiv 3.5's CPU `EvaluateBasis`, which evaluates a single-crease patch as a

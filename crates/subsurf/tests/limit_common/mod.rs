@@ -40,3 +40,23 @@ pub fn shape_names() -> Vec<String> {
 pub fn bbox_diagonal(p: &[[f32; 3]]) -> f32 {
     subsurf::mesh::bbox_diagonal(p)
 }
+
+/// The cross product.
+pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The dot product.
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Angle between two non-zero vectors, accurate for small angles.
+pub fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let c = cross(a, b);
+    dot(c, c).sqrt().atan2(dot(a, b))
+}
