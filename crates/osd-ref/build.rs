@@ -21,6 +21,7 @@ fn main() {
     println!("cargo:rerun-if-changed=shim/shim.cpp");
     println!("cargo:rerun-if-changed=shim/shim.h");
     println!("cargo:rerun-if-changed=shim/tessellation.cpp");
+    println!("cargo:rerun-if-changed=shim/patch_basis.cpp");
     for var in ["CI", "OSD_INCLUDE_DIR", "OSD_LIB_DIR"] {
         println!("cargo:rerun-if-env-changed={var}");
     }
@@ -52,6 +53,7 @@ fn main() {
         .include("shim")
         .file("shim/shim.cpp")
         .file("shim/tessellation.cpp")
+        .file("shim/patch_basis.cpp")
         .warnings(true)
         .compile("osd_ref_shim");
     println!("cargo:rustc-link-search=native={}", lib.display());

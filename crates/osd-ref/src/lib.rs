@@ -8,6 +8,7 @@
 //! - [`limit_stencil_positions`]: the last level's vertices projected to the limit;
 //! - [`eval_limit_grid`] / [`patch_counts`]: adaptive refinement + patch table evaluation;
 //! - [`OsdRefiner`] / [`OsdStencils`]: handles that separate topology and positions costs;
+//! - [`patch_basis`]: the basis weights of one patch type at one `(u, v)`;
 //! - [`bfr_tessellation`]: `Bfr::Tessellation`'s pattern of one face for given rates.
 //!
 //! When OpenSubdiv was not found at build time the crate still compiles: [`available`]
@@ -23,6 +24,7 @@ mod adaptive_f64;
 mod ffi;
 mod from_subsurf;
 mod mesh;
+mod patch_basis;
 mod tessellation;
 mod uniform;
 
@@ -32,6 +34,7 @@ pub use adaptive::{
 };
 pub use adaptive_f64::{eval_limit_grid_f64, LimitSampleF64};
 pub use mesh::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
+pub use patch_basis::{patch_basis, OsdBasis, OsdPatchType};
 pub use tessellation::{bfr_tessellation, BfrParam, BfrPattern};
 pub use uniform::{
     limit_stencil_positions, refine_uniform, OsdLevel, OsdRefiner, OsdStencils, MAX_LEVEL,

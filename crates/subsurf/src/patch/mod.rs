@@ -10,6 +10,10 @@
 //! | regular B-spline with one semi-sharp crease edge (Nießner, Loop & Greiner 2012) | 16 | [`single_crease`] |
 //! | bicubic Bézier (used by the Gregory end cap) | 16 | [`bezier`] |
 //! | 20-point Gregory basis end cap (Loop, Schaefer, Ni & Castaño 2009) | 20 | [`gregory`] |
+//! | quartic box spline, the regular Loop triangle (Stam 1998), with boundary variants | 12 | [`box_spline`] |
+//! | quartic Gregory triangle, the Loop end cap | 18 | [`gregory_tri`] |
+//!
+//! Triangular patches have their own parameterization and entry point ([`tri_basis`]).
 //!
 //! # Conventions (OpenSubdiv 3.x `Far`)
 //!
@@ -51,22 +55,30 @@
 
 pub mod basis;
 pub mod bezier;
+pub mod box_spline;
 pub mod bspline;
 pub mod gregory;
+pub mod gregory_tri;
 pub mod param;
 pub mod single_crease;
+pub mod tri_basis;
 pub mod weights;
 
 pub use crate::real::Real;
 pub use basis::{patch_weights, patch_weights_normalized, AnyPatchWeights, PatchKind};
 pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch};
+pub use box_spline::{box_spline_patch_weights, eval_box_spline_patch};
 pub use bspline::{
     bspline_curve, bspline_patch_weights, eval_bspline_patch, BOUNDARY_U0, BOUNDARY_U1,
     BOUNDARY_V0, BOUNDARY_V1,
 };
 pub use gregory::{eval_gregory_patch, gregory_patch_weights, GregoryDerivatives};
+pub use gregory_tri::{bezier_triangle_weights, eval_gregory_triangle, gregory_triangle_weights};
 pub use param::{PatchParam, PatchParamError, PatchParamFields, SharpnessTable, NO_SHARPNESS};
 pub use single_crease::{crease_curve, eval_single_crease_patch, single_crease_patch_weights};
+pub use tri_basis::{
+    tri_patch_weights, tri_patch_weights_normalized, AnyTriPatchWeights, TriPatchKind,
+};
 pub use weights::{CurveWeights, PatchEval, PatchWeights};
 
 /// An edge of a quad patch: edge `k` joins corner `k` and corner `k + 1` (see the module
