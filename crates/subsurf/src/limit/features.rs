@@ -118,11 +118,11 @@ impl VTag {
         }
     }
 
-    fn has(&self, bit: u16) -> bool {
+    pub(crate) fn has(&self, bit: u16) -> bool {
         self.bits & bit != 0
     }
 
-    fn or(tags: &[VTag]) -> VTag {
+    pub(crate) fn or(tags: &[VTag]) -> VTag {
         tags.iter().fold(VTag::default(), |a, b| VTag {
             bits: a.bits | b.bits,
             rule: a.rule | b.rule,
@@ -156,7 +156,7 @@ impl FeatureMask {
     }
 }
 
-fn inf_sharp_vtag_has_features(c: VTag, m: &FeatureMask) -> bool {
+pub(crate) fn inf_sharp_vtag_has_features(c: VTag, m: &FeatureMask) -> bool {
     if c.has(T_INF_IRREGULAR) {
         // Irregular corner, crease (boundary or interior) and dart are all selected.
         c.rule & (rule::CORNER | rule::CREASE | rule::DART) != 0

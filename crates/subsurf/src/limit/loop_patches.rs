@@ -1,0 +1,171 @@
+//! Feature-adaptive isolation for the Loop scheme: which triangles are refined, which leaf
+//! triangles are regular quartic box-spline patches and which are irregular (end caps) —
+//! OpenSubdiv 3.5's rules for triangles (`Far::TopologyRefiner` feature selection,
+//! `Far::PatchBuilder::IsPatchRegular`), with its default options for Loop:
+//! `useInfSharpPatch = false`, no single-crease patches (they are quad patches),
+//! `generateLegacySharpCornerPatches = true`.
+//!
+//! The rules are those of [`super::features`] read with Loop's regular valences (6 faces
+//! inside, 3 on a boundary, recorded by the topology's extraordinary tag) and three corners
+//! per face:
+//!
+//! - a face is refined when a corner is non-manifold, or extraordinary and smooth (at levels
+//!   0 and 1: any extraordinary smooth corner), or has semi-sharp features, or infinitely
+//!   sharp features that are not regular (a sharp corner, a crease or dart not continued
+//!   regularly); where some corner is smooth and none is on the boundary, the face's
+//!   combined tag decides, otherwise each non-smooth corner does;
+//! - a leaf face is regular when no corner is extraordinary or non-manifold, except smooth
+//!   boundary corners of one face (both face edges at the corner on the boundary), which are
+//!   treated as sharp corners, and non-manifold corners whose manifold span is regular.
+//!
+//! The levels are uniform refinements ([`crate::refine::loop_level`]): the isolation walks
+//! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
+//! the middle one) through the refined faces.
+
+use super::features::{
+    inf_sharp_vtag_has_features, FeatureMask, VTag, T_BOUNDARY, T_INF_SHARP, T_INF_SHARP_EDGES,
+    T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
+};
+use super::table::MAX_ISOLATION_LEVEL;
+use crate::error::{Error, Result};
+use crate::options::Scheme;
+use crate::refine::refine_tri_topology;
+use crate::topology::tags::{self, rule};
+use crate::topology::Topology;
+
+/// Patch counts of a Loop patch table.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct LoopPatchCounts {
+    /// Regular quartic box-spline patches (boundary and corner variants included).
+    pub regular: usize,
+    /// Irregular leaf triangles: Gregory-triangle end caps.
+    pub irregular: usize,
+    /// Leaf patches per depth (`by_depth[d]` for depth `d`).
+    pub by_depth: Vec<usize>,
+}
+
+impl LoopPatchCounts {
+    /// Total number of patches.
+    pub fn total(&self) -> usize {
+        self.regular + self.irregular
+    }
+}
+
+/// Corner tags of triangle `f` (Loop levels are never "base" in the sense of
+/// [`VTag::of`]: their faces are all triangles, none is an irregular face).
+fn tri_tags(t: &Topology, tags: &[VTag], f: usize) -> [VTag; 3] {
+    let fv = t.face_vertices(f);
+    [0, 1, 2].map(|k| tags[fv[k] as usize])
+}
+
+fn inf_sharp_tri_has_features(c: VTag, v: &[VTag; 3], m: &FeatureMask) -> bool {
+    if c.rule & rule::SMOOTH != 0 && !c.has(T_BOUNDARY) {
+        return inf_sharp_vtag_has_features(c, m);
+    }
+    v.iter()
+        .any(|t| t.rule & rule::SMOOTH == 0 && inf_sharp_vtag_has_features(*t, m))
+}
+
+/// Whether adaptive refinement refines triangle `f` of level `depth`.
+pub fn tri_face_has_features(t: &Topology, tags: &[VTag], f: usize, depth: usize) -> bool {
+    let v = tri_tags(t, tags, f);
+    let c = VTag::or(&v);
+    if c.has(T_NON_MANIFOLD) {
+        return true;
+    }
+    if c.has(T_XORDINARY) {
+        if c.rule == rule::SMOOTH {
+            return true;
+        }
+        if depth < 2
+            && v.iter()
+                .any(|t| t.has(T_XORDINARY) && t.rule == rule::SMOOTH)
+        {
+            return true;
+        }
+    }
+    if c.rule == rule::SMOOTH {
+        return false;
+    }
+    if c.has(T_SEMI_SHARP) || c.has(T_SEMI_SHARP_EDGES) {
+        return true;
+    }
+    if c.has(T_INF_SHARP) || c.has(T_INF_SHARP_EDGES) {
+        return inf_sharp_tri_has_features(c, &v, &FeatureMask::new(false));
+    }
+    false
+}
+
+/// Whether the leaf triangle `f` is a regular box-spline patch (see the module
+/// documentation).
+pub fn is_tri_patch_regular(t: &Topology, tags: &[VTag], f: usize) -> bool {
+    let v = tri_tags(t, tags, f);
+    let c = VTag::or(&v);
+    if c.bits & (T_NON_MANIFOLD | T_XORDINARY) == 0 {
+        return true;
+    }
+    let fe = t.face_edges(f);
+    let boundary = |k: usize| t.edge_tags[fe[k] as usize] & tags::E_BOUNDARY != 0;
+    (0..3).all(|k| {
+        if v[k].has(T_NON_MANIFOLD) {
+            let sp = super::span::span(t, f, k);
+            let want = if v[k].has(T_INF_SHARP) { 1 } else { 3 };
+            return !sp.cyclic && sp.faces.len() == want;
+        }
+        !v[k].has(T_XORDINARY)
+            || (v[k].has(T_INF_SHARP_EDGES)
+                && v[k].has(T_BOUNDARY)
+                && !v[k].has(T_INF_SHARP)
+                && boundary(k)
+                && boundary((k + 2) % 3))
+    })
+}
+
+/// Counts the patches of the feature-adaptive Loop patch table of `base` at
+/// `isolation_level` (`0..=10`).
+pub fn loop_patch_counts(base: &Topology, isolation_level: u32) -> Result<LoopPatchCounts> {
+    if base.options.scheme != Scheme::Loop {
+        return Err(Error::Unsupported(
+            "Loop patches need a mesh with the Loop scheme".into(),
+        ));
+    }
+    if isolation_level > MAX_ISOLATION_LEVEL {
+        return Err(Error::Unsupported(format!(
+            "isolation level {isolation_level} exceeds the maximum {MAX_ISOLATION_LEVEL}"
+        )));
+    }
+    let level = isolation_level as usize;
+    let mut counts = LoopPatchCounts {
+        by_depth: vec![0; level + 1],
+        ..Default::default()
+    };
+    // `front`: the faces of the current level that the walk reaches.
+    let mut topo = base.clone();
+    let mut front: Vec<u32> = (0..base.num_faces() as u32)
+        .filter(|&f| !base.face_is_hole[f as usize])
+        .collect();
+    for d in 0..=level {
+        let tags: Vec<VTag> = (0..topo.num_vertices())
+            .map(|v| VTag::of(&topo, v, false))
+            .collect();
+        let mut next = Vec::new();
+        for &f in &front {
+            let f = f as usize;
+            if d < level && tri_face_has_features(&topo, &tags, f, d) {
+                next.extend((0..4).map(|k| (4 * f + k) as u32));
+            } else if is_tri_patch_regular(&topo, &tags, f) {
+                counts.regular += 1;
+                counts.by_depth[d] += 1;
+            } else {
+                counts.irregular += 1;
+                counts.by_depth[d] += 1;
+            }
+        }
+        if next.is_empty() {
+            break;
+        }
+        topo = refine_tri_topology(&topo)?;
+        front = next;
+    }
+    Ok(counts)
+}
