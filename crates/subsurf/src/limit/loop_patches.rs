@@ -121,9 +121,36 @@ pub fn is_tri_patch_regular(t: &Topology, tags: &[VTag], f: usize) -> bool {
     })
 }
 
-/// Counts the patches of the feature-adaptive Loop patch table of `base` at
-/// `isolation_level` (`0..=10`).
-pub fn loop_patch_counts(base: &Topology, isolation_level: u32) -> Result<LoopPatchCounts> {
+/// A leaf triangle of the isolation: a patch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LoopLeaf {
+    /// Refinement level of the patch (the index into [`LoopLeaves::levels`]).
+    pub depth: usize,
+    /// The face of that level.
+    pub face: u32,
+    /// Sub-triangle origin in the base face at `depth` (see
+    /// [`crate::patch::tri_basis`]): children 0, 1, 2 of `(U, V)` are `(2U, 2V)`,
+    /// `(2U + 1, 2V)`, `(2U, 2V + 1)`; the middle child 3 is `(2^(d+1) − 2U − 1, 2^(d+1) − 2V − 1)`,
+    /// turned relative to its parent.
+    pub uv: (u16, u16),
+    /// Base face.
+    pub base_face: u32,
+    /// A regular box-spline patch (otherwise an end cap).
+    pub regular: bool,
+}
+
+/// The levels refined for isolation and the leaves, base face by base face (each base
+/// face's leaves in depth-first order of its tree).
+#[derive(Debug, Clone)]
+pub struct LoopLeaves {
+    /// Level 0 (the base) and every uniformly refined level the walk reached.
+    pub levels: Vec<Topology>,
+    /// Every leaf.
+    pub leaves: Vec<LoopLeaf>,
+}
+
+/// The leaves of the feature-adaptive isolation of `base` at `isolation_level`.
+pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> {
     if base.options.scheme != Scheme::Loop {
         return Err(Error::Unsupported(
             "Loop patches need a mesh with the Loop scheme".into(),
@@ -135,37 +162,86 @@ pub fn loop_patch_counts(base: &Topology, isolation_level: u32) -> Result<LoopPa
         )));
     }
     let level = isolation_level as usize;
-    let mut counts = LoopPatchCounts {
-        by_depth: vec![0; level + 1],
-        ..Default::default()
-    };
-    // `front`: the faces of the current level that the walk reaches.
-    let mut topo = base.clone();
-    let mut front: Vec<u32> = (0..base.num_faces() as u32)
+    let mut levels = vec![base.clone()];
+    let mut decided = Vec::new();
+    // `front`: (face, U, V, base face) of the faces of the current level the walk reaches.
+    let mut front: Vec<(u32, u16, u16, u32)> = (0..base.num_faces() as u32)
         .filter(|&f| !base.face_is_hole[f as usize])
+        .map(|f| (f, 0, 0, f))
         .collect();
     for d in 0..=level {
+        let topo = &levels[d];
         let tags: Vec<VTag> = (0..topo.num_vertices())
-            .map(|v| VTag::of(&topo, v, false))
+            .map(|v| VTag::of(topo, v, false))
             .collect();
         let mut next = Vec::new();
-        for &f in &front {
-            let f = f as usize;
-            if d < level && tri_face_has_features(&topo, &tags, f, d) {
-                next.extend((0..4).map(|k| (4 * f + k) as u32));
-            } else if is_tri_patch_regular(&topo, &tags, f) {
-                counts.regular += 1;
-                counts.by_depth[d] += 1;
+        for &(f, u, v, b) in &front {
+            let fi = f as usize;
+            if d < level && tri_face_has_features(topo, &tags, fi, d) {
+                let side = 2u16 << d;
+                next.extend([
+                    (4 * f, 2 * u, 2 * v, b),
+                    (4 * f + 1, 2 * u + 1, 2 * v, b),
+                    (4 * f + 2, 2 * u, 2 * v + 1, b),
+                    (4 * f + 3, side - 2 * u - 1, side - 2 * v - 1, b),
+                ]);
+                decided.push((d, f, u, v, b, None));
             } else {
-                counts.irregular += 1;
-                counts.by_depth[d] += 1;
+                let regular = is_tri_patch_regular(topo, &tags, fi);
+                decided.push((d, f, u, v, b, Some(regular)));
             }
         }
         if next.is_empty() {
             break;
         }
-        topo = refine_tri_topology(&topo)?;
+        let child = refine_tri_topology(topo)?;
+        levels.push(child);
         front = next;
+    }
+    // Depth-first order per base face: sort the leaves by base face, then by their path.
+    let mut leaves: Vec<LoopLeaf> = decided
+        .into_iter()
+        .filter_map(|(depth, face, u, v, base_face, regular)| {
+            regular.map(|regular| LoopLeaf {
+                depth,
+                face,
+                uv: (u, v),
+                base_face,
+                regular,
+            })
+        })
+        .collect();
+    leaves.sort_by_key(|l| (l.base_face, path_key(l)));
+    Ok(LoopLeaves { levels, leaves })
+}
+
+/// A key ordering leaves depth-first: the child index at each depth, from the face index
+/// (child `k` of face `f` is `4 f + k`), padded to the maximum depth.
+fn path_key(l: &LoopLeaf) -> u64 {
+    let mut key = 0u64;
+    let mut f = l.face as u64;
+    for _ in 0..l.depth {
+        key = (key >> 2) | ((f & 3) << 62);
+        f >>= 2;
+    }
+    key
+}
+
+/// Counts the patches of the feature-adaptive Loop patch table of `base` at
+/// `isolation_level` (`0..=10`).
+pub fn loop_patch_counts(base: &Topology, isolation_level: u32) -> Result<LoopPatchCounts> {
+    let l = loop_leaves(base, isolation_level)?;
+    let mut counts = LoopPatchCounts {
+        by_depth: vec![0; isolation_level as usize + 1],
+        ..Default::default()
+    };
+    for leaf in &l.leaves {
+        if leaf.regular {
+            counts.regular += 1;
+        } else {
+            counts.irregular += 1;
+        }
+        counts.by_depth[leaf.depth] += 1;
     }
     Ok(counts)
 }

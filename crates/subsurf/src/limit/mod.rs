@@ -13,6 +13,7 @@
 //! - [`leaves`]: the patch of each leaf face of a level;
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
+//! - [`loop_eval`]: the Loop limit surface on its regular patches;
 //! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
 //! - [`span`]: manifold fans around non-manifold vertices;
@@ -83,6 +84,7 @@ pub mod eval;
 pub mod features;
 pub mod gather;
 pub mod leaves;
+pub mod loop_eval;
 pub mod loop_patches;
 pub mod patch_map;
 pub mod points;

@@ -1,0 +1,240 @@
+//! The Loop limit surface on its regular patches: the 12 box-spline points of every regular
+//! leaf triangle ([`super::loop_patches`]) gathered from the refined level, and evaluation
+//! at a base face's `(u, v)`, `u + v ≤ 1`.
+//!
+//! # Gathering the 12 points
+//!
+//! With the triangle's corners as points 4, 5, 8 ([`crate::patch::box_spline`]), every other
+//! point is the vertex opposite an edge, across it from a known triangle:
+//!
+//! ```text
+//! 1 = across 4–5 from 8     9 = across 5–8 from 4     7 = across 8–4 from 5
+//! 0 = across 4–1 from 5     2 = across 5–1 from 4     6 = across 5–9 from 8
+//! 3 = across 4–7 from 8    10 = across 8–7 from 4    11 = across 8–9 from 5
+//! ```
+//!
+//! Where an edge is on the boundary the point does not exist: it is a phantom, its index is
+//! corner 0's and the boundary mask gives it weight 0.
+//!
+//! Not yet built: end caps of the irregular leaves (OpenSubdiv's Gregory triangles), so
+//! [`LoopLimit::eval`] answers `None` on them.
+
+use super::loop_patches::{loop_leaves, LoopLeaf};
+use crate::error::{Error, Result};
+use crate::patch::{tri_patch_weights, PatchParam, PatchParamFields, TriPatchKind};
+use crate::refine::loop_level_stencils;
+use crate::topology::tags;
+use crate::topology::Topology;
+
+/// One patch: its parameter and, for a regular patch, its 12 points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoopPatch {
+    /// Packed parameter (face, sub-triangle, depth, boundary mask).
+    pub param: PatchParam,
+    /// A regular box-spline patch.
+    pub regular: bool,
+    /// The 12 points (regular patches only; zero otherwise).
+    pub points: [[f64; 3]; 12],
+}
+
+/// A point of the limit surface with its derivatives along the base face's `u` and `v`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopSample {
+    /// Position.
+    pub p: [f64; 3],
+    /// `∂P/∂u`.
+    pub du: [f64; 3],
+    /// `∂P/∂v`.
+    pub dv: [f64; 3],
+}
+
+/// The patches of a Loop mesh with their points (see the module documentation).
+#[derive(Debug, Clone)]
+pub struct LoopLimit {
+    /// Every patch, base face by base face.
+    pub patches: Vec<LoopPatch>,
+    /// `F + 1` offsets: the patches of base face `f` are `offsets[f]..offsets[f + 1]`.
+    pub offsets: Vec<u32>,
+}
+
+/// The vertex across edge `a–b` from the triangle `a, b, c`.
+fn opposite(t: &Topology, a: u32, b: u32, c: u32) -> Option<u32> {
+    let e = t
+        .vertex_edges(a as usize)
+        .iter()
+        .copied()
+        .find(|&e| t.edge_verts[e as usize].contains(&b))?;
+    t.edge_faces(e as usize).iter().find_map(|&g| {
+        let fv = t.face_vertices(g as usize);
+        if fv.contains(&c) {
+            None
+        } else {
+            fv.iter().copied().find(|&x| x != a && x != b)
+        }
+    })
+}
+
+/// The 12 point indices of triangle `f` (phantoms: corner 0's index).
+pub fn gather_box_spline_points(t: &Topology, f: usize) -> [u32; 12] {
+    let fv = t.face_vertices(f);
+    let (p4, p5, p8) = (fv[0], fv[1], fv[2]);
+    let opp = |a: Option<u32>, b: Option<u32>, c: Option<u32>| opposite(t, a?, b?, c?);
+    let p1 = opp(Some(p4), Some(p5), Some(p8));
+    let p9 = opp(Some(p5), Some(p8), Some(p4));
+    let p7 = opp(Some(p8), Some(p4), Some(p5));
+    let p0 = opp(Some(p4), p1, Some(p5));
+    let p2 = opp(Some(p5), p1, Some(p4));
+    let p6 = opp(Some(p5), p9, Some(p8));
+    let p3 = opp(Some(p4), p7, Some(p8));
+    let p10 = opp(Some(p8), p7, Some(p4));
+    let p11 = opp(Some(p8), p9, Some(p5));
+    [
+        p0,
+        p1,
+        p2,
+        p3,
+        Some(p4),
+        Some(p5),
+        p6,
+        p7,
+        Some(p8),
+        p9,
+        p10,
+        p11,
+    ]
+    .map(|p| p.unwrap_or(p4))
+}
+
+/// OpenSubdiv's 5-bit boundary mask of a regular triangle: its boundary edges, or (upper
+/// bits 1) its boundary corners when no edge is on the boundary, or (upper bits 2) its
+/// boundary edges when the corner opposite one is on the boundary too.
+pub fn tri_boundary_mask(t: &Topology, f: usize) -> u8 {
+    let fe = t.face_edges(f);
+    let fv = t.face_vertices(f);
+    let edges = (0..3).fold(0u8, |m, k| {
+        let et = t.edge_tags[fe[k] as usize];
+        m | (((et & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD) != 0) as u8) << k)
+    });
+    let verts = (0..3).fold(0u8, |m, k| {
+        let vt = t.vert_tags[fv[k] as usize];
+        m | (((vt & tags::V_BOUNDARY != 0) as u8) << k)
+    });
+    if edges == 0 {
+        return if verts == 0 { 0 } else { (1 << 3) | verts };
+    }
+    let on_edges = (0..3).fold(0u8, |m, k| {
+        if edges & (1 << k) != 0 {
+            m | (1 << k) | (1 << ((k + 1) % 3))
+        } else {
+            m
+        }
+    });
+    if verts & !on_edges != 0 {
+        (2 << 3) | edges
+    } else {
+        edges
+    }
+}
+
+impl LoopLimit {
+    /// Isolates `base` to `isolation_level` ([`loop_leaves`]), refines `positions` through
+    /// the levels and gathers the points of every regular patch.
+    pub fn new(base: &Topology, positions: &[[f32; 3]], isolation_level: u32) -> Result<Self> {
+        if positions.len() != base.num_vertices() {
+            return Err(Error::Unsupported(format!(
+                "{} positions for {} vertices",
+                positions.len(),
+                base.num_vertices()
+            )));
+        }
+        let l = loop_leaves(base, isolation_level)?;
+        let mut points = vec![positions.to_vec()];
+        for d in 1..l.levels.len() {
+            let s = loop_level_stencils(&l.levels[d - 1], &l.levels[d]);
+            let mut dst = vec![[0.0f32; 3]; s.num_rows()];
+            s.apply(&points[d - 1], &mut dst);
+            points.push(dst);
+        }
+        let mut patches = Vec::with_capacity(l.leaves.len());
+        let mut offsets = vec![0u32; base.num_faces() + 1];
+        for leaf in &l.leaves {
+            patches.push(Self::patch(&l.levels, &points, leaf)?);
+            offsets[leaf.base_face as usize + 1] += 1;
+        }
+        for f in 0..base.num_faces() {
+            offsets[f + 1] += offsets[f];
+        }
+        Ok(LoopLimit { patches, offsets })
+    }
+
+    fn patch(levels: &[Topology], points: &[Vec<[f32; 3]>], leaf: &LoopLeaf) -> Result<LoopPatch> {
+        let t = &levels[leaf.depth];
+        let f = leaf.face as usize;
+        let boundary = if leaf.regular {
+            tri_boundary_mask(t, f)
+        } else {
+            0
+        };
+        let param = PatchParam::new(PatchParamFields {
+            face_id: leaf.base_face,
+            u: leaf.uv.0,
+            v: leaf.uv.1,
+            depth: leaf.depth as u8,
+            boundary,
+            regular: leaf.regular,
+            ..Default::default()
+        })?;
+        let mut pts = [[0.0f64; 3]; 12];
+        if leaf.regular {
+            let idx = gather_box_spline_points(t, f);
+            for (p, &i) in pts.iter_mut().zip(&idx) {
+                *p = points[leaf.depth][i as usize].map(f64::from);
+            }
+        }
+        Ok(LoopPatch {
+            param,
+            regular: leaf.regular,
+            points: pts,
+        })
+    }
+
+    /// The patch of base face `face` holding `(u, v)` (the first one whose closed
+    /// sub-triangle contains it).
+    pub fn find(&self, face: usize, u: f64, v: f64) -> Option<&LoopPatch> {
+        let range = self.offsets[face] as usize..*self.offsets.get(face + 1)? as usize;
+        const EPS: f64 = 1e-9;
+        self.patches[range].iter().find(|p| {
+            let (s, t) = p.param.normalize_triangle(u, v);
+            s >= -EPS && t >= -EPS && s + t <= 1.0 + EPS
+        })
+    }
+
+    /// The limit point at `(u, v)` of base face `face`, with derivatives along the face's
+    /// `u` and `v`; `None` outside the face, on a hole, or on an irregular patch (end caps
+    /// are not built yet).
+    pub fn eval(&self, face: usize, u: f64, v: f64) -> Option<LoopSample> {
+        let p = self.find(face, u, v)?;
+        if !p.regular {
+            return None;
+        }
+        let w = tri_patch_weights(TriPatchKind::BoxSpline, &p.param, u, v);
+        let mut r = LoopSample {
+            p: [0.0; 3],
+            du: [0.0; 3],
+            dv: [0.0; 3],
+        };
+        let x0 = p.points[4];
+        for (k, pt) in p.points.iter().enumerate() {
+            for c in 0..3 {
+                let x = pt[c] - x0[c];
+                r.p[c] += w.p[k] * x;
+                r.du[c] += w.du[k] * x;
+                r.dv[c] += w.dv[k] * x;
+            }
+        }
+        for c in 0..3 {
+            r.p[c] += x0[c];
+        }
+        Some(r)
+    }
+}
