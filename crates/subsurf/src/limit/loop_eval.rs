@@ -20,6 +20,7 @@
 //! [`LoopLimit::eval`] answers `None` on them.
 
 use super::loop_patches::{loop_leaves, LoopLeaf};
+use super::patch_map::PatchMap;
 use crate::error::{Error, Result};
 use crate::patch::{tri_patch_weights, PatchParam, PatchParamFields, TriPatchKind};
 use crate::refine::loop_level_stencils;
@@ -55,6 +56,8 @@ pub struct LoopLimit {
     pub patches: Vec<LoopPatch>,
     /// `F + 1` offsets: the patches of base face `f` are `offsets[f]..offsets[f + 1]`.
     pub offsets: Vec<u32>,
+    /// The tree per base face ([`PatchMap::find_triangle`]).
+    pub patch_map: PatchMap,
 }
 
 /// The vertex across edge `a–b` from the triangle `a, b, c`.
@@ -164,7 +167,12 @@ impl LoopLimit {
         for f in 0..base.num_faces() {
             offsets[f + 1] += offsets[f];
         }
-        Ok(LoopLimit { patches, offsets })
+        let patch_map = PatchMap::of_triangles(base.num_faces(), &l.leaves);
+        Ok(LoopLimit {
+            patches,
+            offsets,
+            patch_map,
+        })
     }
 
     fn patch(levels: &[Topology], points: &[Vec<[f32; 3]>], leaf: &LoopLeaf) -> Result<LoopPatch> {
@@ -198,9 +206,15 @@ impl LoopLimit {
         })
     }
 
-    /// The patch of base face `face` holding `(u, v)` (the first one whose closed
-    /// sub-triangle contains it).
+    /// The patch of base face `face` holding `(u, v)`, found with the patch map.
     pub fn find(&self, face: usize, u: f64, v: f64) -> Option<&LoopPatch> {
+        let p = self.patch_map.find_triangle(face, u, v)?;
+        self.patches.get(p as usize)
+    }
+
+    /// The patch of base face `face` holding `(u, v)` by a linear search: the first one
+    /// whose closed sub-triangle contains it (the reference of the patch map's tests).
+    pub fn find_linear(&self, face: usize, u: f64, v: f64) -> Option<&LoopPatch> {
         let range = self.offsets[face] as usize..*self.offsets.get(face + 1)? as usize;
         const EPS: f64 = 1e-9;
         self.patches[range].iter().find(|p| {
@@ -236,5 +250,50 @@ impl LoopLimit {
             r.p[c] += x0[c];
         }
         Some(r)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::obj;
+
+    #[test]
+    fn patch_map_finds_the_patch_whose_triangle_holds_the_point() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../testdata/shapes/loop_xord_interior.obj"
+        );
+        let mesh = obj::read_file(std::path::Path::new(path)).unwrap();
+        let topo = Topology::new(&mesh).unwrap();
+        let l = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+        assert!(l.patches.len() > topo.num_faces());
+        let mut state = 7u64;
+        let mut rnd = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..2000 {
+            let f = (rnd() * topo.num_faces() as f64) as usize;
+            let (a, b) = (rnd(), rnd());
+            let (u, v) = if a + b > 1.0 {
+                (1.0 - a, 1.0 - b)
+            } else {
+                (a, b)
+            };
+            let p = l.find(f, u, v).expect("every face has patches");
+            assert_eq!(p.param.face_id() as usize, f);
+            let (s, t) = p.param.normalize_triangle(u, v);
+            assert!(
+                s >= -1e-12 && t >= -1e-12 && s + t <= 1.0 + 1e-12,
+                "{f} {u} {v}: {s} {t}"
+            );
+            // Off the sub-triangles' seams the patch is unique.
+            if s > 1e-6 && t > 1e-6 && s + t < 1.0 - 1e-6 {
+                assert_eq!(Some(p), l.find_linear(f, u, v));
+            }
+        }
     }
 }

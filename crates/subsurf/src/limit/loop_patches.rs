@@ -18,7 +18,7 @@
 //!   boundary corners of one face (both face edges at the corner on the boundary), which are
 //!   treated as sharp corners, and non-manifold corners whose manifold span is regular.
 //!
-//! The levels are uniform refinements ([`crate::refine::loop_level`]): the isolation walks
+//! The levels are uniform refinements ([`crate::refine::refine_tri_topology`]): the isolation walks
 //! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
 //! the middle one) through the refined faces.
 

@@ -17,7 +17,7 @@
 //! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
 //! - [`span`]: manifold fans around non-manifold vertices;
-//! - [`patch_map`]: the quadtree per ptex face;
+//! - [`patch_map`]: the quadtree per ptex face ([`tri_patch_map`]: of triangles);
 //! - [`points`]: the patch points from base values (stencil rows relative to their first input);
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
 //! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]).
@@ -92,6 +92,7 @@ pub mod span;
 pub mod sparse;
 pub mod table;
 pub mod tessellate;
+pub mod tri_patch_map;
 
 pub use edit::SharpnessEdit;
 pub use eval::{LimitPoint, LimitSurface};
