@@ -14,6 +14,7 @@
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
 //! - [`loop_eval`]: the Loop limit surface on its regular patches;
+//! - [`loop_tessellate`]: watertight triangle tessellation of the Loop limit surface;
 //! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
 //! - [`span`]: manifold fans around non-manifold vertices;
@@ -86,6 +87,7 @@ pub mod gather;
 pub mod leaves;
 pub mod loop_eval;
 pub mod loop_patches;
+pub mod loop_tessellate;
 pub mod patch_map;
 pub mod points;
 pub mod span;
