@@ -5,11 +5,15 @@
 //!   transforms, as usda, usdc and usdz) read into the meshes and world transforms the script
 //!   computed independently; the committed copies always, freshly generated ones when pxr is
 //!   present;
-//! - stages subsurf writes (usda, and usdz packaging a text layer; cages and refined meshes)
-//!   open in `pxr.Usd.Stage.Open` with the same values, prims and transforms; `.usdc` output
-//!   is refused with `Error::Unsupported` (not written);
-//! - a regression shape written to USD and read back is the OBJ's mesh (the options USD
-//!   cannot state aside), and refines to the same positions, bit for bit;
+//! - stages subsurf writes (usda, usdc from subsurf's own crate writer, and usdz packaging a
+//!   crate layer; cages and refined meshes) open in `pxr.Usd.Stage.Open` with the same
+//!   values, prims, types and transforms, and pxr reports no error reading them; a stage
+//!   read and written as usdc is, to pxr, the very layer of the text it came from (every
+//!   spec, field and value: xformOps of every type, time samples, dictionaries, list ops,
+//!   variants, relationships);
+//! - every regression shape written as usdc and as usdz reads back (subsurf's reader) as the
+//!   OBJ's mesh bit for bit (the options USD cannot state aside), opens in pxr with the same
+//!   points, indices, creases, corners, holes and st, and refines to the same positions;
 //! - malformed input is an `Error::Usd` naming the file, the prim and the attribute.
 //!
 //! The pxr checks fail when `CI=true` and `python3 -c "import pxr"` fails, and are skipped
@@ -55,18 +59,28 @@ fn gen_script() -> PathBuf {
 
 /// `usd_gen.py dump FILE`: the stage as pxr reads it.
 fn pxr_dump(file: &Path) -> Json {
+    pxr_dump_all(&[file.to_path_buf()])
+        .as_object_mut()
+        .unwrap()
+        .remove(file.to_str().unwrap())
+        .unwrap()
+}
+
+/// `usd_gen.py dumpall FILE...`: each stage as pxr reads it, by file name, in one run; pxr
+/// must report nothing (no error or warning) while reading them.
+fn pxr_dump_all(files: &[PathBuf]) -> Json {
     let out = std::process::Command::new("python3")
         .arg(gen_script())
-        .arg("dump")
-        .arg(file)
+        .arg("dumpall")
+        .args(files)
         .output()
         .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(
         out.status.success(),
-        "pxr could not read {}: {}",
-        file.display(),
-        String::from_utf8_lossy(&out.stderr)
+        "pxr could not read {files:?}: {stderr}"
     );
+    assert!(stderr.trim().is_empty(), "pxr reported: {stderr}");
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
@@ -301,10 +315,14 @@ fn stages_subsurf_writes_open_in_pxr() {
     }
     let dir = tmp("write");
     let pxr = have_pxr();
-    let refused = stage.write_path(dir.join("out.usdc"));
-    assert!(matches!(refused, Err(Error::Unsupported(_))), "{refused:?}");
-    assert!(!dir.join("out.usdc").exists());
-    for ext in ["usda", "usdz"] {
+    // The stage as read, written as a crate file: pxr reads the same layer from it as from
+    // the text it came from (every spec, field and value, the other prims' included).
+    if pxr {
+        let file = dir.join("same.usdc");
+        src.write_path(&file).unwrap();
+        pxr_same(&data_dir().join("stage.usda"), &file);
+    }
+    for ext in ["usda", "usdc", "usdz"] {
         let file = dir.join(format!("out.{ext}"));
         stage.write_path(&file).unwrap();
         // Read back by subsurf: the same meshes, transforms and flags.
@@ -352,7 +370,7 @@ fn stages_subsurf_writes_open_in_pxr() {
     }
     // A bare mesh written through io::write_path opens in pxr as one cage prim.
     let cage = meshes[0].mesh.clone();
-    for ext in ["usda", "usdz"] {
+    for ext in ["usda", "usdc", "usdz"] {
         let file = dir.join(format!("cage.{ext}"));
         subsurf::io::write_path(&file, &cage, None).unwrap();
         assert_eq!(subsurf::io::read_path(&file).unwrap(), cage, "{ext}");
@@ -363,8 +381,114 @@ fn stages_subsurf_writes_open_in_pxr() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A layer with the value kinds a stage around meshes holds (layer metadata and its
+/// dictionary, kind, every xformOp value type, time samples, assets, string arrays,
+/// relationships, customData, apiSchemas, variants, a class and an over).
+const RICH_LAYER: &str = r#"#usda 1.0
+(
+    customLayerData = {
+        string creator = "subsurf"
+        int n = 3
+    }
+    defaultPrim = "W"
+    metersPerUnit = 0.01
+    timeCodesPerSecond = 24
+)
+
+def Xform "W" (
+    prepend apiSchemas = ["MaterialBindingAPI"]
+    kind = "group"
+    variants = {
+        string look = "b"
+    }
+    prepend variantSets = "look"
+)
+{
+    rel material:binding = </Mat>
+    string[] names = ["x", "y"]
+    asset tex = @a.png@
+    float f.timeSamples = {
+        1: 2.5,
+        4: 3,
+    }
+    quatf xformOp:orient = (0.5, 0.5, 0.5, 0.5)
+    matrix4d xformOp:transform = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (4, 5, 6, 1))
+    double3 xformOp:translate = (1, 2, 3)
+    uniform token[] xformOpOrder = ["xformOp:translate", "xformOp:orient", "xformOp:transform"]
+
+    def Mesh "M" (
+        customData = {
+            bool flag = 1
+        }
+    )
+    {
+        int[] faceVertexCounts = [4]
+        int[] faceVertexIndices = [0, 1, 2, 3]
+        point3f[] points = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+        texCoord2f[] primvars:st = [(0, 1), (1, 1), (1, 0), (0, 0)] (
+            interpolation = "faceVarying"
+        )
+    }
+    variantSet "look" = {
+        "a" {
+            double size = 1
+        }
+        "b" {
+            double size = 2
+        }
+    }
+}
+
+def Material "Mat"
+{
+}
+
+class "Base"
+{
+    int x = 1
+}
+
+over "Extra"
+{
+}
+"#;
+
+#[test]
+fn crate_files_hold_what_pxr_reads_from_the_text() {
+    let stage = Stage::read(RICH_LAYER.as_bytes(), "rich.usda").unwrap();
+    let bytes = stage.to_bytes(UsdFormat::Usdc).unwrap();
+    let back = Stage::read(&bytes, "rich.usdc").unwrap();
+    assert_eq!(back.meshes().unwrap(), stage.meshes().unwrap());
+    if !have_pxr() {
+        return;
+    }
+    let dir = tmp("rich");
+    std::fs::write(dir.join("rich.usda"), RICH_LAYER).unwrap();
+    std::fs::write(dir.join("rich.usdc"), &bytes).unwrap();
+    pxr_same(&dir.join("rich.usda"), &dir.join("rich.usdc"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Asserts that pxr reads the same layer (every spec, field and value) from both files.
+fn pxr_same(a: &Path, b: &Path) {
+    let out = std::process::Command::new("python3")
+        .arg(gen_script())
+        .arg("same")
+        .arg(a)
+        .arg(b)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success() && out.stderr.is_empty(),
+        "pxr reads another layer from {}:\n{}{}",
+        b.display(),
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
 /// A `.usdz` package as the USDZ spec asks: stored (uncompressed) entries whose data start
-/// at multiples of 64 bytes, the first a USD layer.
+/// at multiples of 64 bytes, the first a USD layer (a crate file, as subsurf writes them).
 fn check_usdz_layout(bytes: &[u8]) {
     let u16le = |o: usize| u16::from_le_bytes([bytes[o], bytes[o + 1]]) as usize;
     let u32le = |o: usize| u32::from_le_bytes(bytes[o..o + 4].try_into().unwrap()) as usize;
@@ -378,8 +502,8 @@ fn check_usdz_layout(bytes: &[u8]) {
         let name = std::str::from_utf8(&bytes[o + 30..o + 30 + name_len]).unwrap();
         assert_eq!(data % 64, 0, "entry {name} starts at {data}");
         if entries == 0 {
-            assert!(name.ends_with(".usda"), "first entry {name}");
-            assert!(bytes[data..].starts_with(b"#usda"));
+            assert!(name.ends_with(".usdc"), "first entry {name}");
+            assert!(bytes[data..].starts_with(b"PXR-USDC"));
         }
         o = data + u32le(o + 18);
         entries += 1;
@@ -396,6 +520,10 @@ fn regression_shapes_refine_the_same_from_usd_as_from_obj() {
         .filter(|p| p.extension().is_some_and(|e| e == "obj"))
         .collect();
     names.sort();
+    let bits =
+        |m: &Mesh| -> Vec<u32> { m.positions.iter().flatten().map(|x| x.to_bits()).collect() };
+    let out = tmp("shapes");
+    let mut files = Vec::new();
     let mut checked = 0;
     for (k, path) in names.iter().enumerate() {
         let name = path.file_name().unwrap().to_str().unwrap();
@@ -405,26 +533,62 @@ fn regression_shapes_refine_the_same_from_usd_as_from_obj() {
         if opts.crease_method != Default::default() || opts.fvar_propagate_corners {
             continue;
         }
-        // usda and usdz in turn.
-        let format = [UsdFormat::Usda, UsdFormat::Usdz][k % 2];
-        let mut bytes = Vec::new();
-        subsurf::io::usd::write(&obj, format, &mut bytes).unwrap();
-        let usd = subsurf::io::usd::read(&bytes, name).unwrap();
-        assert_eq!(usd, obj, "{name} through {format:?}");
+        // Every shape as usdc and usdz (the crate writer), every other one also as usda.
+        let formats = [UsdFormat::Usdc, UsdFormat::Usdz, UsdFormat::Usda];
+        let mut usd = None;
+        for &format in &formats[..2 + (k % 2 == 0) as usize] {
+            let mut bytes = Vec::new();
+            subsurf::io::usd::write(&obj, format, &mut bytes).unwrap();
+            let back = subsurf::io::usd::read(&bytes, name).unwrap();
+            assert_eq!(back, obj, "{name} through {format:?}");
+            // The crate format stores the values' bits (text, their shortest decimal form).
+            if format != UsdFormat::Usda {
+                assert_eq!(bits(&back), bits(&obj), "{name} through {format:?}");
+                let uv_bits = |m: &Mesh| {
+                    m.uvs.as_ref().map(|u| {
+                        u.values
+                            .iter()
+                            .flatten()
+                            .map(|x| x.to_bits())
+                            .collect::<Vec<_>>()
+                    })
+                };
+                assert_eq!(uv_bits(&back), uv_bits(&obj), "{name} through {format:?}");
+                let ext = if format == UsdFormat::Usdc {
+                    "usdc"
+                } else {
+                    "usdz"
+                };
+                let file = out.join(format!("{name}.{ext}"));
+                std::fs::write(&file, &bytes).unwrap();
+                files.push((file, obj.clone()));
+            }
+            usd = Some(back);
+        }
+        let usd = usd.unwrap();
         if obj.options.scheme == Scheme::Loop || Topology::new(&obj).is_err() {
             continue;
         }
         let level = if obj.num_faces() > 2000 { 1 } else { 2 };
         let a = refine(&obj, level);
         let b = refine(&usd, level);
-        let bits =
-            |m: &Mesh| -> Vec<u32> { m.positions.iter().flatten().map(|x| x.to_bits()).collect() };
         assert_eq!(bits(&a), bits(&b), "{name}: refined positions");
         assert_eq!(a.face_indices, b.face_indices, "{name}");
         assert_eq!(a.uvs, b.uvs, "{name}: refined UVs");
         checked += 1;
     }
     assert!(checked >= 60, "only {checked} shapes checked");
+    // Pixar's USD reads every crate file and package with the same values (one pxr run).
+    if have_pxr() {
+        let paths: Vec<PathBuf> = files.iter().map(|f| f.0.clone()).collect();
+        let dumps = pxr_dump_all(&paths);
+        for (file, mesh) in &files {
+            let name = file.file_name().unwrap().to_str().unwrap();
+            let dump = &dumps[file.to_str().unwrap()];
+            check_pxr_mesh(name, dump, "/Mesh", mesh, false);
+        }
+    }
+    std::fs::remove_dir_all(&out).unwrap();
 }
 
 /// The `Error::Usd` of reading `text`'s meshes.

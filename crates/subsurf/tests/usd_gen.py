@@ -3,6 +3,8 @@
 Usage:
   python3 usd_gen.py write OUT_DIR   stages (usda, usdc, usdz) + OUT_DIR/expected.json
   python3 usd_gen.py dump FILE        every mesh prim of FILE as JSON on standard output
+  python3 usd_gen.py dumpall FILE...  {FILE: dump of FILE} for several files in one run
+  python3 usd_gen.py same A B         exits 0 when layers A and B hold the same specs and values
 
 `write` authors every UsdGeomMesh attribute subsurf reads (all crease forms, corners, holes,
 st indexed and not, leftHanded, several prims under transforms) and writes, for each mesh
@@ -174,6 +176,10 @@ def write(out):
 
 
 def dump(path):
+    print(json.dumps(read_stage(path)))
+
+
+def read_stage(path):
     stage = Usd.Stage.Open(path)
     if not stage:
         raise SystemExit(f"pxr could not open {path}")
@@ -210,12 +216,24 @@ def dump(path):
         extent = m.GetExtentAttr().Get()
         d["extent"] = [list(e) for e in extent] if extent else None
         meshes[str(prim.GetPath())] = d
-    print(json.dumps({"meshes": meshes, "others": others}))
+    return {"meshes": meshes, "others": others}
 
 
 if __name__ == "__main__":
     if sys.argv[1] == "write":
         os.makedirs(sys.argv[2], exist_ok=True)
         write(sys.argv[2])
+    elif sys.argv[1] == "same":
+        a, b = (Sdf.Layer.FindOrOpen(f) for f in sys.argv[2:4])
+        if not a or not b:
+            raise SystemExit("pxr could not open both layers")
+        ta, tb = a.ExportToString(), b.ExportToString()
+        if ta != tb:
+            import difflib
+            sys.stdout.writelines(difflib.unified_diff(
+                ta.splitlines(True), tb.splitlines(True), sys.argv[2], sys.argv[3]))
+            raise SystemExit(1)
+    elif sys.argv[1] == "dumpall":
+        print(json.dumps({f: read_stage(f) for f in sys.argv[2:]}))
     else:
         dump(sys.argv[2])

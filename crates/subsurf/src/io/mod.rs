@@ -134,9 +134,9 @@ impl Format {
         }
     }
 
-    /// Whether [`write_to`] can write this format (all but `.gltf` and `.usdc`).
+    /// Whether [`write_to`] can write this format (all but `.gltf`).
     pub fn writable(self) -> bool {
-        !matches!(self, Format::Gltf | Format::Usd(usd::UsdFormat::Usdc))
+        !matches!(self, Format::Gltf)
     }
 }
 

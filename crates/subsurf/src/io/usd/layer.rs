@@ -95,10 +95,10 @@ fn read_zip(bytes: &[u8], file: &str) -> Result<sdf::Data> {
     })
 }
 
-/// Writes a layer in `format`. A `.usdz` package holds one text layer, stored and 64-byte
-/// aligned as the USDZ spec asks. `.usdc` is refused: the crate files `openusd` 0.6 writes
-/// do not open in Pixar's USD (prim children fail its validation), and subsurf writes no file
-/// that USD cannot read.
+/// Writes a layer in `format`: text through the `openusd` crate, crate files through
+/// subsurf's own writer (`crate_write`; the crate files `openusd` 0.6 writes do not open in
+/// Pixar's USD). A `.usdz` package holds one crate layer, stored and 64-byte aligned as the
+/// USDZ spec asks.
 pub(super) fn write(data: &sdf::Data, format: UsdFormat, file: &str) -> Result<Vec<u8>> {
     let dyn_data: &dyn AbstractData = data;
     match format {
@@ -107,22 +107,24 @@ pub(super) fn write(data: &sdf::Data, format: UsdFormat, file: &str) -> Result<V
                 .map_err(msg)?
                 .into_bytes())
         }),
-        UsdFormat::Usdc => Err(Error::Unsupported(format!(
-            "writing {file}: binary .usdc output (write .usda, or .usdz, which packages a text layer)"
-        ))),
+        UsdFormat::Usdc => super::crate_write::write(data).map_err(|e| Error::Usd {
+            file: file.to_string(),
+            prim: e.path,
+            attribute: e.field,
+            reason: format!("writing the crate file: {}", e.reason),
+        }),
         UsdFormat::Usdz => {
-            let layer = write(data, UsdFormat::Usda, file)?;
+            let layer = write(data, UsdFormat::Usdc, file)?;
             guarded(file, "writing the usdz package", || {
                 let mut zip = openusd::usdz::ArchiveWriter::new(Cursor::new(Vec::new()));
-                zip.add_layer(&root_layer_name(file), &layer)
-                    .map_err(msg)?;
+                zip.add_layer(&root_layer_name(file), &layer).map_err(msg)?;
                 Ok(zip.finish().map_err(msg)?.into_inner())
             })
         }
     }
 }
 
-/// The name of a package's root layer: the package's file name with a `.usda` extension.
+/// The name of a package's root layer: the package's file name with a `.usdc` extension.
 fn root_layer_name(file: &str) -> String {
     let stem = std::path::Path::new(file)
         .file_stem()
@@ -133,5 +135,5 @@ fn root_layer_name(file: &str) -> String {
                     .all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c))
         })
         .unwrap_or("root");
-    format!("{stem}.usda")
+    format!("{stem}.usdc")
 }

@@ -10,8 +10,9 @@
 //!   attribute mapping and USD's defaults), whether it subdivides
 //!   (`subdivisionScheme = "none"` does not) and its world transform.
 //! - [`Stage::set_mesh`] replaces a prim's mesh, as a cage or as a refined polygon mesh.
-//! - [`Stage::to_bytes`] writes `.usda`, or `.usdz` packaging a text layer. `.usdc` is read
-//!   but not written: the crate files the `openusd` crate writes do not open in Pixar's USD.
+//! - [`Stage::to_bytes`] writes `.usda`, `.usdc` (crate version 0.8.0, by subsurf's own
+//!   crate writer: the crate files the `openusd` crate writes do not open in Pixar's USD) or
+//!   `.usdz` (a package of one crate layer).
 //!
 //! Composition (references, payloads, sublayers, variants) is not evaluated: a mesh is read
 //! as its own layer states it. Every malformed input is an [`Error::Usd`] naming the file,
@@ -52,6 +53,9 @@
 //! ```
 
 mod attrs;
+mod crate_codec;
+mod crate_values;
+mod crate_write;
 mod layer;
 mod mesh_read;
 mod mesh_write;
@@ -72,9 +76,9 @@ const MAX_DEPTH: usize = 256;
 pub enum UsdFormat {
     /// Text (`.usda`).
     Usda,
-    /// Binary crate (`.usdc`; `.usd` is read by its content). Read only.
+    /// Binary crate (`.usdc`; `.usd` is read by its content, written as crate).
     Usdc,
-    /// Zip package (`.usdz`); written with one text layer.
+    /// Zip package (`.usdz`); written with one crate layer.
     Usdz,
 }
 
@@ -307,8 +311,8 @@ impl Stage {
         layer::write(&self.data, format, &self.file)
     }
 
-    /// Writes the stage, in the format of the path's extension (`.usda` or `.usdz`;
-    /// `.usdc` and `.usd` are [`Error::Unsupported`]).
+    /// Writes the stage, in the format of the path's extension (`.usda`, `.usdc`, `.usd`
+    /// (as crate) or `.usdz`).
     pub fn write_path(&self, path: impl AsRef<Path>) -> Result<()> {
         let path = path.as_ref();
         let format = format_of_path(path).ok_or_else(|| {
