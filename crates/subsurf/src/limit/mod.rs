@@ -18,7 +18,8 @@
 //! - [`patch_map`]: the quadtree per ptex face;
 //! - [`points`]: the patch points from base values (stencil rows relative to their first input);
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
-//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]).
+//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]);
+//!   [`edit_region`]: the incremental update where the isolation structure is kept.
 //!
 //! # Ptex faces
 //!
@@ -77,6 +78,7 @@
 
 pub mod budget;
 pub mod edit;
+pub mod edit_region;
 pub mod endcap;
 pub mod eval;
 pub mod features;
@@ -89,7 +91,7 @@ pub mod sparse;
 pub mod table;
 pub mod tessellate;
 
-pub use edit::SharpnessEdit;
+pub use edit::{EditOutcome, SharpnessEdit};
 pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
