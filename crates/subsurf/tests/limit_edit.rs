@@ -4,7 +4,7 @@
 mod limit_common;
 
 use limit_common::{load_shape, shape_names};
-use subsurf::limit::{PatchOptions, PatchTable, SharpnessEdit};
+use subsurf::limit::{EditOutcome, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::mesh::{Corner, Crease};
 use subsurf::{Error, Mesh, MeshError, Real, StencilTable, Topology};
 
@@ -90,11 +90,27 @@ fn edit_mesh(mesh: &Mesh, edits: &[SharpnessEdit]) -> Mesh {
 const VALUES: [f32; 8] = [0.0, 0.3, 1.0, 1.7, 2.0, 3.5, 7.25, 10.0];
 
 /// Random edits on a creased mesh: tagged creases and corners moved, untagged edges and
-/// vertices made sharp.
-fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg) -> Vec<SharpnessEdit> {
+/// vertices made sharp; with `nudge`, only tagged creases moved within their sharpness
+/// interval (`ceil(s)` kept: the same levels decay them, mostly keeping the structure).
+fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg, nudge: bool) -> Vec<SharpnessEdit> {
     let mut edits = Vec::new();
     for _ in 0..1 + rng.next(6) {
         let sharpness = VALUES[rng.next(VALUES.len())];
+        if nudge {
+            let Some(c) = (!mesh.creases.is_empty())
+                .then(|| mesh.creases[rng.next(mesh.creases.len())])
+                .filter(|c| c.sharpness > 0.0 && c.sharpness < 10.0)
+            else {
+                continue;
+            };
+            let top = c.sharpness.ceil();
+            edits.push(SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness: top - [0.0, 0.25, 0.5, 0.875][rng.next(4)],
+            });
+            continue;
+        }
         edits.push(match rng.next(4) {
             0 | 1 if !mesh.creases.is_empty() => {
                 let c = mesh.creases[rng.next(mesh.creases.len())];
@@ -117,13 +133,15 @@ fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg) -> Vec<SharpnessEdit> 
     edits
 }
 
-/// Every creased catmark shape, three rounds of random edits each (edges and vertices, one
-/// or many at once, single-crease patches on and off): the edited table is the fresh build
-/// of the edited mesh, bit for bit.
+/// Every creased catmark shape, four rounds of random edits each (edges and vertices, one
+/// or many at once, single-crease patches on and off, alternately anywhere and within the
+/// creases' sharpness intervals): the edited table is the fresh build of the edited mesh,
+/// bit for bit, whether it was updated in place (structure kept) or rebuilt (structure
+/// changed), and both happen.
 #[test]
 fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
     let mut rng = Lcg(0x5eed);
-    let mut shapes = 0;
+    let (mut shapes, mut updated, mut rebuilt) = (0, 0, 0);
     for name in shape_names() {
         let mesh = load_shape(&name);
         if mesh.creases.is_empty() && mesh.corners.is_empty() {
@@ -140,19 +158,28 @@ fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
         };
         let mut table = PatchTable::build(&topo, &options).unwrap();
         let mut current = mesh.clone();
-        for round in 0..3 {
-            let edits = random_edits(&mesh, &topo, &mut rng);
-            table.set_sharpness(&edits).unwrap();
+        for round in 0..4 {
+            let edits = random_edits(&mesh, &topo, &mut rng, round % 2 == 1);
+            match table.apply_sharpness(&edits).unwrap() {
+                EditOutcome::Updated => updated += 1,
+                EditOutcome::Rebuilt if round > 0 => rebuilt += 1,
+                _ => {}
+            }
             current = edit_mesh(&current, &edits);
             let fresh = PatchTable::build(&Topology::new(&current).unwrap(), &options).unwrap();
             assert_same(&format!("{name} round {round} {edits:?}"), &table, &fresh);
         }
     }
     assert!(shapes >= 20, "{shapes} creased shapes");
+    assert!(
+        updated >= 10 && rebuilt >= 10,
+        "{updated} edits in place, {rebuilt} rebuilds"
+    );
 }
 
-/// The car's 314 creases from their sharpness to 3.5 and back, on the `f64` table: the
-/// fresh build each way, and the original table at the end.
+/// The car's 314 creases from their sharpness to 2, 3.5 and back, on the `f64` table: the
+/// fresh build each way, and the original table at the end (updated in place: moving the
+/// creases from 3.5 to their own 6 keeps the structure).
 #[test]
 fn car_creases_there_and_back_on_the_f64_table() {
     let mesh = load_shape("catmark_car");
@@ -170,11 +197,23 @@ fn car_creases_there_and_back_on_the_f64_table() {
             })
             .collect()
     };
-    assert!(table.set_sharpness(&to(Some(3.5))).unwrap());
-    let moved = edit_mesh(&mesh, &to(Some(3.5)));
-    let fresh = PatchTable::<f64>::build_real(&Topology::new(&moved).unwrap(), &o).unwrap();
-    assert_same("car at 3.5", &table, &fresh);
-    assert!(table.set_sharpness(&to(None)).unwrap());
+    // The first edit keeps the levels, the next ones update the table in place.
+    let at = |s: f32| {
+        let m = edit_mesh(&mesh, &to(Some(s)));
+        PatchTable::<f64>::build_real(&Topology::new(&m).unwrap(), &o).unwrap()
+    };
+    assert_eq!(
+        table.apply_sharpness(&to(Some(2.0))).unwrap(),
+        EditOutcome::Rebuilt
+    );
+    assert_same("car at 2", &table, &at(2.0));
+    let moved = table.apply_sharpness(&to(Some(3.5))).unwrap();
+    assert_same("car at 3.5", &table, &at(3.5));
+    assert_ne!(moved, EditOutcome::Unchanged);
+    assert_eq!(
+        table.apply_sharpness(&to(None)).unwrap(),
+        EditOutcome::Updated
+    );
     assert_same("car back", &table, &original);
     // The same values again change nothing.
     assert!(!table.set_sharpness(&to(None)).unwrap());

@@ -10,9 +10,10 @@
 //! exist, a value must be finite and non-negative (values above
 //! [`crate::SHARPNESS_INFINITE`] are clamped, as [`crate::Topology::new`] clamps the tags).
 //!
-//! The table is then rebuilt from the edited base topology. Edits that change nothing (the
-//! same values, or edges and vertices that boundary and non-manifold sharpening keep
-//! infinitely sharp) leave it untouched.
+//! The table is then updated in place where the edit keeps its isolation structure, and
+//! rebuilt otherwise ([`super::edit_region`]). Edits that change nothing (the same values,
+//! or edges and vertices that boundary and non-manifold sharpening keep infinitely sharp)
+//! leave it untouched.
 
 use super::budget::Budget;
 use super::sparse::Selection;
@@ -113,6 +114,18 @@ fn edited(base: &Topology, edits: &[SharpnessEdit]) -> Result<Topology> {
     Ok(t)
 }
 
+/// What [`PatchTable::apply_sharpness`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EditOutcome {
+    /// Nothing changed (the same values, or elements kept infinitely sharp).
+    Unchanged,
+    /// The isolation structure was kept: the table was updated in place
+    /// ([`super::edit_region`]).
+    Updated,
+    /// The table was rebuilt (the first edit of a table, or a change of structure).
+    Rebuilt,
+}
+
 impl<R: Real> PatchTable<R> {
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
     /// same element winning) and updates the table to equal a fresh build of the edited mesh
@@ -121,18 +134,29 @@ impl<R: Real> PatchTable<R> {
     /// Bad edits are refused before any work with [`MeshError::BadSharpnessEdit`], naming
     /// the edit and the value or element; the table is then unchanged.
     pub fn set_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<bool> {
+        Ok(self.apply_sharpness(edits)? != EditOutcome::Unchanged)
+    }
+
+    /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
+    /// isolation structure is kept ([`super::edit_region`]), else rebuilt. The first edit
+    /// of a table rebuilds it, keeping its levels for the next edits.
+    pub fn apply_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<EditOutcome> {
         let t = edited(&self.base, edits)?;
         if t.edge_sharpness == self.base.edge_sharpness
             && t.vert_sharpness == self.base.vert_sharpness
         {
-            return Ok(false);
+            return Ok(EditOutcome::Unchanged);
+        }
+        if self.edit_state.is_some() && self.set_sharpness_incremental(t.clone())? {
+            return Ok(EditOutcome::Updated);
         }
         *self = PatchTable::build_within_real(
             &t,
             &self.options,
             Selection::Sparse,
             Budget::of_available_memory(),
+            true,
         )?;
-        Ok(true)
+        Ok(EditOutcome::Rebuilt)
     }
 }

@@ -155,29 +155,11 @@ fn chunk_patches<W: Real>(
         if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
             return Err(not_exact("a corner", d, f));
         }
-        let regular = is_patch_regular(t, tags, f);
+        let (kind, boundary, regular, sharpness) = leaf_kind(t, tags, f, d, o);
         let leaf = if regular {
-            let bmask = boundary_mask(t, f);
-            let crease = if o.single_crease && bmask == 0 && (d < o.max_level || !o.cap) {
-                single_crease(t, tags, f)
-            } else {
-                None
-            };
             let pts = regular_points_checked(lv, d, f)?;
             let first = out.cvs.len() as u32;
             out.cvs.extend(pts.iter().map(|&p| off + p));
-            let (kind, boundary, sharpness) = match crease {
-                Some((k, s)) => (
-                    PatchType::SingleCrease,
-                    1u8 << k,
-                    if o.cap {
-                        s.min((o.max_level - d) as f32)
-                    } else {
-                        s
-                    },
-                ),
-                None => (PatchType::Regular, bmask, 0.0),
-            };
             Leaf {
                 kind,
                 boundary,
@@ -213,6 +195,39 @@ fn chunk_patches<W: Real>(
         out.leaves.push(leaf);
     }
     Ok(out)
+}
+
+/// The basis of the patch of leaf face `f` of level `d`: its type, boundary mask (or crease
+/// edge bit), whether it is regular, and its crease sharpness.
+pub fn leaf_kind(
+    t: &crate::topology::Topology,
+    tags: &[super::features::VTag],
+    f: usize,
+    d: usize,
+    o: &LeafOptions,
+) -> (PatchType, u8, bool, f32) {
+    if !is_patch_regular(t, tags, f) {
+        return (PatchType::Gregory, 0, false, 0.0);
+    }
+    let bmask = boundary_mask(t, f);
+    let crease = if o.single_crease && bmask == 0 && (d < o.max_level || !o.cap) {
+        single_crease(t, tags, f)
+    } else {
+        None
+    };
+    match crease {
+        Some((k, s)) => (
+            PatchType::SingleCrease,
+            1u8 << k,
+            true,
+            if o.cap {
+                s.min((o.max_level - d) as f32)
+            } else {
+                s
+            },
+        ),
+        None => (PatchType::Regular, bmask, true, 0.0),
+    }
 }
 
 /// [`super::gather::regular_points`] of face `f`, each checked to be exact.

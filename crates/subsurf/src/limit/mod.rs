@@ -21,7 +21,8 @@
 //! - [`patch_map`]: the quadtree per ptex face ([`tri_patch_map`]: of triangles);
 //! - [`points`]: the patch points from base values (stencil rows relative to their first input);
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
-//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]).
+//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]);
+//!   [`edit_region`]: the incremental update where the isolation structure is kept.
 //!
 //! # Ptex faces
 //!
@@ -80,6 +81,7 @@
 
 pub mod budget;
 pub mod edit;
+pub mod edit_region;
 pub mod endcap;
 pub mod eval;
 pub mod features;
@@ -96,7 +98,7 @@ pub mod table;
 pub mod tessellate;
 pub mod tri_patch_map;
 
-pub use edit::SharpnessEdit;
+pub use edit::{EditOutcome, SharpnessEdit};
 pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};

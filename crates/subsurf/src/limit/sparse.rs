@@ -132,6 +132,22 @@ impl Level {
     }
 }
 
+/// The levels of a construction, kept for crease edits ([`super::edit_region`]): what
+/// [`build`] otherwise releases level by level.
+#[derive(Debug, Clone, Default)]
+pub struct Trace {
+    /// The topology of every level (`levels[0]` is the base).
+    pub levels: Vec<Topology>,
+    /// `subs[d]`: the sub-mesh of level `d` that was refined (its border made sharp).
+    pub subs: Vec<Topology>,
+    /// `sub_edges[d][i]`: the level-`d` edge that is edge `i` of `subs[d]`.
+    pub sub_edges: Vec<Vec<u32>>,
+    /// `chosen[d]`: the faces of level `d` selected for refinement.
+    pub chosen: Vec<Vec<u32>>,
+    /// `leaves[d]`: the leaf faces of level `d`, in leaf order.
+    pub leaves: Vec<Vec<u32>>,
+}
+
 /// What is made of a level's leaf faces: `(level, d, offset, faces)`, see [`build`].
 pub type LeafFn<'a, T> = dyn Fn(&Level, usize, u32, &[u32]) -> Result<T> + Sync + 'a;
 
@@ -149,6 +165,19 @@ pub fn build<W: Real, T: Send>(
     selection: Selection,
     budget: &mut Budget,
     leaves: &LeafFn<'_, T>,
+) -> Result<(Hierarchy<W>, Vec<T>)> {
+    build_traced(base, max_level, mask, selection, budget, leaves, None)
+}
+
+/// [`build`], keeping the levels in `trace` when one is given.
+pub fn build_traced<W: Real, T: Send>(
+    base: &Topology,
+    max_level: usize,
+    mask: &FeatureMask,
+    selection: Selection,
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+    mut trace: Option<&mut Trace>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
     let mut h = Hierarchy {
         num_vertices: vec![base.num_vertices()],
@@ -193,6 +222,12 @@ pub fn build<W: Real, T: Send>(
             );
             out.push(patches?);
             h.stencils.extend(stencils);
+            if let Some(tr) = trace.as_deref_mut() {
+                tr.chosen.push(chosen);
+                tr.leaves.push(leaf_faces);
+                tr.subs.extend(prev_sub.take());
+                tr.levels.push(std::mem::take(&mut level.topo));
+            }
             break;
         }
         let keep = match selection {
@@ -255,8 +290,15 @@ pub fn build<W: Real, T: Send>(
             .collect();
         h.inputs.push(step.verts);
         h.num_vertices.push(next.topo.num_vertices());
-        prev_sub = Some(step.sub);
-        level = next;
+        let done_sub = prev_sub.replace(step.sub);
+        let done = std::mem::replace(&mut level, next);
+        if let Some(tr) = trace.as_deref_mut() {
+            tr.chosen.push(chosen);
+            tr.leaves.push(leaf_faces);
+            tr.subs.extend(done_sub);
+            tr.sub_edges.push(step.edges);
+            tr.levels.push(done.topo);
+        }
     }
     Ok((h, out))
 }
@@ -329,6 +371,8 @@ struct Step {
     edge_ok: Vec<bool>,
     /// Per sub-mesh vertex: exact in the level.
     exact: Vec<bool>,
+    /// Sub-mesh edge → level edge.
+    edges: Vec<u32>,
 }
 
 impl Step {
@@ -345,6 +389,7 @@ impl Step {
                 sound: lv.sound.clone(),
                 edge_ok: lv.edge_ok.clone(),
                 exact: lv.exact.clone(),
+                edges: (0..s.num_edges() as u32).collect(),
             };
         }
         let faces: Vec<u32> = (0..s.num_faces() as u32)
@@ -482,6 +527,7 @@ impl Step {
             sound,
             edge_ok,
             exact,
+            edges,
         }
     }
 
@@ -523,7 +569,7 @@ impl Step {
 /// Tags of a vertex on the sub-mesh's border: made an infinitely sharp non-manifold corner
 /// (its value is never used; its child is the identity of it whatever its ring), tagged from
 /// its sub-mesh ring as OpenSubdiv tags a base vertex.
-fn border_vertex(t: &mut Topology, v: usize) {
+pub(super) fn border_vertex(t: &mut Topology, v: usize) {
     let (mut boundary, mut inf, mut semi) = (0usize, 0usize, 0usize);
     for &e in t.vertex_edges(v) {
         let et = t.edge_tags[e as usize];

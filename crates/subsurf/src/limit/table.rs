@@ -161,6 +161,9 @@ pub struct PatchTable<R = f32> {
     pub ptex_offsets: Vec<u32>,
     /// Patch lookup per ptex face.
     pub patch_map: PatchMap,
+    /// The levels kept for incremental crease edits ([`super::edit_region`]), made by the
+    /// first [`PatchTable::set_sharpness`]; `None` after a plain build.
+    pub(crate) edit_state: Option<std::sync::Arc<super::edit_region::EditState>>,
 }
 
 /// Patch counts by type.
@@ -198,6 +201,8 @@ struct Joined<R> {
     local: StencilTable<R>,
     nodes: Vec<[u32; 4]>,
     roots: Vec<u32>,
+    /// `(level, leaf)` of each patch.
+    leaves: Vec<(u32, u32)>,
 }
 
 impl<R: Real> Joined<R> {
@@ -232,6 +237,7 @@ impl<R: Real> Joined<R> {
         self.kinds.extend_from_slice(&b.kinds);
         self.params.extend_from_slice(&b.params);
         self.sharpness.extend_from_slice(&b.sharpness);
+        self.leaves.extend_from_slice(&b.leaves);
         for &(d, i) in &b.leaves {
             let (part, leaf) = b.patches[d as usize].leaf(i);
             let first = leaf.first as usize;
@@ -345,7 +351,7 @@ impl PatchTable {
         selection: Selection,
         budget: Budget,
     ) -> Result<PatchTable> {
-        PatchTable::build_within_real(base, options, selection, budget)
+        PatchTable::build_within_real(base, options, selection, budget, false)
     }
 }
 
@@ -359,14 +365,17 @@ impl<R: Real> PatchTable<R> {
             options,
             Selection::Sparse,
             Budget::of_available_memory(),
+            false,
         )
     }
 
+    /// The construction; `traced` keeps its levels for incremental crease edits.
     pub(crate) fn build_within_real(
         base: &Topology,
         options: &PatchOptions,
         selection: Selection,
         mut budget: Budget,
+        traced: bool,
     ) -> Result<PatchTable<R>> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
@@ -388,13 +397,15 @@ impl<R: Real> PatchTable<R> {
             cap: options.cap_crease_sharpness,
             max_level: level,
         };
-        let (h, patches) = sparse::build(
+        let mut trace = traced.then(sparse::Trace::default);
+        let (h, patches) = sparse::build_traced(
             base,
             level,
             &FeatureMask::new(options.single_crease),
             selection,
             &mut budget,
             &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
+            trace.as_mut(),
         )?;
         let mut level_offsets = vec![0u32];
         for &nv in &h.num_vertices {
@@ -474,7 +485,11 @@ impl<R: Real> PatchTable<R> {
             local: local_points,
             nodes,
             roots,
+            leaves,
         } = all;
+        let edit_state = trace
+            .map(|t| super::edit_region::EditState::new(t, &leaves))
+            .map(std::sync::Arc::new);
         Ok(PatchTable::<R> {
             options: *options,
             base: base.clone(),
@@ -489,6 +504,7 @@ impl<R: Real> PatchTable<R> {
             sharpness,
             ptex_offsets,
             patch_map: PatchMap { roots, nodes },
+            edit_state,
         })
     }
 }

@@ -33,6 +33,7 @@ mod loop_masks;
 mod loop_rings;
 mod masks;
 pub(crate) mod par;
+mod resharpen;
 mod smooth_frame;
 mod stencil;
 mod uv;
@@ -48,6 +49,7 @@ pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 use masks::level_stencils_with;
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
+pub(crate) use resharpen::{resharpen, restencil};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 

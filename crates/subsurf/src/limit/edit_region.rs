@@ -1,0 +1,368 @@
+//! Incremental crease edits: a table updated in place where new sharpness keeps its isolation
+//! structure, with the result a fresh [`PatchTable::build`] gives, bit for bit.
+//!
+//! The first edit of a table rebuilds it keeping its sparse levels ([`EditState`]: the
+//! topology of every level and of every refined sub-mesh, which faces were refined and which
+//! were leaves). A later edit then walks the levels from the base down:
+//!
+//! 1. the edited base; at each level the elements whose sharpness, tags or rule changed, and
+//!    the vertices they touch (an edge marks both ends);
+//! 2. the decisions of the faces around them are made again with the level's feature rules
+//!    ([`super::features`]): a face refined that should not be, a leaf that should be refined
+//!    or whose patch changes between B-spline and end cap, or an end cap whose points change,
+//!    is a change of structure, and the table is rebuilt (with its levels kept);
+//! 3. otherwise the leaves around them take their new type, boundary mask and crease
+//!    sharpness ([`super::leaves::leaf_kind`]: single-crease ↔ regular, the patch parameter's
+//!    boundary bits);
+//! 4. the level's sub-mesh takes the new values of its elements (its border stays sharp),
+//!    the child level's sharpness, tags and rules are derived from it as refinement derives
+//!    them, and the stencil rows of the step whose inputs changed (parent or child sharpness
+//!    or rule of the vertex, its edges and their children; of the edge and its edge point)
+//!    are formed again, the others copied;
+//! 5. a level where nothing changed ends the walk: every deeper level is unchanged.
+//!
+//! The work is that of the changed rows and leaves plus a linear pass over each level's
+//! sharpness arrays down to the depth where the edit decays, instead of refining every
+//! level's topology, stencils and end caps again. A structural change costs a full build.
+
+use super::endcap::gregory_points;
+use super::features::{face_has_features, FeatureMask, VTag};
+use super::leaves::{leaf_kind, LeafOptions};
+use super::sparse::{border_vertex, Trace};
+use super::table::{PatchTable, PatchType};
+use crate::error::{Error, Result};
+use crate::patch::{PatchParam, PatchParamFields};
+use crate::real::Real;
+use crate::refine::{resharpen, restencil, LevelStencils};
+use crate::topology::Topology;
+
+/// Not visited by the walk.
+const NONE: u32 = u32::MAX;
+/// Refined further.
+const CHOSEN: u32 = u32::MAX - 1;
+
+/// The levels of a table kept for incremental edits.
+#[derive(Debug, Clone)]
+pub struct EditState {
+    trace: Trace,
+    /// `visit[d][f]`: [`CHOSEN`], the leaf index of face `f` of level `d`, or [`NONE`].
+    visit: Vec<Vec<u32>>,
+    /// `leaf_patch[d][i]`: the patch of leaf `i` of level `d`.
+    leaf_patch: Vec<Vec<u32>>,
+}
+
+impl EditState {
+    /// The state of a construction: its `trace` and the `(level, leaf)` of each patch.
+    pub(crate) fn new(trace: Trace, patch_leaves: &[(u32, u32)]) -> EditState {
+        let visit = (0..trace.levels.len())
+            .map(|d| {
+                let mut v = vec![NONE; trace.levels[d].num_faces()];
+                for &f in &trace.chosen[d] {
+                    v[f as usize] = CHOSEN;
+                }
+                for (i, &f) in trace.leaves[d].iter().enumerate() {
+                    v[f as usize] = i as u32;
+                }
+                v
+            })
+            .collect();
+        let mut leaf_patch: Vec<Vec<u32>> =
+            trace.leaves.iter().map(|l| vec![NONE; l.len()]).collect();
+        for (p, &(d, i)) in patch_leaves.iter().enumerate() {
+            leaf_patch[d as usize][i as usize] = p as u32;
+        }
+        EditState {
+            trace,
+            visit,
+            leaf_patch,
+        }
+    }
+}
+
+/// The sharpness arrays of a topology, to tell what an update changed.
+struct Values {
+    edge_sharpness: Vec<f32>,
+    edge_tags: Vec<u8>,
+    vert_sharpness: Vec<f32>,
+    vert_tags: Vec<u16>,
+    vert_rule: Vec<u8>,
+}
+
+impl Values {
+    fn of(t: &Topology) -> Values {
+        Values {
+            edge_sharpness: t.edge_sharpness.clone(),
+            edge_tags: t.edge_tags.clone(),
+            vert_sharpness: t.vert_sharpness.clone(),
+            vert_tags: t.vert_tags.clone(),
+            vert_rule: t.vert_rule.clone(),
+        }
+    }
+
+    /// Per edge: changed; per vertex: changed itself or by one of its edges. `None` when
+    /// nothing changed.
+    fn changes(&self, t: &Topology) -> Option<(Vec<bool>, Vec<bool>)> {
+        let edges: Vec<bool> = (0..t.num_edges())
+            .map(|e| {
+                self.edge_sharpness[e].to_bits() != t.edge_sharpness[e].to_bits()
+                    || self.edge_tags[e] != t.edge_tags[e]
+            })
+            .collect();
+        let mut verts: Vec<bool> = (0..t.num_vertices())
+            .map(|v| {
+                self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
+                    || self.vert_tags[v] != t.vert_tags[v]
+                    || self.vert_rule[v] != t.vert_rule[v]
+            })
+            .collect();
+        let mut any = verts.iter().any(|&c| c);
+        for e in (0..t.num_edges()).filter(|&e| edges[e]) {
+            any = true;
+            for v in t.edge_verts[e] {
+                verts[v as usize] = true;
+            }
+        }
+        any.then_some((edges, verts))
+    }
+}
+
+/// What the walk found at one level.
+enum Level<R> {
+    /// New stencils for the step below it (`None`: unchanged).
+    Stencils(Option<Box<LevelStencils<R>>>),
+    /// The isolation structure changes.
+    Structural,
+}
+
+impl<R: Real> PatchTable<R> {
+    /// Applies the edited base topology `base` incrementally (module documentation); returns
+    /// `false`, the table unchanged but for its kept levels, where the structure changes.
+    pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<bool> {
+        let Some(state) = self.edit_state.take() else {
+            return Ok(false);
+        };
+        let mut st = std::sync::Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
+        let num_levels = st.trace.levels.len();
+        let max_level = if base.is_all_quads() {
+            self.options.isolation_level as usize
+        } else {
+            (self.options.isolation_level as usize).max(1)
+        };
+        let leaf_options = LeafOptions {
+            single_crease: self.options.single_crease,
+            cap: self.options.cap_crease_sharpness,
+            max_level,
+        };
+        let mask = FeatureMask::new(self.options.single_crease);
+        let num_level_points = *self.level_offsets.last().unwrap_or(&0);
+
+        let mut old = Values::of(&st.trace.levels[0]);
+        st.trace.levels[0] = base;
+        let mut stencils: Vec<(usize, LevelStencils<R>)> = Vec::new();
+        let mut patches: Vec<(u32, PatchType, u8, f32)> = Vec::new();
+        for d in 0..num_levels {
+            let Some((_, changed)) = old.changes(&st.trace.levels[d]) else {
+                break;
+            };
+            if !self.redecide(
+                &st,
+                d,
+                &changed,
+                &mask,
+                &leaf_options,
+                num_level_points,
+                &mut patches,
+            )? {
+                return Ok(false);
+            }
+            if d + 1 == num_levels {
+                break;
+            }
+            let (head, tail) = st.trace.levels.split_at_mut(d + 1);
+            let (level, child) = (&head[d], &mut tail[0]);
+            let sub = &mut st.trace.subs[d];
+            let sub_old = Values::of(sub);
+            refresh_sub(level, sub, &self.level_inputs[d], &st.trace.sub_edges[d]);
+            old = Values::of(child);
+            resharpen(sub, child);
+            match self.step_rows(sub, &sub_old, child, &old, d) {
+                Level::Stencils(Some(s)) => stencils.push((d, *s)),
+                Level::Stencils(None) => {}
+                Level::Structural => return Ok(false),
+            }
+        }
+        for (d, s) in stencils {
+            self.level_stencils[d] = s;
+        }
+        for (p, kind, boundary, sharpness) in patches {
+            let p = p as usize;
+            self.kinds[p] = kind as u8;
+            self.sharpness[p] = sharpness;
+            self.params[p] = PatchParam::new(PatchParamFields {
+                boundary,
+                ..self.params[p].fields()
+            })
+            .map_err(|e| Error::Internal(format!("crease edit of patch {p}: {e}")))?;
+        }
+        self.base = st.trace.levels[0].clone();
+        self.edit_state = Some(std::sync::Arc::new(st));
+        Ok(true)
+    }
+
+    /// Makes the decisions of the visited faces of level `d` around the `changed` vertices
+    /// again: `false` where one differs (or an end cap's points change); the new types of
+    /// the leaves are pushed to `out`.
+    #[allow(clippy::too_many_arguments)]
+    fn redecide(
+        &self,
+        st: &EditState,
+        d: usize,
+        changed: &[bool],
+        mask: &FeatureMask,
+        o: &LeafOptions,
+        num_level_points: u32,
+        out: &mut Vec<(u32, PatchType, u8, f32)>,
+    ) -> Result<bool> {
+        let t = &st.trace.levels[d];
+        let visit = &st.visit[d];
+        let mut faces: Vec<u32> = Vec::new();
+        for v in (0..t.num_vertices()).filter(|&v| changed[v]) {
+            faces.extend(
+                t.vertex_faces(v)
+                    .iter()
+                    .filter(|&&f| visit[f as usize] != NONE),
+            );
+        }
+        faces.sort_unstable();
+        faces.dedup();
+        let mut tags = vec![VTag::default(); t.num_vertices()];
+        let mut tagged = vec![false; t.num_vertices()];
+        for &f in &faces {
+            for &v in t.face_vertices(f as usize) {
+                if !tagged[v as usize] {
+                    tagged[v as usize] = true;
+                    tags[v as usize] = VTag::of(t, v as usize, d == 0);
+                }
+            }
+        }
+        for &f in &faces {
+            let f = f as usize;
+            let refine = d < o.max_level && face_has_features(t, &tags, f, d, mask);
+            if refine != (visit[f] == CHOSEN) {
+                return Ok(false);
+            }
+            if refine {
+                continue;
+            }
+            let p = st.leaf_patch[d][visit[f] as usize];
+            if p == NONE {
+                return Err(Error::Internal(format!(
+                    "leaf {f} of level {d} has no patch"
+                )));
+            }
+            let (kind, boundary, _, sharpness) = leaf_kind(t, &tags, f, d, o);
+            let was = self.patch_type(p as usize);
+            if (kind == PatchType::Gregory) != (was == PatchType::Gregory) {
+                return Ok(false);
+            }
+            if kind == PatchType::Gregory {
+                let off = self.level_offsets[d];
+                let first = self.patch_cvs(p as usize)[0] - num_level_points;
+                let same = gregory_points(t, f).iter().enumerate().all(|(k, row)| {
+                    let r = first as usize + k;
+                    let lp = &self.local_points;
+                    let (a, b) = (lp.offsets[r] as usize, lp.offsets[r + 1] as usize);
+                    b - a == row.len()
+                        && row.iter().zip(a..b).all(|(&(x, w), j)| {
+                            lp.indices[j] == x + off
+                                && lp.weights[j].to_f64().to_bits()
+                                    == R::from_f64(w).to_f64().to_bits()
+                        })
+                });
+                if !same {
+                    return Ok(false);
+                }
+            } else {
+                out.push((p, kind, boundary, sharpness));
+            }
+        }
+        Ok(true)
+    }
+
+    /// The stencils of step `d` with the rows whose inputs changed formed again.
+    fn step_rows(
+        &self,
+        sub: &Topology,
+        sub_old: &Values,
+        child: &Topology,
+        child_old: &Values,
+        d: usize,
+    ) -> Level<R> {
+        let (nv, nf, nc) = (sub.num_vertices(), sub.num_faces(), sub.num_corners());
+        let ne = sub.num_edges();
+        let bits = |a: f32, b: f32| a.to_bits() != b.to_bits();
+        let ce = |i: usize| bits(child_old.edge_sharpness[i], child.edge_sharpness[i]);
+        let dirty_edge_input: Vec<bool> = (0..ne)
+            .map(|e| {
+                bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e])
+                    || ce(nc + 2 * e)
+                    || ce(nc + 2 * e + 1)
+            })
+            .collect();
+        let dirty_edge: Vec<bool> = (0..ne)
+            .map(|e| {
+                bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e])
+                    || child_old.vert_rule[nv + nf + e] != child.vert_rule[nv + nf + e]
+            })
+            .collect();
+        let dirty_vertex: Vec<bool> = (0..nv)
+            .map(|v| {
+                bits(sub_old.vert_sharpness[v], sub.vert_sharpness[v])
+                    || sub_old.vert_rule[v] != sub.vert_rule[v]
+                    || bits(child_old.vert_sharpness[v], child.vert_sharpness[v])
+                    || child_old.vert_rule[v] != child.vert_rule[v]
+                    || sub
+                        .vertex_edges(v)
+                        .iter()
+                        .any(|&e| dirty_edge_input[e as usize])
+            })
+            .collect();
+        if !dirty_vertex.iter().any(|&x| x) && !dirty_edge.iter().any(|&x| x) {
+            return Level::Stencils(None);
+        }
+        let old = &self.level_stencils[d];
+        if old.vertex.num_rows() != nv || old.edge.num_rows() != ne {
+            return Level::Structural;
+        }
+        Level::Stencils(Some(Box::new(restencil(
+            sub,
+            child,
+            old,
+            &dirty_vertex,
+            &dirty_edge,
+        ))))
+    }
+}
+
+/// The sub-mesh `sub` of `level` (its vertices `verts`, edges `edges` in the level) given
+/// the level's current values, as [`super::sparse`] makes it: elements whose faces are all
+/// kept take the level's values, the border stays an infinitely sharp boundary.
+fn refresh_sub(level: &Topology, sub: &mut Topology, verts: &[u32], edges: &[u32]) {
+    for (e, &le) in edges.iter().enumerate() {
+        let le = le as usize;
+        if sub.edge_faces(e).len() == level.edge_faces(le).len() {
+            sub.edge_sharpness[e] = level.edge_sharpness[le];
+            sub.edge_tags[e] = level.edge_tags[le];
+        }
+    }
+    for (v, &lv) in verts.iter().enumerate() {
+        let lv = lv as usize;
+        if sub.vertex_faces(v).len() == level.vertex_faces(lv).len() {
+            sub.vert_sharpness[v] = level.vert_sharpness[lv];
+            sub.vert_tags[v] = level.vert_tags[lv];
+            sub.vert_rule[v] = level.vert_rule[lv];
+        } else {
+            border_vertex(sub, v);
+        }
+    }
+}

@@ -1,0 +1,113 @@
+//! New sharpness on a refined level whose topology is kept: the child level's sharpness, tags
+//! and rules recomputed from a parent whose sharpness changed (the values
+//! [`super::refine_topology`] gives, by the same functions), and the stencils of the step
+//! re-formed only in the rows whose inputs changed.
+//!
+//! Used by crease edits of a patch table ([`crate::limit::PatchTable::set_sharpness`]).
+
+use super::last_level::ChildSharpness;
+use super::level::{child_edge_sharpness, child_end_at_vertex, edge_point_tags, vertex_child_tags};
+use super::masks::{LevelRows, LevelStencils, Scratch};
+use super::stencil::StencilTable;
+use crate::real::Real;
+use crate::topology::tags;
+use crate::topology::Topology;
+
+/// The sharpness bits of a vertex tag (the others follow from the topology alone).
+const SHARP_BITS: u16 =
+    tags::V_SEMI_SHARP | tags::V_INF_SHARP | tags::V_SEMI_SHARP_EDGES | tags::V_INF_SHARP_EDGES;
+
+/// Recomputes the sharpness, tags and rules of `c`, the refinement of `p` by
+/// [`super::refine_topology`], after new sharpness was given to `p` (same topology).
+pub(crate) fn resharpen(p: &Topology, c: &mut Topology) {
+    let (nv, nf, nc) = (p.num_vertices(), p.num_faces(), p.num_corners());
+    child_edge_sharpness(p, &mut c.edge_sharpness[nc..], &mut c.edge_tags[nc..]);
+    for v in 0..nv {
+        let s = crate::rules::crease::decrement(p.vert_sharpness[v]);
+        c.vert_sharpness[v] = s;
+        let pe = p.vertex_edges(v);
+        let (mut inf, mut semi) = (0usize, 0usize);
+        for (i, &e) in pe.iter().enumerate() {
+            let ce = nc + 2 * e as usize + child_end_at_vertex(p, pe, i, v) as usize;
+            let et = c.edge_tags[ce];
+            inf += (et & tags::E_INF_SHARP != 0) as usize;
+            semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+        }
+        let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
+        c.vert_tags[v] = t | (c.vert_tags[v] & tags::V_INCIDENT_HOLE);
+        c.vert_rule[v] = rl;
+    }
+    for e in 0..p.num_edges() {
+        let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
+        let (t, rl) = edge_point_tags(p.edge_tags[e], t0, t1);
+        let i = nv + nf + e;
+        c.vert_tags[i] = (c.vert_tags[i] & !SHARP_BITS) | t;
+        c.vert_rule[i] = rl;
+    }
+}
+
+/// The stencils of the step from `p` to `c` (as [`super::level_stencils_real`] forms them),
+/// copied from `old` except the vertex rows `dirty_vertex` and edge rows `dirty_edge`,
+/// which are formed again.
+pub(crate) fn restencil<W: Real>(
+    p: &Topology,
+    c: &Topology,
+    old: &LevelStencils<W>,
+    dirty_vertex: &[bool],
+    dirty_edge: &[bool],
+) -> LevelStencils<W> {
+    let rows = LevelRows::new(p, ChildSharpness::of_child(p, c));
+    let mut scratch = Scratch::<W>::default();
+    let vertex = splice(&old.vertex, dirty_vertex, |i, add| {
+        rows.vertex(i, &mut scratch, &mut &mut *add)
+    });
+    let edge = splice(&old.edge, dirty_edge, |i, add| rows.edge(i, &mut &mut *add));
+    LevelStencils {
+        num_parent_vertices: old.num_parent_vertices,
+        face: old.face.clone(),
+        vertex,
+        edge,
+    }
+}
+
+/// `old` with the rows `dirty` formed again by `row(i, add)`; runs of clean rows are copied.
+fn splice<W: Real>(
+    old: &StencilTable<W>,
+    dirty: &[bool],
+    mut row: impl FnMut(usize, &mut dyn FnMut(u32, W)),
+) -> StencilTable<W> {
+    let mut t = StencilTable {
+        offsets: Vec::with_capacity(old.offsets.len()),
+        indices: Vec::with_capacity(old.indices.len() + 64),
+        weights: Vec::with_capacity(old.weights.len() + 64),
+        num_inputs: old.num_inputs,
+    };
+    t.offsets.push(0);
+    let n = old.num_rows();
+    let mut r = 0;
+    while r < n {
+        if dirty[r] {
+            row(r, &mut |x, w| {
+                t.indices.push(x);
+                t.weights.push(w);
+            });
+            t.offsets.push(t.indices.len() as u32);
+            r += 1;
+            continue;
+        }
+        let start = r;
+        while r < n && !dirty[r] {
+            r += 1;
+        }
+        let (a, b) = (old.offsets[start] as usize, old.offsets[r] as usize);
+        let shift = t.indices.len() as i64 - a as i64;
+        t.indices.extend_from_slice(&old.indices[a..b]);
+        t.weights.extend_from_slice(&old.weights[a..b]);
+        t.offsets.extend(
+            old.offsets[start + 1..=r]
+                .iter()
+                .map(|&o| (o as i64 + shift) as u32),
+        );
+    }
+    t
+}
