@@ -71,6 +71,7 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
                 method,
                 level,
                 perturbed,
+                adaptive: None,
             });
         }
     }
@@ -79,6 +80,7 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
         method: Method::Refine,
         level: default_level,
         perturbed: true,
+        adaptive: None,
     })
 }
 

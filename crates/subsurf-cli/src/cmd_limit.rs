@@ -146,17 +146,13 @@ fn run_adaptive(
         anyhow::bail!("--quads needs a uniform --tess (adaptive tessellations are triangles)");
     }
     let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
-    let (policy, origin) = a
-        .adaptive
-        .policy(&a.screen, &surface, &mesh.positions, a.tess)?;
-    let rates = policy.rates(&surface, &origin)?;
-    let tess = surface.tessellate_rates(&rates, &origin)?;
+    let camera = a.screen.camera(&mesh.positions);
+    let (policy, origin) = a.adaptive.policy(camera, &surface.table.base, a.tess)?;
+    let adaptive = subsurf::surface::tessellate_adaptive(&surface, &policy, &origin)?;
+    let tess = &adaptive.tessellation;
     let out = tess.to_mesh();
     write_mesh(&a.output, &out, Some(&tess.normals))?;
-    let (lo, hi) = tess
-        .edge_rates
-        .iter()
-        .fold((u32::MAX, 0), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    let (lo, hi) = adaptive.rate_range();
     crate::say!(
         "{origin}: edge rates {lo}..={hi} on {} ptex faces: {} vertices, {} triangles -> {}",
         surface.table.num_ptex_faces(),

@@ -8,7 +8,8 @@
 //! (`--tess` samples per ptex-face side); `patch-kind` colours regular patches of base faces
 //! (blue), regular patches at adaptive levels (green), single-crease patches (orange) and
 //! Gregory end caps (red); `level` colours by adaptive level (palette order: grey 0, orange
-//! 1, blue 2, green 3, red 4, ...).
+//! 1, blue 2, green 3, red 4, ...). With `--tolerance`, `--max-edge-length`, `--pixels` (the
+//! image's own camera) or `--edge-rates`, `limit` takes per-edge rates instead.
 
 use crate::common::{read_mesh_with, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
@@ -122,6 +123,9 @@ pub struct RenderArgs {
     pub look: LookArgs,
     #[command(flatten)]
     pub scheme: SchemeArgs,
+    /// Per-edge rates of `--method limit` (the camera of `--pixels` is the image's).
+    #[command(flatten)]
+    pub adaptive: crate::tess_args::AdaptiveArgs,
 }
 
 /// `WxH` to `(W, H)`.
@@ -197,6 +201,8 @@ pub struct SurfaceSpec {
     pub level: usize,
     /// Method prep: with the bi-5 perturbations.
     pub perturbed: bool,
+    /// Method limit: per-edge rates instead of `level` samples per side.
+    pub adaptive: Option<crate::tess_args::AdaptiveArgs>,
 }
 
 /// Builds the triangles of `spec` for `mesh`.
@@ -246,6 +252,25 @@ pub fn build(
                 spec.level
             ),
         ),
+        Method::Limit if spec.adaptive.as_ref().is_some_and(|a| a.any()) => {
+            let args = spec.adaptive.as_ref().expect("checked");
+            let camera =
+                crate::tess_args::screen_camera(look.size, look.view, look.up, &mesh.positions);
+            let topo = subsurf::Topology::new(mesh)?;
+            let (policy, origin) = args.policy(camera, &topo, spec.level)?;
+            let what = format!(
+                "adaptive limit surface of {} ({origin})",
+                spec.path.display()
+            );
+            (
+                SurfaceMethod::Adaptive {
+                    policy,
+                    origin,
+                    options: Default::default(),
+                },
+                what,
+            )
+        }
         Method::Limit => (
             SurfaceMethod::Limit {
                 samples: spec.level,
@@ -334,11 +359,15 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
     if a.no_perturbation && a.method != Method::Prep {
         bail!("--no-perturbation applies to --method prep");
     }
+    if a.adaptive.any() && a.method != Method::Limit {
+        bail!("--tolerance, --max-edge-length, --pixels and --edge-rates apply to --method limit");
+    }
     let spec = SurfaceSpec {
         path: a.input.clone(),
         method: a.method,
         level,
         perturbed: !a.no_perturbation,
+        adaptive: Some(a.adaptive.clone()),
     };
     let progress = Progress::start("reading");
     let rm = prepare_spec(&spec, &a.look, &a.scheme, &progress)?;

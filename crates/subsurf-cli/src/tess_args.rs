@@ -1,11 +1,11 @@
-//! Adaptive tessellation flags of `limit`: one rate policy (`--max-edge-length`,
+//! Adaptive tessellation flags of `limit` and `render --method limit`: one rate policy (`--max-edge-length`,
 //! `--tolerance`, `--pixels` with `--screen`, `--edge-rates`), else the uniform `--tess`.
 
 use std::path::PathBuf;
 
 use anyhow::Context;
-use subsurf::limit::LimitSurface;
 use subsurf::tess::{parse_edge_rates, RatePolicy, ScreenCamera};
+use subsurf::Topology;
 use subsurf_render::{Camera, UpAxis, View};
 
 use crate::cmd_render::{parse_size, UpArg, ViewArg};
@@ -53,16 +53,14 @@ impl AdaptiveArgs {
             || self.edge_rates.is_some()
     }
 
-    /// The policy and the name of its flag, checked before any work (`cage`: the base mesh's
-    /// points, which frame the camera of `--pixels`).
+    /// The policy and the name of its flag, checked before any work (`camera`: the camera
+    /// of `--pixels`, see [`screen_camera`]).
     pub fn policy(
         &self,
-        screen: &ScreenArgs,
-        surface: &LimitSurface,
-        cage: &[[f32; 3]],
+        camera: Option<ScreenCamera>,
+        t: &Topology,
         tess: usize,
     ) -> anyhow::Result<(RatePolicy, String)> {
-        let t = &surface.table.base;
         let uniform = u32::try_from(tess.saturating_sub(1)).unwrap_or(u32::MAX);
         let (policy, origin) = if let Some(l) = self.max_edge_length {
             (
@@ -72,37 +70,8 @@ impl AdaptiveArgs {
         } else if let Some(e) = self.tolerance {
             (RatePolicy::Tolerance(e), "--tolerance".to_string())
         } else if let Some(p) = self.pixels {
-            let camera = screen.screen.map(|(w, h)| {
-                let view = match screen.view {
-                    ViewArg::Front => View::Front,
-                    ViewArg::Back => View::Back,
-                    ViewArg::Left => View::Left,
-                    ViewArg::Right => View::Right,
-                    ViewArg::Top => View::Top,
-                    ViewArg::Iso => View::Iso,
-                };
-                let up = match screen.up {
-                    UpArg::Y => UpAxis::Y,
-                    UpArg::Z => UpAxis::Z,
-                };
-                let defaults = subsurf_render::RenderOptions::default();
-                // Framed on the control points (render frames its output's points).
-                let cam = Camera::frame_points(
-                    cage.iter(),
-                    view,
-                    up,
-                    w as f32 / h.max(1) as f32,
-                    defaults.fov_y_degrees.to_radians(),
-                    defaults.margin,
-                );
-                cam.map(|c| ScreenCamera {
-                    view_proj: c.view_proj(),
-                    width: w,
-                    height: h,
-                })
-            });
             let origin = "--pixels".to_string();
-            (RatePolicy::screen(camera.flatten(), p, &origin)?, origin)
+            (RatePolicy::screen(camera, p, &origin)?, origin)
         } else if let Some(path) = &self.edge_rates {
             let text = std::fs::read_to_string(path)
                 .with_context(|| format!("--edge-rates {}", path.display()))?;
@@ -117,4 +86,49 @@ impl AdaptiveArgs {
         policy.validate(t, &origin)?;
         Ok((policy, origin))
     }
+}
+
+impl ScreenArgs {
+    /// The camera of `--screen`, `--view` and `--up` framed on `cage` (`None` without
+    /// `--screen`).
+    pub fn camera(&self, cage: &[[f32; 3]]) -> Option<ScreenCamera> {
+        let (w, h) = self.screen?;
+        screen_camera((w, h), self.view, self.up, cage)
+    }
+}
+
+/// The camera of an image of `size` seen from `view` with `up`, framed on the points `cage`
+/// (the base mesh's: `render` frames its output's points, which lie close to them).
+pub fn screen_camera(
+    (w, h): (u32, u32),
+    view: ViewArg,
+    up: UpArg,
+    cage: &[[f32; 3]],
+) -> Option<ScreenCamera> {
+    let view = match view {
+        ViewArg::Front => View::Front,
+        ViewArg::Back => View::Back,
+        ViewArg::Left => View::Left,
+        ViewArg::Right => View::Right,
+        ViewArg::Top => View::Top,
+        ViewArg::Iso => View::Iso,
+    };
+    let up = match up {
+        UpArg::Y => UpAxis::Y,
+        UpArg::Z => UpAxis::Z,
+    };
+    let defaults = subsurf_render::RenderOptions::default();
+    let cam = Camera::frame_points(
+        cage.iter(),
+        view,
+        up,
+        w as f32 / h.max(1) as f32,
+        defaults.fov_y_degrees.to_radians(),
+        defaults.margin,
+    )?;
+    Some(ScreenCamera {
+        view_proj: cam.view_proj(),
+        width: w,
+        height: h,
+    })
 }

@@ -90,3 +90,62 @@ fn argument_errors_need_no_gpu() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("closed"));
 }
+
+/// The triangle count of a `render` run's summary line.
+fn rendered_triangles(o: &std::process::Output) -> usize {
+    let err = String::from_utf8_lossy(&o.stderr);
+    let at = err.find("rendered ").expect("summary line") + "rendered ".len();
+    err[at..].split(' ').next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn render_limit_takes_the_adaptive_rate_flags() {
+    // --tolerance renders the library's adaptive surface for the same policy; --pixels
+    // measures edges under the image's own camera, so a larger image needs more triangles.
+    let shape = repo("testdata/shapes/catmark_torus.obj");
+    let out = tmp("torus_tolerance.png");
+    let render = |args: &[&str]| {
+        run_gpu(
+            bin()
+                .arg("render")
+                .arg(&shape)
+                .arg("-o")
+                .arg(&out)
+                .args(["--method", "limit"])
+                .args(args),
+        )
+    };
+    let Some(o) = render(&["--tolerance", "2e-3", "--size", "96x64"]) else {
+        return;
+    };
+    assert_eq!(png_size(&out), (96, 64));
+    let mesh = subsurf::io::read_path(&shape).unwrap();
+    let options = subsurf::surface::SurfaceOptions {
+        method: subsurf::surface::Method::Adaptive {
+            policy: subsurf::tess::RatePolicy::Tolerance(2e-3),
+            origin: "--tolerance".into(),
+            options: Default::default(),
+        },
+        ..Default::default()
+    };
+    let want = subsurf::surface::build(&mesh, &options, &subsurf::surface::Cpu).unwrap();
+    assert_eq!(rendered_triangles(&o), want.triangles.len());
+
+    let Some(small) = render(&["--pixels", "6", "--size", "64x48"]) else {
+        return;
+    };
+    let Some(large) = render(&["--pixels", "6", "--size", "256x192"]) else {
+        return;
+    };
+    let (small, large) = (rendered_triangles(&small), rendered_triangles(&large));
+    assert!(small * 4 < large, "{small} vs {large} triangles");
+
+    let bad = bin()
+        .arg("render")
+        .arg(&shape)
+        .args(["-o", "x.png", "--tolerance", "1e-3"])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("apply to --method limit"));
+}

@@ -8,7 +8,7 @@ use crate::limit::{PatchOptions, PatchTable, PatchType};
 use crate::{Error, Mesh, Topology};
 
 /// The class of patch `p` for `colors`.
-fn patch_class(table: &PatchTable, p: usize, colors: Colors) -> u8 {
+pub(super) fn patch_class(table: &PatchTable, p: usize, colors: Colors) -> u8 {
     let param = &table.params[p];
     let level = (param.depth() as i32 - param.non_quad_root() as i32).max(0) as u8;
     match colors {

@@ -15,6 +15,7 @@
 //! The GPU runs behind the same call: [`Backend`] is implemented by `subsurf_gpu::GpuBackend`;
 //! this crate knows no GPU.
 
+mod adaptive;
 mod backend;
 mod limit;
 mod prep;
@@ -22,6 +23,7 @@ mod refine_mesh;
 mod refined;
 mod triangulate;
 
+pub use adaptive::{tessellate as tessellate_adaptive, Adaptive};
 pub use backend::{Backend, Cpu, PrepOutput};
 pub use refine_mesh::refine_mesh;
 pub use refined::{corner_uvs, crease_classes};
@@ -70,6 +72,15 @@ pub enum Method {
         /// Patch-table options (isolation level, single-crease patches).
         options: PatchOptions,
     },
+    /// The limit surface with per-edge rates chosen by `policy` (evaluated on the CPU).
+    Adaptive {
+        /// How the rates are chosen.
+        policy: crate::tess::RatePolicy,
+        /// Where the policy came from (a flag, a file), named in errors.
+        origin: String,
+        /// Patch-table options (isolation level, single-crease patches).
+        options: PatchOptions,
+    },
     /// The p-rep, `samples` per patch side.
     Prep {
         /// Samples per patch side (>= 2).
@@ -100,7 +111,10 @@ impl Colors {
             (self, method),
             (Colors::None, _)
                 | (Colors::Sharpness, Method::Refine { .. })
-                | (Colors::PatchKind | Colors::Level, Method::Limit { .. })
+                | (
+                    Colors::PatchKind | Colors::Level,
+                    Method::Limit { .. } | Method::Adaptive { .. }
+                )
                 | (Colors::PatchKind, Method::Prep { .. })
         )
     }
@@ -205,6 +219,11 @@ pub fn build(
         Method::Limit { samples, options } => {
             limit::limit(mesh, *samples, options, colors, backend)?
         }
+        Method::Adaptive {
+            policy,
+            origin,
+            options,
+        } => adaptive::adaptive(mesh, policy, origin, options, colors)?,
         Method::Prep { samples, perturbed } => {
             prep::prep(mesh, *samples, *perturbed, colors, backend)?
         }

@@ -1,0 +1,88 @@
+//! The adaptive limit method: per-edge rates from a [`RatePolicy`], the watertight
+//! tessellation of `crate::tess`, one class per triangle from the patch under its centroid.
+//! Rates and evaluation run on the CPU (rayon) whatever the backend.
+
+use super::limit::patch_class;
+use super::{class, Colors, Surface, SurfaceError};
+use crate::limit::{LimitSurface, PatchOptions, PatchTable};
+use crate::tess::{plan, AdaptiveTessellation, EdgeRates, RatePolicy};
+use crate::{Mesh, Topology};
+
+/// An adaptive tessellation with what it was made from.
+#[derive(Debug, Clone)]
+pub struct Adaptive {
+    /// The evaluated tessellation.
+    pub tessellation: AdaptiveTessellation,
+    /// The rates the policy chose (before n-gon edges were made even).
+    pub rates: EdgeRates,
+    /// Per triangle: its ptex face and its corners' `(u, v)` there.
+    pub triangle_uv: Vec<(u32, [[f32; 2]; 3])>,
+}
+
+impl Adaptive {
+    /// The smallest and largest edge rate used.
+    pub fn rate_range(&self) -> (u32, u32) {
+        self.tessellation
+            .edge_rates
+            .iter()
+            .fold((u32::MAX, 0), |(lo, hi), &r| (lo.min(r), hi.max(r)))
+    }
+}
+
+/// Rates of `policy` on `surface`, then the tessellation at those rates (`origin` names
+/// where the policy came from in errors: a flag, a file).
+pub fn tessellate(
+    surface: &LimitSurface,
+    policy: &RatePolicy,
+    origin: &str,
+) -> Result<Adaptive, SurfaceError> {
+    let rates = policy.rates(surface, origin)?;
+    let mut p = plan(&surface.table, &rates, origin)?;
+    let triangle_uv = std::mem::take(&mut p.triangle_uv);
+    Ok(Adaptive {
+        tessellation: surface.eval_plan(p),
+        rates,
+        triangle_uv,
+    })
+}
+
+/// The adaptive limit surface of `mesh` under `policy`.
+pub fn adaptive(
+    mesh: &Mesh,
+    policy: &RatePolicy,
+    origin: &str,
+    options: &PatchOptions,
+    colors: Colors,
+) -> Result<Surface, SurfaceError> {
+    let topo = Topology::new(mesh)?;
+    let table = PatchTable::build(&topo, options)?;
+    let surface = LimitSurface::new(table, &mesh.positions);
+    let a = tessellate(&surface, policy, origin)?;
+    let table = &surface.table;
+    let triangle_class = a
+        .triangle_uv
+        .iter()
+        .map(|(ptex, c)| {
+            let u = (c[0][0] + c[1][0] + c[2][0]) / 3.0;
+            let v = (c[0][1] + c[1][1] + c[2][1]) / 3.0;
+            table
+                .patch_map
+                .find(*ptex as usize, u, v)
+                .map_or(class::PLAIN, |p| patch_class(table, p as usize, colors))
+        })
+        .collect();
+    let (lo, hi) = a.rate_range();
+    let t = a.tessellation;
+    Ok(Surface {
+        summary: format!(
+            "{origin}: edge rates {lo}..={hi} on {} ptex faces, {} triangles",
+            table.num_ptex_faces(),
+            t.triangles.len()
+        ),
+        positions: t.positions,
+        normals: t.normals,
+        triangles: t.triangles,
+        triangle_class,
+        ..Default::default()
+    })
+}
