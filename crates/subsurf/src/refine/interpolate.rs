@@ -89,12 +89,17 @@ fn refine_once_with<const N: usize>(
         let mut dst = vec![[0.0f32; N]; cur.num_vertices() + cur.num_faces() + cur.num_edges()];
         let child = if last && !options.full_topology_in_last_level {
             let sharpness = ChildSharpnessBuf::new(&cur);
-            apply_rows(
-                LevelRows::new(&cur, sharpness.view(&cur)),
-                &values,
-                &mut dst,
+            // Both read only the parent: side by side (`rayon::join`).
+            let ((), child) = rayon::join(
+                || {
+                    apply_rows(
+                        LevelRows::new(&cur, sharpness.view(&cur)),
+                        &values,
+                        &mut dst,
+                    )
+                },
+                || refine_face_lists(&cur),
             );
-            let child = refine_face_lists(&cur);
             if tagged {
                 tags = Some(child_level_tags(&cur, sharpness.view(&cur), &child));
             }

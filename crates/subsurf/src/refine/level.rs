@@ -119,13 +119,12 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 let base = 2 * fo(r.start);
                 for f in r {
                     let (s, n) = (fo(f), fo(f + 1) - fo(f));
-                    for j in 0..n {
-                        let jn = if j + 1 == n { 0 } else { j + 1 };
-                        let o = 2 * (s + j) - base;
-                        ef[o] = (s + j) as u32;
-                        el[o] = pos(n, j, 1);
-                        ef[o + 1] = (s + jn) as u32;
-                        el[o + 1] = pos(n, jn, 2);
+                    let o = 2 * s - base;
+                    let out = (&mut ef[o..o + 2 * n], &mut el[o..o + 2 * n]);
+                    if n == 4 {
+                        face_child_edge_faces(s, 4, out);
+                    } else {
+                        face_child_edge_faces(s, n, out);
                     }
                 }
             });
@@ -220,18 +219,24 @@ pub fn refine_topology(p: &Topology) -> Topology {
         .for_each(|(((((r, vf), vl), ve), vt), vru)| {
             let (fbase, ebase, vbase) = (pvfo(r.start), pveo(r.start), r.start);
             for v in r {
-                for i in pvfo(v)..pvfo(v + 1) {
-                    let f = p.vert_faces[i] as usize;
-                    let k = p.vert_face_local[i] as usize;
+                let (a, b) = (pvfo(v), pvfo(v + 1));
+                let ring = vf[a - fbase..b - fbase]
+                    .iter_mut()
+                    .zip(&mut vl[a - fbase..b - fbase])
+                    .zip(&p.vert_faces[a..b])
+                    .zip(&p.vert_face_local[a..b]);
+                for (((cf, cl), &f), &k) in ring {
+                    let (f, k) = (f as usize, k as usize);
                     let s = fo(f);
-                    vf[i - fbase] = (s + k) as u32;
-                    vl[i - fbase] = pos(fo(f + 1) - s, k, 0);
+                    *cf = (s + k) as u32;
+                    *cl = pos(fo(f + 1) - s, k, 0);
                 }
                 let pe = p.vertex_edges(v);
                 let (mut inf, mut semi) = (0usize, 0usize);
-                for (i, &e) in pe.iter().enumerate() {
+                let out = &mut ve[pveo(v) - ebase..pveo(v + 1) - ebase];
+                for (i, (&e, o)) in pe.iter().zip(out).enumerate() {
                     let ce = (nc + 2 * e as usize) as u32 + child_end_at_vertex(p, pe, i, v);
-                    ve[pveo(v) + i - ebase] = ce;
+                    *o = ce;
                     let et = edge_tags[ce as usize];
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
@@ -253,10 +258,12 @@ pub fn refine_topology(p: &Topology) -> Topology {
             let (base, fbase) = (fo(r.start), r.start);
             for f in r {
                 let (s, n) = (fo(f), fo(f + 1) - fo(f));
-                for j in 0..n {
-                    vf[s + j - base] = (s + j) as u32;
-                    vl[s + j - base] = pos(n, j, 2);
-                    ve[s + j - base] = (s + if j == 0 { n - 1 } else { j - 1 }) as u32;
+                let o = s - base..s + n - base;
+                let out = (&mut vf[o.clone()], &mut vl[o.clone()], &mut ve[o]);
+                if n == 4 {
+                    face_point_ring(s, 4, out);
+                } else {
+                    face_point_ring(s, n, out);
                 }
                 if n != 4 {
                     vt[f - fbase] = tags::V_XORDINARY;
@@ -363,6 +370,41 @@ fn face_children(
         cfe[q(3)] = (nc + 2 * fe[jp] as usize) as u32 + (1 - prev);
         cev[s + j - base] = [fchild, echild(fe[j])];
         prev = a;
+    }
+}
+
+/// The two faces of each child edge from the face point of a parent face (corners `s..s + n`):
+/// child faces `j` and `j + 1`, into `ef`/`el` (two entries per corner).
+#[inline(always)]
+fn face_child_edge_faces(s: usize, n: usize, (ef, el): (&mut [u32], &mut [u16])) {
+    for (j, (ef, el)) in ef
+        .chunks_exact_mut(2)
+        .zip(el.chunks_exact_mut(2))
+        .enumerate()
+        .take(n)
+    {
+        let jn = if j + 1 == n { 0 } else { j + 1 };
+        ef[0] = (s + j) as u32;
+        el[0] = pos(n, j, 1);
+        ef[1] = (s + jn) as u32;
+        el[1] = pos(n, jn, 2);
+    }
+}
+
+/// The ring of the face point of a parent face (corners `s..s + n`): its child faces, its
+/// corner in each, and its child edges (one per corner, shifted by one).
+#[inline(always)]
+fn face_point_ring(s: usize, n: usize, (vf, vl, ve): (&mut [u32], &mut [u16], &mut [u32])) {
+    for (j, ((vf, vl), ve)) in vf
+        .iter_mut()
+        .zip(vl.iter_mut())
+        .zip(ve.iter_mut())
+        .enumerate()
+        .take(n)
+    {
+        *vf = (s + j) as u32;
+        *vl = pos(n, j, 2);
+        *ve = (s + if j == 0 { n - 1 } else { j - 1 }) as u32;
     }
 }
 
@@ -495,6 +537,13 @@ pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) 
             for e in r {
                 let s = p.edge_sharpness[e];
                 let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+                let o = 2 * e - base;
+                if s <= 0.0 || s.is_nan() {
+                    // Smooth: both children smooth (what the rules below give).
+                    es[o..o + 2].fill(0.0);
+                    et_out[o..o + 2].fill(et);
+                    continue;
+                }
                 for end in 0..2 {
                     let cs = if crease::is_infinite(s) {
                         SHARPNESS_INFINITE
@@ -514,8 +563,8 @@ pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) 
                     } else {
                         0.0
                     };
-                    es[2 * e - base + end] = cs;
-                    et_out[2 * e - base + end] = et | sharp_tag(cs);
+                    es[o + end] = cs;
+                    et_out[o + end] = et | sharp_tag(cs);
                 }
             }
         });

@@ -8,7 +8,7 @@ use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::par;
 use super::stencil::{RowBuilder, StencilTable};
-use crate::options::Scheme;
+use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::catmark::{edge_mask, limit_mask, vertex_mask, VertexMask, VertexNeighbourhood};
 use crate::topology::tags::rule;
@@ -482,18 +482,25 @@ impl<'a> LevelRows<'a> {
             return;
         }
         let faces = p.edge_faces(e);
-        let tri = [
-            faces.first().is_some_and(|&f| p.face_size(f as usize) == 3),
-            faces.get(1).is_some_and(|&f| p.face_size(f as usize) == 3),
-        ];
-        let (nv, nf) = (p.num_vertices(), p.num_faces());
-        let m = edge_mask::<W>(
-            p.edge_sharpness[e],
-            self.c.rule(nv + nf + e),
-            faces.len(),
-            tri,
-            p.options.triangle_subdivision,
-        );
+        let sharpness = p.edge_sharpness[e];
+        // The mask reads the triangles only under the smooth triangle rule with two faces,
+        // and the child's rule only where the edge is sharp: neither is looked up otherwise.
+        let tri_rule = p.options.triangle_subdivision;
+        let tri = if tri_rule == TriangleSubdivision::Smooth && faces.len() == 2 {
+            [
+                p.face_size(faces[0] as usize) == 3,
+                p.face_size(faces[1] as usize) == 3,
+            ]
+        } else {
+            [false; 2]
+        };
+        let child_rule = if sharpness <= 0.0 {
+            rule::SMOOTH
+        } else {
+            let (nv, nf) = (p.num_vertices(), p.num_faces());
+            self.c.rule(nv + nf + e)
+        };
+        let m = edge_mask::<W>(sharpness, child_rule, faces.len(), tri, tri_rule);
         if m.face != W::ZERO {
             for &f in faces {
                 add(self.fp(f), m.face);

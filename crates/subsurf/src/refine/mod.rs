@@ -220,19 +220,35 @@ impl Refiner {
         if base.options.scheme == Scheme::Loop {
             return Self::new_loop(base, level);
         }
+        let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
+        // The full child of the last level, built ahead while the previous step's stencils
+        // were: both read only that level, so they run side by side (`rayon::join`; one
+        // after the other on one thread, with the same results).
+        let mut ahead: Option<Topology> = None;
         for k in 0..level {
             let parent = levels
                 .last()
                 .ok_or_else(|| Error::Internal("no base level".into()))?;
-            if k + 1 == level && !options.full_topology_in_last_level {
-                let sharpness = ChildSharpnessBuf::new(parent);
-                stencils.push(level_stencils_with(parent, sharpness.view(parent)));
-                levels.push(refine_face_lists(parent));
+            if !full(k) {
+                let (s, child) = rayon::join(
+                    || {
+                        let sharpness = ChildSharpnessBuf::new(parent);
+                        level_stencils_with(parent, sharpness.view(parent))
+                    },
+                    || refine_face_lists(parent),
+                );
+                stencils.push(s);
+                levels.push(child);
             } else {
-                let child = refine_topology(parent);
-                stencils.push(level_stencils(parent, &child));
+                let child = ahead.take().unwrap_or_else(|| refine_topology(parent));
+                let (s, next) = rayon::join(
+                    || level_stencils(parent, &child),
+                    || (k + 1 < level && full(k + 1)).then(|| refine_topology(&child)),
+                );
+                ahead = next;
+                stencils.push(s);
                 levels.push(child);
             }
         }
