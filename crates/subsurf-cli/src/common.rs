@@ -152,7 +152,7 @@ pub fn check_mesh_output(path: &Path) -> anyhow::Result<()> {
     let format = Format::from_path(path).with_context(|| format!("output {}", path.display()))?;
     anyhow::ensure!(
         format.writable(),
-        "output {}: subsurf writes glTF as .glb, not .gltf, and USD as .usda or .usdz, not .usdc",
+        "output {}: subsurf writes glTF as .glb, not .gltf",
         path.display()
     );
     check_folder(path)

@@ -30,13 +30,14 @@ pub fn select(stage: &Stage, path: &Path, prim: Option<&str>) -> anyhow::Result<
     Ok(meshes)
 }
 
-/// One mesh from a USD file: `prim`, else the only mesh prim; with `flatten`, every mesh
-/// prim merged in world space.
+/// One mesh from a USD file: `prim`, else the only mesh prim, in its own coordinates; with
+/// `flatten`, in world space (`prim` moved by its world transform, or every mesh prim
+/// merged).
 pub fn read_mesh(path: &Path, prim: Option<&str>, flatten: bool) -> anyhow::Result<Mesh> {
     let stage = read_stage(path)?;
     let read = || -> anyhow::Result<Mesh> {
-        if flatten && prim.is_none() {
-            return Ok(merge_world(&select(&stage, path, None)?));
+        if flatten {
+            return Ok(merge_world(&select(&stage, path, prim)?));
         }
         Ok(match prim {
             Some(p) => stage.mesh(p)?.mesh,

@@ -10,65 +10,9 @@
 //! `u32` indices into the tables. Dictionaries and time samples hold nested reps, each led
 //! by an `i64` jump over the nested value's own data.
 
+use super::crate_types as ty;
 use openusd::sdf::{self, Value};
 use std::collections::HashMap;
-
-/// Crate value types (`Usd_CrateDataTypes`), the numbers of `crateDataTypes.h`.
-mod ty {
-    pub const BOOL: u8 = 1;
-    pub const UCHAR: u8 = 2;
-    pub const INT: u8 = 3;
-    pub const UINT: u8 = 4;
-    pub const INT64: u8 = 5;
-    pub const UINT64: u8 = 6;
-    pub const HALF: u8 = 7;
-    pub const FLOAT: u8 = 8;
-    pub const DOUBLE: u8 = 9;
-    pub const STRING: u8 = 10;
-    pub const TOKEN: u8 = 11;
-    pub const ASSET_PATH: u8 = 12;
-    pub const MATRIX2D: u8 = 13;
-    pub const MATRIX3D: u8 = 14;
-    pub const MATRIX4D: u8 = 15;
-    pub const QUATD: u8 = 16;
-    pub const QUATF: u8 = 17;
-    pub const QUATH: u8 = 18;
-    pub const VEC2D: u8 = 19;
-    pub const VEC2F: u8 = 20;
-    pub const VEC2H: u8 = 21;
-    pub const VEC2I: u8 = 22;
-    pub const VEC3D: u8 = 23;
-    pub const VEC3F: u8 = 24;
-    pub const VEC3H: u8 = 25;
-    pub const VEC3I: u8 = 26;
-    pub const VEC4D: u8 = 27;
-    pub const VEC4F: u8 = 28;
-    pub const VEC4H: u8 = 29;
-    pub const VEC4I: u8 = 30;
-    pub const DICTIONARY: u8 = 31;
-    pub const TOKEN_LIST_OP: u8 = 32;
-    pub const STRING_LIST_OP: u8 = 33;
-    pub const PATH_LIST_OP: u8 = 34;
-    pub const REFERENCE_LIST_OP: u8 = 35;
-    pub const INT_LIST_OP: u8 = 36;
-    pub const INT64_LIST_OP: u8 = 37;
-    pub const UINT_LIST_OP: u8 = 38;
-    pub const UINT64_LIST_OP: u8 = 39;
-    pub const PATH_VECTOR: u8 = 40;
-    pub const TOKEN_VECTOR: u8 = 41;
-    pub const SPECIFIER: u8 = 42;
-    pub const PERMISSION: u8 = 43;
-    pub const VARIABILITY: u8 = 44;
-    pub const VARIANT_SELECTION_MAP: u8 = 45;
-    pub const TIME_SAMPLES: u8 = 46;
-    pub const PAYLOAD: u8 = 47;
-    pub const DOUBLE_VECTOR: u8 = 48;
-    pub const LAYER_OFFSET_VECTOR: u8 = 49;
-    pub const STRING_VECTOR: u8 = 50;
-    pub const VALUE_BLOCK: u8 = 51;
-    pub const PAYLOAD_LIST_OP: u8 = 55;
-    pub const TIME_CODE: u8 = 56;
-}
 
 /// Sdf fields whose value is a `TfTokenVector` (not a `VtArray<TfToken>`, as attribute
 /// values are): Pixar's reader checks their type.

@@ -292,4 +292,15 @@ def Xform "W" (kind = "group")
         let root = back.spec(&sdf::Path::abs_root()).unwrap();
         assert!(matches!(root.get("primChildren"), Some(Value::TokenVec(v)) if v.len() == 1));
     }
+
+    #[test]
+    fn a_value_without_a_crate_form_is_an_error_naming_the_spec_and_field() {
+        let mut data = sdf::Data::new();
+        let path = sdf::Path::new("/A").unwrap();
+        data.create_spec(path, SpecType::Prim)
+            .add("custom:thing", Value::ValueVec(vec![Value::Int(1)]));
+        let e = write(&data).unwrap_err();
+        assert_eq!((e.path.as_str(), e.field.as_str()), ("/A", "custom:thing"));
+        assert!(e.reason.contains("cannot be written"), "{}", e.reason);
+    }
 }

@@ -54,6 +54,7 @@
 
 mod attrs;
 mod crate_codec;
+mod crate_types;
 mod crate_values;
 mod crate_write;
 mod layer;
