@@ -13,8 +13,9 @@
 //! 3 = across 4–7 from 8    10 = across 8–7 from 4    11 = across 8–9 from 5
 //! ```
 //!
-//! Where an edge is on the boundary the point does not exist: it is a phantom, its index is
-//! corner 0's and the boundary mask gives it weight 0.
+//! Where an edge is on the boundary, or non-manifold (it bounds the manifold span of its
+//! corners), the point does not exist: it is a phantom, its index is corner 0's and the
+//! boundary mask gives it weight 0. Non-manifold corners count as boundary corners.
 //!
 //! Not yet built: end caps of the irregular leaves (OpenSubdiv's Gregory triangles), so
 //! [`LoopLimit::eval`] answers `None` on them.
@@ -60,13 +61,17 @@ pub struct LoopLimit {
     pub patch_map: PatchMap,
 }
 
-/// The vertex across edge `a–b` from the triangle `a, b, c`.
+/// The vertex across edge `a–b` from the triangle `a, b, c`; `None` across a boundary or
+/// non-manifold edge (which bounds the manifold span a regular patch sees).
 fn opposite(t: &Topology, a: u32, b: u32, c: u32) -> Option<u32> {
     let e = t
         .vertex_edges(a as usize)
         .iter()
         .copied()
         .find(|&e| t.edge_verts[e as usize].contains(&b))?;
+    if t.edge_tags[e as usize] & tags::E_NON_MANIFOLD != 0 {
+        return None;
+    }
     t.edge_faces(e as usize).iter().find_map(|&g| {
         let fv = t.face_vertices(g as usize);
         if fv.contains(&c) {
@@ -120,7 +125,7 @@ pub fn tri_boundary_mask(t: &Topology, f: usize) -> u8 {
     });
     let verts = (0..3).fold(0u8, |m, k| {
         let vt = t.vert_tags[fv[k] as usize];
-        m | (((vt & tags::V_BOUNDARY != 0) as u8) << k)
+        m | (((vt & (tags::V_BOUNDARY | tags::V_NON_MANIFOLD) != 0) as u8) << k)
     });
     if edges == 0 {
         return if verts == 0 { 0 } else { (1 << 3) | verts };
