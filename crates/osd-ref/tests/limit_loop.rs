@@ -5,9 +5,8 @@
 //! regular box-spline patch. Irregular patches (end caps) are not built yet and are skipped;
 //! the test checks that the regular ones cover most samples.
 //!
-//! Known differences, asserted to still differ: the non-manifold shapes
-//! `loop_nonman_edge100` and `loop_nonman_edges` (the 12-point gather does not follow
-//! manifold spans across non-manifold edges) and `loop_val2_interior`.
+//! Known difference, asserted to still differ: `loop_val2_interior` (valence-2 vertices
+//! and non-manifold edges).
 
 #[macro_use]
 mod common;
@@ -30,11 +29,7 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     n(c).atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
 }
 
-const KNOWN_DIFFERENCES: [&str; 3] = [
-    "loop_nonman_edge100",
-    "loop_nonman_edges",
-    "loop_val2_interior",
-];
+const KNOWN_DIFFERENCES: [&str; 1] = ["loop_val2_interior"];
 
 #[test]
 fn regular_patches_match_opensubdiv_on_every_loop_shape() {

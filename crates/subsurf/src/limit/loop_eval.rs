@@ -13,8 +13,9 @@
 //! 3 = across 4–7 from 8    10 = across 8–7 from 4    11 = across 8–9 from 5
 //! ```
 //!
-//! Where an edge is on the boundary the point does not exist: it is a phantom, its index is
-//! corner 0's and the boundary mask gives it weight 0.
+//! Where an edge is on the boundary, or non-manifold (it bounds the manifold span of its
+//! corners), the point does not exist: it is a phantom, its index is corner 0's and the
+//! boundary mask gives it weight 0. Non-manifold corners count as boundary corners.
 //!
 //! Not yet built: end caps of the irregular leaves (OpenSubdiv's Gregory triangles), so
 //! [`LoopLimit::eval`] answers `None` on them.
@@ -60,48 +61,62 @@ pub struct LoopLimit {
     pub patch_map: PatchMap,
 }
 
-/// The vertex across edge `a–b` from the triangle `a, b, c`.
-fn opposite(t: &Topology, a: u32, b: u32, c: u32) -> Option<u32> {
-    let e = t
-        .vertex_edges(a as usize)
-        .iter()
-        .copied()
-        .find(|&e| t.edge_verts[e as usize].contains(&b))?;
-    t.edge_faces(e as usize).iter().find_map(|&g| {
-        let fv = t.face_vertices(g as usize);
-        if fv.contains(&c) {
-            None
-        } else {
-            fv.iter().copied().find(|&x| x != a && x != b)
-        }
-    })
+/// The triangle across the edge `a–b` of triangle `f` and its vertex opposite that edge;
+/// `None` across a boundary or non-manifold edge (which bounds the manifold span a regular
+/// patch sees). The neighbour is found through `f`'s own edge, so degenerate neighbourhoods
+/// (two triangles on the same three vertices) are followed correctly.
+fn across(t: &Topology, f: u32, a: u32, b: u32) -> Option<(u32, u32)> {
+    let fv = t.face_vertices(f as usize);
+    let n = fv.len();
+    let k = (0..n).find(|&k| {
+        let (x, y) = (fv[k], fv[(k + 1) % n]);
+        (x == a && y == b) || (x == b && y == a)
+    })?;
+    let e = t.face_edges(f as usize)[k] as usize;
+    if t.edge_tags[e] & tags::E_NON_MANIFOLD != 0 {
+        return None;
+    }
+    let g = t.edge_faces(e).iter().copied().find(|&g| g != f)?;
+    let gv = t.face_vertices(g as usize);
+    // The corner of `g` that is not on the shared edge: the one after the edge's end in `g`.
+    let m = gv.len();
+    let j = (0..m).find(|&j| {
+        let (x, y) = (gv[j], gv[(j + 1) % m]);
+        (x == a && y == b) || (x == b && y == a)
+    })?;
+    Some((g, gv[(j + 2) % m]))
 }
 
 /// The 12 point indices of triangle `f` (phantoms: corner 0's index).
 pub fn gather_box_spline_points(t: &Topology, f: usize) -> [u32; 12] {
     let fv = t.face_vertices(f);
     let (p4, p5, p8) = (fv[0], fv[1], fv[2]);
-    let opp = |a: Option<u32>, b: Option<u32>, c: Option<u32>| opposite(t, a?, b?, c?);
-    let p1 = opp(Some(p4), Some(p5), Some(p8));
-    let p9 = opp(Some(p5), Some(p8), Some(p4));
-    let p7 = opp(Some(p8), Some(p4), Some(p5));
-    let p0 = opp(Some(p4), p1, Some(p5));
-    let p2 = opp(Some(p5), p1, Some(p4));
-    let p6 = opp(Some(p5), p9, Some(p8));
-    let p3 = opp(Some(p4), p7, Some(p8));
-    let p10 = opp(Some(p8), p7, Some(p4));
-    let p11 = opp(Some(p8), p9, Some(p5));
+    let f = f as u32;
+    let g1 = across(t, f, p4, p5);
+    let g9 = across(t, f, p5, p8);
+    let g7 = across(t, f, p8, p4);
+    let next = |g: Option<(u32, u32)>, corner: u32| {
+        let (g, x) = g?;
+        across(t, g, corner, x).map(|(_, y)| y)
+    };
+    let p0 = next(g1, p4);
+    let p2 = next(g1, p5);
+    let p6 = next(g9, p5);
+    let p11 = next(g9, p8);
+    let p3 = next(g7, p4);
+    let p10 = next(g7, p8);
+    let v = |g: Option<(u32, u32)>| g.map(|(_, x)| x);
     [
         p0,
-        p1,
+        v(g1),
         p2,
         p3,
         Some(p4),
         Some(p5),
         p6,
-        p7,
+        v(g7),
         Some(p8),
-        p9,
+        v(g9),
         p10,
         p11,
     ]
@@ -120,7 +135,7 @@ pub fn tri_boundary_mask(t: &Topology, f: usize) -> u8 {
     });
     let verts = (0..3).fold(0u8, |m, k| {
         let vt = t.vert_tags[fv[k] as usize];
-        m | (((vt & tags::V_BOUNDARY != 0) as u8) << k)
+        m | (((vt & (tags::V_BOUNDARY | tags::V_NON_MANIFOLD) != 0) as u8) << k)
     });
     if edges == 0 {
         return if verts == 0 { 0 } else { (1 << 3) | verts };
