@@ -1,6 +1,6 @@
 //! The Loop limit surface against OpenSubdiv 3.5's adaptive Loop patch table
-//! (`Far::PatchTable` with Gregory end caps + `PatchMap`, evaluated on a triangular grid of
-//! every face): every `loop_*` regression shape at isolation 2 (3 in release builds),
+//! (`Far::PatchTable` with Gregory end caps + `PatchMap`, refined and evaluated in double
+//! precision on a triangular grid of every face): every `loop_*` regression shape at isolation 2 (3 in release builds),
 //! positions within 1e-5 of the bounding-box diagonal and normals within 1e-3 rad, on the
 //! regular box-spline patches and on the Gregory-triangle end caps, checked separately.
 //! Every sample must evaluate.
@@ -13,7 +13,7 @@
 #[macro_use]
 mod common;
 
-use osd_ref::{eval_limit_grid_with, EndCap, OsdMesh, PatchOptions};
+use osd_ref::{eval_limit_grid_f64, EndCap, OsdMesh, PatchOptions};
 use subsurf::limit::loop_eval::LoopLimit;
 use subsurf::Topology;
 
@@ -66,7 +66,7 @@ fn limit_surface_matches_opensubdiv_on_every_loop_shape() {
             end_cap: EndCap::Gregory,
             ..Default::default()
         };
-        let samples = eval_limit_grid_with(&osd, 6, &o).unwrap();
+        let samples = eval_limit_grid_f64(&osd, 6, &o).unwrap();
         let diag = subsurf::mesh::bbox_diagonal(&mesh.positions).max(1e-30) as f64;
         let (mut reg, mut cap) = (Worst::default(), Worst::default());
         for s in &samples {
@@ -81,11 +81,11 @@ fn limit_surface_matches_opensubdiv_on_every_loop_shape() {
             };
             w.count += 1;
             let d = (0..3)
-                .map(|k| (e.p[k] - s.p[k] as f64).powi(2))
+                .map(|k| (e.p[k] - s.p[k]).powi(2))
                 .sum::<f64>()
                 .sqrt();
             w.p = w.p.max(d / diag);
-            let theirs = cross(s.du.map(f64::from), s.dv.map(f64::from));
+            let theirs = cross(s.du, s.dv);
             let mine = cross(e.du, e.dv);
             let n = |x: [f64; 3]| (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
             if n(theirs) > 1e-6 * diag * diag && n(mine) > 1e-6 * diag * diag {
