@@ -17,9 +17,10 @@
 //! corners), the point does not exist: it is a phantom, its index is corner 0's and the
 //! boundary mask gives it weight 0. Non-manifold corners count as boundary corners.
 //!
-//! Not yet built: end caps of the irregular leaves (OpenSubdiv's Gregory triangles), so
-//! [`LoopLimit::eval`] answers `None` on them.
+//! Irregular leaves get OpenSubdiv's end caps, quartic Gregory triangles
+//! ([`super::loop_endcap`]), evaluated with [`TriPatchKind::GregoryTriangle`].
 
+use super::loop_endcap::gregory_tri_points;
 use super::loop_patches::{loop_leaves, LoopLeaf};
 use super::patch_map::PatchMap;
 use crate::error::{Error, Result};
@@ -35,8 +36,9 @@ pub struct LoopPatch {
     pub param: PatchParam,
     /// A regular box-spline patch.
     pub regular: bool,
-    /// The 12 points (regular patches only; zero otherwise).
-    pub points: [[f64; 3]; 12],
+    /// The 12 box-spline points of a regular patch, or the 18 Gregory-triangle points of an
+    /// irregular one.
+    pub points: Vec<[f64; 3]>,
 }
 
 /// A point of the limit surface with its derivatives along the base face's `u` and `v`.
@@ -207,13 +209,27 @@ impl LoopLimit {
             regular: leaf.regular,
             ..Default::default()
         })?;
-        let mut pts = [[0.0f64; 3]; 12];
-        if leaf.regular {
-            let idx = gather_box_spline_points(t, f);
-            for (p, &i) in pts.iter_mut().zip(&idx) {
-                *p = points[leaf.depth][i as usize].map(f64::from);
-            }
-        }
+        let level = &points[leaf.depth];
+        let pts = if leaf.regular {
+            gather_box_spline_points(t, f)
+                .iter()
+                .map(|&i| level[i as usize].map(f64::from))
+                .collect()
+        } else {
+            gregory_tri_points(t, f)
+                .iter()
+                .map(|r| {
+                    let mut x = [0.0f64; 3];
+                    for &(i, w) in r {
+                        let q = level[i as usize];
+                        for c in 0..3 {
+                            x[c] += w * q[c] as f64;
+                        }
+                    }
+                    x
+                })
+                .collect()
+        };
         Ok(LoopPatch {
             param,
             regular: leaf.regular,
@@ -239,20 +255,21 @@ impl LoopLimit {
     }
 
     /// The limit point at `(u, v)` of base face `face`, with derivatives along the face's
-    /// `u` and `v`; `None` outside the face, on a hole, or on an irregular patch (end caps
-    /// are not built yet).
+    /// `u` and `v`; `None` outside the face or on a hole.
     pub fn eval(&self, face: usize, u: f64, v: f64) -> Option<LoopSample> {
         let p = self.find(face, u, v)?;
-        if !p.regular {
-            return None;
-        }
-        let w = tri_patch_weights(TriPatchKind::BoxSpline, &p.param, u, v);
+        let kind = if p.regular {
+            TriPatchKind::BoxSpline
+        } else {
+            TriPatchKind::GregoryTriangle
+        };
+        let w = tri_patch_weights(kind, &p.param, u, v);
         let mut r = LoopSample {
             p: [0.0; 3],
             du: [0.0; 3],
             dv: [0.0; 3],
         };
-        let x0 = p.points[4];
+        let x0 = p.points[if p.regular { 4 } else { 0 }];
         for (k, pt) in p.points.iter().enumerate() {
             for c in 0..3 {
                 let x = pt[c] - x0[c];

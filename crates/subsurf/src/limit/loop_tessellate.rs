@@ -63,8 +63,8 @@ impl Numbering<'_> {
 
 impl LoopLimit {
     /// Tessellates every non-hole base triangle of `base` (the topology the surface was
-    /// built from) with `segments ≥ 1` segments per edge. Fails on an irregular patch, whose
-    /// end cap is not built yet.
+    /// built from) with `segments ≥ 1` segments per edge; regular patches and Gregory-triangle
+    /// end caps alike.
     pub fn tessellate(&self, base: &Topology, segments: usize) -> Result<TriTessellation> {
         let n = segments;
         if n == 0 || n > 1024 {
@@ -92,9 +92,7 @@ impl LoopLimit {
                     }
                     let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
                     let s = self.eval(f, u, v).ok_or_else(|| {
-                        Error::Unsupported(format!(
-                            "face {f} at ({u}, {v}): irregular Loop patches (end caps) are not implemented"
-                        ))
+                        Error::Internal(format!("no Loop patch of face {f} holds ({u}, {v})"))
                     })?;
                     positions[id] = s.p;
                     let c = [
@@ -161,13 +159,11 @@ mod tests {
         mesh
     }
 
-    #[test]
-    fn tessellation_is_watertight_and_continuous_across_seams() {
-        let mesh = torus(8, 6);
-        let topo = Topology::new(&mesh).unwrap();
+    /// Tessellates `mesh` (closed) and checks vertex/triangle counts, closedness and that the
+    /// shared seam samples are the surface seen from either face.
+    fn check_watertight(mesh: &Mesh, n: usize) -> LoopLimit {
+        let topo = Topology::new(mesh).unwrap();
         let limit = LoopLimit::new(&topo, &mesh.positions, 2).unwrap();
-        assert!(limit.patches.iter().all(|p| p.regular));
-        let n = 4;
         let tess = limit.tessellate(&topo, n).unwrap();
         let (v, e, f) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         assert_eq!(
@@ -209,5 +205,30 @@ mod tests {
             }
         }
         assert!(worst < 1e-5, "seam mismatch {worst}");
+        limit
+    }
+
+    #[test]
+    fn tessellation_is_watertight_and_continuous_across_seams() {
+        let limit = check_watertight(&torus(8, 6), 4);
+        assert!(limit.patches.iter().all(|p| p.regular));
+    }
+
+    /// The icosahedron: every vertex has valence 5, so the patches next to the base
+    /// vertices are Gregory-triangle end caps, which meet each other and the regular
+    /// patches across the base edges.
+    #[test]
+    fn tessellation_with_end_caps_is_watertight() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../testdata/shapes/loop_icosahedron.obj"
+        );
+        let mut mesh = crate::io::obj::read_file(std::path::Path::new(path)).unwrap();
+        mesh.options.scheme = Scheme::Loop;
+        // 8 segments: the seam samples next to the corners (u = 1/8) lie inside the
+        // end caps, which cover a quarter of each edge at isolation 2.
+        let limit = check_watertight(&mesh, 8);
+        assert!(limit.patches.iter().any(|p| !p.regular));
+        assert!(limit.patches.iter().any(|p| p.regular));
     }
 }

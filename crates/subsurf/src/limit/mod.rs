@@ -13,7 +13,8 @@
 //! - [`leaves`]: the patch of each leaf face of a level;
 //! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
 //! - [`gather`]: the 16 points of a regular patch;
-//! - [`loop_eval`]: the Loop limit surface on its regular patches;
+//! - [`loop_endcap`]: Gregory-triangle end caps of irregular Loop patches;
+//! - [`loop_eval`]: the Loop limit surface on its patches;
 //! - [`loop_tessellate`]: watertight triangle tessellation of the Loop limit surface;
 //! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
@@ -87,6 +88,7 @@ pub mod eval;
 pub mod features;
 pub mod gather;
 pub mod leaves;
+pub mod loop_endcap;
 pub mod loop_eval;
 pub mod loop_patches;
 pub mod loop_tessellate;
