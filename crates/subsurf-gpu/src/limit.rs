@@ -78,6 +78,9 @@ use crate::shared::LimitConfig;
 use crate::table::StencilTable;
 use subsurf::limit::{LimitPoint, PatchTable, Tessellation};
 
+mod edit;
+pub use edit::EditUpload;
+
 const WORD: u64 = 4;
 
 /// A patch table resident on the GPU with its point array.
@@ -94,6 +97,8 @@ pub struct GpuLimit {
     limits: ChunkLimits,
     row_align: usize,
     pipeline: wgpu::ComputePipeline,
+    /// What crease edits compare against ([`GpuLimit::apply_edit`]).
+    uploaded: edit::Uploaded,
 }
 
 /// The patch tables of `limit_eval`: bound whole when they and the point array fit one
@@ -267,6 +272,7 @@ impl GpuLimit {
             None
         };
         let t = LimitTables::new(table);
+        let uploaded = edit::Uploaded::new(table, &t);
         let num_roots = t.num_roots;
         let fits = |words: usize| words as u64 * WORD <= limits.max_binding_bytes;
         let tables = if [
@@ -310,6 +316,7 @@ impl GpuLimit {
             limits,
             row_align,
             pipeline,
+            uploaded,
         })
     }
 

@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen, restencil, LevelStencils};
+use crate::refine::{resharpen, restencil};
 use crate::topology::Topology;
 
 /// Not visited by the walk.
@@ -126,13 +126,8 @@ impl Values {
     }
 }
 
-/// What the walk found at one level.
-enum Level<R> {
-    /// New stencils for the step below it (`None`: unchanged).
-    Stencils(Option<Box<LevelStencils<R>>>),
-    /// The isolation structure changes.
-    Structural,
-}
+/// The rows of one step formed again: vertex rows, edge rows (increasing).
+type Dirty = (Vec<u32>, Vec<u32>);
 
 impl<R: Real> PatchTable<R> {
     /// Applies the edited base topology `base` incrementally (module documentation); returns
@@ -158,7 +153,7 @@ impl<R: Real> PatchTable<R> {
 
         let mut old = Values::of(&st.trace.levels[0]);
         st.trace.levels[0] = base;
-        let mut stencils: Vec<(usize, LevelStencils<R>)> = Vec::new();
+        let mut rows: Vec<(usize, Dirty)> = Vec::new();
         let mut patches: Vec<(u32, PatchType, u8, f32)> = Vec::new();
         for d in 0..num_levels {
             let Some((_, changed)) = old.changes(&st.trace.levels[d]) else {
@@ -167,6 +162,7 @@ impl<R: Real> PatchTable<R> {
             if !self.redecide(
                 &st,
                 d,
+                &old,
                 &changed,
                 &mask,
                 &leaf_options,
@@ -186,13 +182,14 @@ impl<R: Real> PatchTable<R> {
             old = Values::of(child);
             resharpen(sub, child);
             match self.step_rows(sub, &sub_old, child, &old, d) {
-                Level::Stencils(Some(s)) => stencils.push((d, *s)),
-                Level::Stencils(None) => {}
-                Level::Structural => return Ok(false),
+                Some(dirty) => rows.push((d, dirty)),
+                None => return Ok(false),
             }
         }
-        for (d, s) in stencils {
-            self.level_stencils[d] = s;
+        // Every check passed: the table is changed from here on.
+        for (d, (vertex, edge)) in rows {
+            let (sub, child) = (&st.trace.subs[d], &st.trace.levels[d + 1]);
+            restencil(sub, child, &mut self.level_stencils[d], &vertex, &edge);
         }
         for (p, kind, boundary, sharpness) in patches {
             let p = p as usize;
@@ -217,6 +214,7 @@ impl<R: Real> PatchTable<R> {
         &self,
         st: &EditState,
         d: usize,
+        old: &Values,
         changed: &[bool],
         mask: &FeatureMask,
         o: &LeafOptions,
@@ -265,7 +263,14 @@ impl<R: Real> PatchTable<R> {
             if (kind == PatchType::Gregory) != (was == PatchType::Gregory) {
                 return Ok(false);
             }
-            if kind == PatchType::Gregory {
+            // An end cap reads of its corners' sharpness only whether they are infinitely
+            // sharp (the rest is topology, [`super::endcap`]).
+            let inf = |s: f32| s >= crate::SHARPNESS_INFINITE;
+            let corner_moved = t.face_vertices(f).iter().any(|&v| {
+                let v = v as usize;
+                inf(old.vert_sharpness[v]) != inf(t.vert_sharpness[v])
+            });
+            if kind == PatchType::Gregory && corner_moved {
                 let off = self.level_offsets[d];
                 let first = self.patch_cvs(p as usize)[0] - num_level_points;
                 let same = gregory_points(t, f).iter().enumerate().all(|(k, row)| {
@@ -282,14 +287,16 @@ impl<R: Real> PatchTable<R> {
                 if !same {
                     return Ok(false);
                 }
-            } else {
+            } else if kind != PatchType::Gregory {
                 out.push((p, kind, boundary, sharpness));
             }
         }
         Ok(true)
     }
 
-    /// The stencils of step `d` with the rows whose inputs changed formed again.
+    /// The rows of step `d` whose inputs changed (parent or child sharpness or rule of the
+    /// vertex, of its edges and their children; of the edge and its edge point); `None`
+    /// where the stored stencils do not have the step's rows.
     fn step_rows(
         &self,
         sub: &Topology,
@@ -297,50 +304,35 @@ impl<R: Real> PatchTable<R> {
         child: &Topology,
         child_old: &Values,
         d: usize,
-    ) -> Level<R> {
+    ) -> Option<Dirty> {
         let (nv, nf, nc) = (sub.num_vertices(), sub.num_faces(), sub.num_corners());
         let ne = sub.num_edges();
+        let old = &self.level_stencils[d];
+        if old.vertex.num_rows() != nv || old.edge.num_rows() != ne {
+            return None;
+        }
         let bits = |a: f32, b: f32| a.to_bits() != b.to_bits();
         let ce = |i: usize| bits(child_old.edge_sharpness[i], child.edge_sharpness[i]);
-        let dirty_edge_input: Vec<bool> = (0..ne)
-            .map(|e| {
-                bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e])
-                    || ce(nc + 2 * e)
-                    || ce(nc + 2 * e + 1)
-            })
-            .collect();
-        let dirty_edge: Vec<bool> = (0..ne)
-            .map(|e| {
-                bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e])
-                    || child_old.vert_rule[nv + nf + e] != child.vert_rule[nv + nf + e]
-            })
-            .collect();
-        let dirty_vertex: Vec<bool> = (0..nv)
-            .map(|v| {
+        let mut edge_input = vec![false; ne];
+        let mut edges = Vec::new();
+        for e in 0..ne {
+            let own = bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e]);
+            edge_input[e] = own || ce(nc + 2 * e) || ce(nc + 2 * e + 1);
+            if own || child_old.vert_rule[nv + nf + e] != child.vert_rule[nv + nf + e] {
+                edges.push(e as u32);
+            }
+        }
+        let vertices = (0..nv)
+            .filter(|&v| {
                 bits(sub_old.vert_sharpness[v], sub.vert_sharpness[v])
                     || sub_old.vert_rule[v] != sub.vert_rule[v]
                     || bits(child_old.vert_sharpness[v], child.vert_sharpness[v])
                     || child_old.vert_rule[v] != child.vert_rule[v]
-                    || sub
-                        .vertex_edges(v)
-                        .iter()
-                        .any(|&e| dirty_edge_input[e as usize])
+                    || sub.vertex_edges(v).iter().any(|&e| edge_input[e as usize])
             })
+            .map(|v| v as u32)
             .collect();
-        if !dirty_vertex.iter().any(|&x| x) && !dirty_edge.iter().any(|&x| x) {
-            return Level::Stencils(None);
-        }
-        let old = &self.level_stencils[d];
-        if old.vertex.num_rows() != nv || old.edge.num_rows() != ne {
-            return Level::Structural;
-        }
-        Level::Stencils(Some(Box::new(restencil(
-            sub,
-            child,
-            old,
-            &dirty_vertex,
-            &dirty_edge,
-        ))))
+        Some((vertices, edges))
     }
 }
 

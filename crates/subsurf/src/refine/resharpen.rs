@@ -46,59 +46,94 @@ pub(crate) fn resharpen(p: &Topology, c: &mut Topology) {
     }
 }
 
-/// The stencils of the step from `p` to `c` (as [`super::level_stencils_real`] forms them),
-/// copied from `old` except the vertex rows `dirty_vertex` and edge rows `dirty_edge`,
-/// which are formed again.
+/// Forms the vertex rows `dirty_vertex` and edge rows `dirty_edge` of the step from `p` to
+/// `c` again (as [`super::level_stencils_real`] forms them) in `s`, the step's stencils
+/// before the change: in place where a row keeps its length, else by splicing the table.
 pub(crate) fn restencil<W: Real>(
     p: &Topology,
     c: &Topology,
-    old: &LevelStencils<W>,
-    dirty_vertex: &[bool],
-    dirty_edge: &[bool],
-) -> LevelStencils<W> {
+    s: &mut LevelStencils<W>,
+    dirty_vertex: &[u32],
+    dirty_edge: &[u32],
+) {
     let rows = LevelRows::new(p, ChildSharpness::of_child(p, c));
     let mut scratch = Scratch::<W>::default();
-    let vertex = splice(&old.vertex, dirty_vertex, |i, add| {
+    update_rows(&mut s.vertex, dirty_vertex, |i, add| {
         rows.vertex(i, &mut scratch, &mut &mut *add)
     });
-    let edge = splice(&old.edge, dirty_edge, |i, add| rows.edge(i, &mut &mut *add));
-    LevelStencils {
-        num_parent_vertices: old.num_parent_vertices,
-        face: old.face.clone(),
-        vertex,
-        edge,
-    }
+    update_rows(&mut s.edge, dirty_edge, |i, add| {
+        rows.edge(i, &mut &mut *add)
+    });
 }
 
-/// `old` with the rows `dirty` formed again by `row(i, add)`; runs of clean rows are copied.
+/// Rows `dirty` (increasing) of `t` formed again by `row(i, add)`.
+fn update_rows<W: Real>(
+    t: &mut StencilTable<W>,
+    dirty: &[u32],
+    mut row: impl FnMut(usize, &mut dyn FnMut(u32, W)),
+) {
+    if dirty.is_empty() {
+        return;
+    }
+    let (mut idx, mut wts, mut ends) = (Vec::new(), Vec::new(), Vec::with_capacity(dirty.len()));
+    for &r in dirty {
+        row(r as usize, &mut |x, w| {
+            idx.push(x);
+            wts.push(w);
+        });
+        ends.push(idx.len());
+    }
+    let len = |r: u32| (t.offsets[r as usize + 1] - t.offsets[r as usize]) as usize;
+    let mut start = 0;
+    let kept = dirty.iter().zip(&ends).all(|(&r, &e)| {
+        let same = e - start == len(r);
+        start = e;
+        same
+    });
+    if kept {
+        let mut start = 0;
+        for (&r, &e) in dirty.iter().zip(&ends) {
+            let a = t.offsets[r as usize] as usize;
+            t.indices[a..a + e - start].copy_from_slice(&idx[start..e]);
+            t.weights[a..a + e - start].copy_from_slice(&wts[start..e]);
+            start = e;
+        }
+        return;
+    }
+    *t = splice(t, dirty, &idx, &wts, &ends);
+}
+
+/// `old` with rows `dirty` replaced by the rows `idx`/`wts` ending at `ends`; runs of clean
+/// rows are copied.
 fn splice<W: Real>(
     old: &StencilTable<W>,
-    dirty: &[bool],
-    mut row: impl FnMut(usize, &mut dyn FnMut(u32, W)),
+    dirty: &[u32],
+    idx: &[u32],
+    wts: &[W],
+    ends: &[usize],
 ) -> StencilTable<W> {
     let mut t = StencilTable {
         offsets: Vec::with_capacity(old.offsets.len()),
-        indices: Vec::with_capacity(old.indices.len() + 64),
-        weights: Vec::with_capacity(old.weights.len() + 64),
+        indices: Vec::with_capacity(old.indices.len() + idx.len()),
+        weights: Vec::with_capacity(old.weights.len() + idx.len()),
         num_inputs: old.num_inputs,
     };
     t.offsets.push(0);
     let n = old.num_rows();
-    let mut r = 0;
+    let (mut r, mut k, mut from) = (0, 0, 0);
     while r < n {
-        if dirty[r] {
-            row(r, &mut |x, w| {
-                t.indices.push(x);
-                t.weights.push(w);
-            });
+        if k < dirty.len() && dirty[k] as usize == r {
+            t.indices.extend_from_slice(&idx[from..ends[k]]);
+            t.weights.extend_from_slice(&wts[from..ends[k]]);
             t.offsets.push(t.indices.len() as u32);
+            from = ends[k];
+            k += 1;
             r += 1;
             continue;
         }
         let start = r;
-        while r < n && !dirty[r] {
-            r += 1;
-        }
+        let stop = dirty.get(k).map_or(n, |&d| d as usize);
+        r = stop;
         let (a, b) = (old.offsets[start] as usize, old.offsets[r] as usize);
         let shift = t.indices.len() as i64 - a as i64;
         t.indices.extend_from_slice(&old.indices[a..b]);
