@@ -726,3 +726,32 @@ fn malformed_input_names_the_file_prim_and_attribute() {
         }
     }
 }
+
+/// A property spec that its prim does not list (here `/World/A.orientation`, unlisted by a
+/// one-byte corruption the fuzz target found) still gives the attribute's value on Pixar's
+/// composed stage, and subsurf reads it the same way: the faces of `/World/A` are pxr's with
+/// the leftHanded flip (first corner kept, the rest reversed).
+#[test]
+fn property_specs_a_prim_does_not_list_read_as_pxr_reads_them() {
+    let file = data_dir().join("unlisted_property.usdc");
+    let stage = Stage::read(&std::fs::read(&file).unwrap(), "unlisted_property.usdc").unwrap();
+    let meshes = stage.meshes().unwrap();
+    if !have_pxr() {
+        return;
+    }
+    let dump = pxr_dump(&file);
+    for m in &meshes {
+        let d = &dump["meshes"][m.path.as_str()];
+        let counts = u32s(&d["faceVertexCounts"]);
+        let mut faces = u32s(&d["faceVertexIndices"]);
+        if d["orientation"] == "leftHanded" {
+            let mut at = 0;
+            for &c in &counts {
+                faces[at + 1..at + c as usize].reverse();
+                at += c as usize;
+            }
+        }
+        assert_eq!(faces, m.mesh.face_indices, "{}", m.path);
+    }
+    assert_eq!(dump["meshes"]["/World/A"]["orientation"], "leftHanded");
+}
