@@ -171,11 +171,15 @@ fn bad_rates_and_values_are_typed_errors() {
     }
     let e = err(RatePolicy::screen(None, 4.0, "--pixels").map(|_| ()));
     assert!(matches!(e, TessError::NoCamera { .. }), "{e}");
-    // A tolerance too fine for the highest rate is refused, naming an edge.
-    let e = err(RatePolicy::Tolerance(1e-12)
-        .rates(&s, "--tolerance")
-        .map(|_| ()));
-    assert!(matches!(e, TessError::RateOutOfRange { .. }), "{e}");
+    // A tolerance whose tessellation would not fit in memory is refused with the estimate
+    // (rates of about 10⁶ on six faces: some 10¹² samples), before anything is built.
+    match RatePolicy::Tolerance(1e-12).rates(&s, "--tolerance") {
+        Err(Error::Mesh(e @ subsurf::MeshError::TooLarge { bytes, .. })) => {
+            assert!(bytes > 100_000_000_000_000, "{e}");
+            assert!(e.to_string().contains("would need about"), "{e}");
+        }
+        other => panic!("expected MeshError::TooLarge, got {other:?}"),
+    }
 
     // Edge-rates files: file and line in every error.
     let ok = parse_edge_rates("# rates\n0 1 7\n\n1 3 2 # comment\n", "r.txt", t, 3).unwrap();

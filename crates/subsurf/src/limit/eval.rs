@@ -99,6 +99,32 @@ impl<R: Real> LimitSurface<R> {
         Some(r)
     }
 
+    /// The position of [`LimitSurface::eval_raw`] alone (the same sums, bit for bit), for
+    /// callers that need no derivatives (the tessellation rates).
+    pub fn eval_position(&self, ptex: usize, u: R, v: R) -> Option<[R; 3]> {
+        if !(u.is_finite() && v.is_finite()) {
+            return None;
+        }
+        let (u, v) = (clamp01(u), clamp01(v));
+        let t = &self.table;
+        let p = t.patch_map.find(ptex, u, v)? as usize;
+        let kind = t.patch_type(p).kind();
+        let w = patch_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
+        let cvs = t.patch_cvs(p);
+        let x0 = self.points[cvs[0] as usize];
+        let mut r = [R::ZERO; 3];
+        for (k, &cv) in cvs.iter().enumerate() {
+            let x = self.points[cv as usize];
+            for c in 0..3 {
+                r[c] += w.p[k] * (x[c] - x0[c]);
+            }
+        }
+        for c in 0..3 {
+            r[c] += x0[c];
+        }
+        Some(r)
+    }
+
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
     pub fn eval(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
         let mut r = self.eval_raw(ptex, u, v)?;

@@ -359,6 +359,12 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
         let boundary = u64::from(a + b + c + d);
         samples += boundary + u64::from(u.saturating_sub(1)) * u64::from(v.saturating_sub(1)) + 1;
     }
+    check_samples(samples)
+}
+
+/// Refuses a tessellation of `samples` samples that would pass the memory limit, with the
+/// estimate.
+pub(crate) fn check_samples(samples: u64) -> Result<()> {
     // Per sample: a query, a position, a normal, two triangles with their (u, v), keys.
     let bytes = samples.saturating_mul(12 + 24 + 2 * (12 + 28) + 16);
     let limit = Budget::of_available_memory().limit;

@@ -20,7 +20,7 @@
 
 use rayon::prelude::*;
 
-use super::mesh::{graded, EdgeRates, GRADING, MAX_RATE};
+use super::mesh::{check_samples, graded, EdgeRates, GRADING, MAX_RATE};
 use crate::error::{Result, TessError};
 use crate::limit::patch_map::EMPTY;
 use crate::limit::LimitSurface;
@@ -226,7 +226,7 @@ fn edge_curves(s: &LimitSurface) -> Vec<Vec<[f32; 3]>> {
             (0..=CURVE_SAMPLES)
                 .filter_map(|i| {
                     let (f, u, v) = edge_point(s, e, i as f32 / CURVE_SAMPLES as f32)?;
-                    s.eval(f, u, v).map(|p| p.p)
+                    s.eval_position(f, u, v)
                 })
                 .collect()
         })
@@ -278,16 +278,17 @@ fn curve_rates(
                 s.table.ptex_offsets[f + 1] as usize,
             );
             let mut worst = 0.0f64; // the largest need of the face's isolines
+            let mut line = Vec::with_capacity(CURVE_SAMPLES + 1);
             for ptex in first..last {
                 for dir in 0..2 {
                     for &c in &[0.25f32, 0.5, 0.75] {
-                        let line: Vec<[f32; 3]> = (0..=CURVE_SAMPLES)
-                            .filter_map(|i| {
-                                let a = i as f32 / CURVE_SAMPLES as f32;
-                                let (u, v) = if dir == 0 { (a, c) } else { (c, a) };
-                                s.eval(ptex, u, v).map(|p| p.p)
-                            })
-                            .collect();
+                        // One buffer per face, no allocation per line.
+                        line.clear();
+                        line.extend((0..=CURVE_SAMPLES).filter_map(|i| {
+                            let a = i as f32 / CURVE_SAMPLES as f32;
+                            let (u, v) = if dir == 0 { (a, c) } else { (c, a) };
+                            s.eval_position(ptex, u, v)
+                        }));
                         worst = worst.max(need_of(&line));
                     }
                 }
@@ -304,6 +305,7 @@ fn curve_rates(
             need[ed as usize] = need[ed as usize].max(per_edge.ceil());
         }
     }
+    check_samples(estimate(s, &need, &face_need))?;
     let edges = to_rates(t, &need, origin)?;
     let faces = (0..t.num_faces())
         .map(|f| {
@@ -332,6 +334,28 @@ fn curve_rates(
         })
         .collect();
     Ok(EdgeRates { edges, faces })
+}
+
+/// The samples of a tessellation at the real-valued needs (before they are checked against
+/// [`MAX_RATE`]): every edge's, and per ptex face the square of its finest need, so that a
+/// policy asking for too much is refused with the estimate before anything is built.
+fn estimate(s: &LimitSurface, need: &[f64], face_need: &[f64]) -> u64 {
+    let t = &s.table.base;
+    let mut samples: f64 = need.iter().sum();
+    for f in 0..t.num_faces() {
+        if t.face_is_hole[f] {
+            continue;
+        }
+        let fe = t.face_edges(f);
+        let finest = fe.iter().map(|&e| need[e as usize]).fold(0.0, f64::max);
+        let (ptex, r) = if fe.len() == 4 {
+            (1.0, finest.max(face_need[f]))
+        } else {
+            (fe.len() as f64, (finest / 2.0).max(face_need[f]))
+        };
+        samples += ptex * r * r;
+    }
+    samples.min(u64::MAX as f64) as u64
 }
 
 /// Reads `--edge-rates` text: one `v0 v1 rate` per line (0-based vertex indices of a base
