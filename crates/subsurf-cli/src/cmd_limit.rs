@@ -41,11 +41,16 @@ impl SurfaceArgs {
 
     /// [`SurfaceArgs::load_table`] with `f32` or `f64` tables; `--f64` needs the CPU.
     pub fn load_table_real<R: subsurf::Real>(&self) -> anyhow::Result<(Mesh, PatchTable<R>)> {
+        let mesh = self.scheme.read(&self.input)?;
+        self.table_for(mesh)
+    }
+
+    /// The patch table of a mesh already read (see [`SurfaceArgs::load_table_real`]).
+    pub fn table_for<R: subsurf::Real>(&self, mesh: Mesh) -> anyhow::Result<(Mesh, PatchTable<R>)> {
         anyhow::ensure!(
             !(self.f64 && self.backend == Backend::Gpu),
             "--f64 evaluates on the CPU: it cannot be combined with --backend gpu"
         );
-        let mesh = self.scheme.read(&self.input)?;
         let topo = Topology::new(&mesh)?;
         let options = PatchOptions {
             isolation_level: self.isolation,
@@ -94,21 +99,25 @@ pub struct LimitArgs {
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
+    let mesh = a.surface.scheme.read(&a.surface.input)?;
+    if mesh.options.scheme == subsurf::Scheme::Loop {
+        return crate::limit_loop::run(a, mesh);
+    }
     if a.adaptive.any() {
         anyhow::ensure!(
             !a.surface.f64,
             "--f64 works with a uniform --tess only (adaptive rates evaluate in f32)"
         );
-        let (mesh, table) = a.surface.load_table()?;
+        let (mesh, table) = a.surface.table_for(mesh)?;
         return run_adaptive(a, mesh, table);
     }
     let (tess, c, patches, ptex) = if a.surface.f64 {
-        let (mesh, table) = a.surface.load_table_real::<f64>()?;
+        let (mesh, table) = a.surface.table_for::<f64>(mesh)?;
         let (c, p, x) = (table.counts(), table.num_patches(), table.num_ptex_faces());
         let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
         (surface.tessellate(a.tess)?, c, p, x)
     } else {
-        let (mesh, table) = a.surface.load_table()?;
+        let (mesh, table) = a.surface.table_for(mesh)?;
         let backend = surface_backend(a.surface.backend)?;
         let tess = backend.limit(&table, &mesh.positions, a.tess)?;
         (

@@ -11,6 +11,7 @@ mod cmd_prep;
 mod cmd_refine;
 mod cmd_render;
 mod common;
+mod limit_loop;
 mod progress;
 mod tess_args;
 mod usd_stage;

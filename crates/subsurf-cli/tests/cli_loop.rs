@@ -89,3 +89,50 @@ fn refine_keeps_loop_uvs() {
         }
     }
 }
+
+/// `subsurf limit` on a Loop mesh writes the library's Loop limit tessellation (box-spline
+/// patches and Gregory-triangle end caps, tested against OpenSubdiv in `osd-ref`): the same
+/// samples, and a closed mesh — every edge used once in each direction, Euler characteristic
+/// 2 — on a shape where every vertex is extraordinary.
+#[test]
+fn limit_writes_the_loop_limit_surface_watertight() {
+    use subsurf::limit::loop_eval::LoopLimit;
+    let input = repo("testdata/shapes/loop_icosahedron.obj");
+    let path = tmp("loop_limit.obj");
+    run_ok(
+        bin()
+            .arg("limit")
+            .arg(&input)
+            .args(["--tess", "5", "--isolation", "3", "-o"])
+            .arg(&path),
+    );
+    let got = subsurf::io::read_path(&path).unwrap();
+    let mesh = subsurf::io::read_path(&input).unwrap();
+    let topo = Topology::new(&mesh).unwrap();
+    let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+    let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
+    assert_eq!(got.face_indices, want.face_indices);
+    assert_eq!(got.positions, want.positions);
+    let mut edges = std::collections::HashMap::new();
+    for t in got.face_indices.chunks(3) {
+        for k in 0..3 {
+            *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    for (&(a, b), &n) in &edges {
+        assert_eq!(n, 1, "edge {a}-{b} used {n} times in one direction");
+        assert_eq!(edges.get(&(b, a)), Some(&1), "open edge {a}-{b}");
+    }
+    let (v, e, f) = (got.positions.len(), edges.len() / 2, got.num_faces());
+    assert_eq!(v as i64 - e as i64 + f as i64, 2);
+    // A Loop mesh refuses what its limit surface does not have.
+    let out = bin()
+        .arg("limit")
+        .arg(&input)
+        .args(["--quads", "-o"])
+        .arg(tmp("loop_quads.obj"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("triangles"));
+}

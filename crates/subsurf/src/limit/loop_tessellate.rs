@@ -126,6 +126,35 @@ impl LoopLimit {
     }
 }
 
+impl TriTessellation {
+    /// The triangles as an f32 [`crate::Mesh`] with its unit normals, keeping only the
+    /// samples a triangle uses (the samples of hole faces are never evaluated), in sample
+    /// order.
+    pub fn to_mesh(&self) -> (crate::Mesh, Vec<[f32; 3]>) {
+        let mut new_index = vec![u32::MAX; self.positions.len()];
+        for t in &self.triangles {
+            for &v in t {
+                new_index[v as usize] = 0;
+            }
+        }
+        let mut mesh = crate::Mesh::default();
+        let mut normals = Vec::new();
+        for (i, slot) in new_index.iter_mut().enumerate() {
+            if *slot == 0 {
+                *slot = mesh.positions.len() as u32;
+                mesh.positions.push(self.positions[i].map(|x| x as f32));
+                normals.push(self.normals[i].map(|x| x as f32));
+            }
+        }
+        for t in &self.triangles {
+            mesh.face_counts.push(3);
+            mesh.face_indices
+                .extend(t.iter().map(|&v| new_index[v as usize]));
+        }
+        (mesh, normals)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
