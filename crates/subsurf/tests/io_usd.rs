@@ -755,3 +755,16 @@ fn property_specs_a_prim_does_not_list_read_as_pxr_reads_them() {
     }
     assert_eq!(dump["meshes"]["/World/A"]["orientation"], "leftHanded");
 }
+
+/// A crate file whose PATHS section claims to run far past the end of the file (found by the
+/// fuzz target: it made the reader allocate ~3.8 TB for paths) is a typed error naming the
+/// file, not an allocation failure.
+#[test]
+fn a_section_running_past_the_file_is_an_error() {
+    let file = data_dir().join("huge_paths_section.usdc");
+    match Stage::read(&std::fs::read(&file).unwrap(), "huge_paths_section.usdc") {
+        Err(subsurf::Error::Usd { file, .. }) => assert_eq!(file, "huge_paths_section.usdc"),
+        Err(e) => panic!("expected Error::Usd, got {e}"),
+        Ok(_) => panic!("a PATHS section past the end of the file was accepted"),
+    }
+}

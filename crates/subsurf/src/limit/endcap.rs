@@ -48,7 +48,7 @@ fn add(dst: &mut Row, src: &Row, s: f64) {
     extend(dst, src.iter().map(|&(i, w)| (i, w * s)));
 }
 
-fn push(dst: &mut Row, i: u32, w: f64) {
+pub(crate) fn push(dst: &mut Row, i: u32, w: f64) {
     match dst.iter_mut().find(|(j, _)| *j == i) {
         Some(e) => e.1 += w,
         None => dst.push((i, w)),
@@ -99,7 +99,7 @@ fn extend(dst: &mut Row, items: impl ExactSizeIterator<Item = (u32, f64)>) {
     }
 }
 
-fn row(entries: &[(u32, f64)]) -> Row {
+pub(crate) fn row(entries: &[(u32, f64)]) -> Row {
     let mut r = Row::with_capacity(entries.len());
     for &(i, w) in entries {
         push(&mut r, i, w);

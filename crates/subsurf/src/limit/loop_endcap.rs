@@ -38,15 +38,8 @@ use crate::topology::tags;
 use crate::topology::Topology;
 use std::f64::consts::PI;
 
-/// A sparse combination of level vertices.
-pub type Row = Vec<(u32, f64)>;
-
-fn push(r: &mut Row, i: u32, w: f64) {
-    match r.iter_mut().find(|(j, _)| *j == i) {
-        Some(e) => e.1 += w,
-        None => r.push((i, w)),
-    }
-}
+pub use super::endcap::Row;
+use super::endcap::{push, row};
 
 /// `Σ s · row` over the terms.
 fn lin(terms: &[(&Row, f64)]) -> Row {
@@ -55,14 +48,6 @@ fn lin(terms: &[(&Row, f64)]) -> Row {
         for &(i, w) in src.iter() {
             push(&mut r, i, w * s);
         }
-    }
-    r
-}
-
-fn row(entries: &[(u32, f64)]) -> Row {
-    let mut r = Row::with_capacity(entries.len());
-    for &(i, w) in entries {
-        push(&mut r, i, w);
     }
     r
 }

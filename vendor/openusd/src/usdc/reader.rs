@@ -322,9 +322,12 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         let Some(section) = self.find_section(Section::PATHS) else {
             return Ok(());
         };
-        let section_size = section.size as u64;
+        let (start, size) = (section.start, section.size as u64);
+        // subsurf patch: the section cannot extend past the end of the file.
+        let file_len = self.reader.seek(io::SeekFrom::End(0))?;
+        let section_size = size.min(file_len.saturating_sub(start as u64));
 
-        self.set_position(section.start)?;
+        self.set_position(start)?;
 
         let file_ver = self.version();
 
