@@ -768,3 +768,21 @@ fn a_section_running_past_the_file_is_an_error() {
         Ok(_) => panic!("a PATHS section past the end of the file was accepted"),
     }
 }
+
+/// A stage holding a token with a NUL character (a corrupted crate file the fuzz target
+/// found) cannot be written as a crate file, whose tokens are NUL-terminated: a typed error,
+/// not a file that fails to read back.
+#[test]
+fn a_token_holding_nul_is_refused_by_the_crate_writer() {
+    let file = data_dir().join("nul_in_token.usdc");
+    let stage = Stage::read(&std::fs::read(&file).unwrap(), "nul_in_token.usdc").unwrap();
+    match stage.to_bytes(UsdFormat::Usdc) {
+        Err(subsurf::Error::Usd { reason, .. }) => assert!(reason.contains("NUL"), "{reason}"),
+        Err(e) => panic!("expected Error::Usd, got {e}"),
+        Ok(bytes) => panic!(
+            "written ({} bytes) although a token holds a NUL: {:?}",
+            bytes.len(),
+            Stage::read(&bytes, "back.usdc").map(|_| ())
+        ),
+    }
+}

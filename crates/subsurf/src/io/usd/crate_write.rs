@@ -84,6 +84,12 @@ pub(super) fn write(data: &sdf::Data) -> Result<Vec<u8>, WriteError> {
     };
     let u64s = |xs: &[u64]| -> Vec<u8> { xs.iter().flat_map(|x| x.to_le_bytes()).collect() };
 
+    // Tokens are stored NUL-terminated: one holding a NUL cannot be written (nor read back).
+    if let Some(t) = v.tables.tokens.iter().find(|t| t.contains('\0')) {
+        return Err(file_level(format!(
+            "the token {t:?} holds a NUL character, which a crate file cannot store"
+        )));
+    }
     let mut chars = Vec::new();
     for t in &v.tables.tokens {
         chars.extend_from_slice(t.as_bytes());
