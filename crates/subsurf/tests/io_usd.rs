@@ -786,3 +786,18 @@ fn a_token_holding_nul_is_refused_by_the_crate_writer() {
         ),
     }
 }
+
+/// A crate file whose prim lists itself among its children (found by the fuzz target: the
+/// text writer recursed until the stack overflowed) is refused when written as text, naming
+/// the nesting; reading it, and writing it as a crate file, do not recurse without bound.
+#[test]
+fn a_prim_cycle_is_an_error_when_written_not_a_stack_overflow() {
+    let file = data_dir().join("prim_cycle.usdc");
+    let stage = Stage::read(&std::fs::read(&file).unwrap(), "prim_cycle.usdc").unwrap();
+    match stage.to_bytes(UsdFormat::Usda) {
+        Err(subsurf::Error::Usd { reason, .. }) => assert!(reason.contains("nested"), "{reason}"),
+        Err(e) => panic!("expected Error::Usd, got {e}"),
+        Ok(_) => panic!("a prim cycle was written as text"),
+    }
+    let _ = stage.to_bytes(UsdFormat::Usdc);
+}

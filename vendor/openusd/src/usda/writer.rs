@@ -19,6 +19,9 @@ use crate::sdf::{
 };
 use crate::tf::Token;
 
+/// The deepest prim nesting written (subsurf patch).
+const MAX_NESTING: usize = 100;
+
 /// Emits `usda` text from an [`AbstractData`].
 pub struct TextWriter;
 
@@ -121,6 +124,11 @@ impl<W: Write> Emitter<'_, W> {
     // ---------- prim ----------
 
     fn emit_prim(&mut self, data: &dyn AbstractData, path: &Path, name: &str) -> Result<()> {
+        // subsurf patch: a corrupt layer can list a prim among its own descendants; bound the
+        // nesting instead of recursing until the stack overflows.
+        if self.indent >= MAX_NESTING {
+            bail!("prim {path} is nested deeper than {MAX_NESTING} levels (a cycle in primChildren?)");
+        }
         // Header: [specifier] [typeName] "name"
         self.write_indent()?;
         let specifier = get_value(data, path, FieldKey::Specifier.as_str())
