@@ -81,12 +81,21 @@ impl Tables {
         if let Some(&i) = self.path_ix.get(p) {
             return i;
         }
-        if let Some(parent) = p.parent() {
-            self.path(&parent);
+        // The unknown ancestors, nearest first (a loop, not recursion: a corrupt layer can
+        // hold paths thousands of components deep).
+        let mut chain = vec![p.clone()];
+        while let Some(parent) = chain.last().and_then(|q| q.parent()) {
+            if self.path_ix.contains_key(&parent) {
+                break;
+            }
+            chain.push(parent);
         }
-        let i = self.paths.len() as u32;
-        self.paths.push(p.clone());
-        self.path_ix.insert(p.clone(), i);
+        let mut i = 0;
+        for q in chain.into_iter().rev() {
+            i = self.paths.len() as u32;
+            self.paths.push(q.clone());
+            self.path_ix.insert(q, i);
+        }
         i
     }
 
