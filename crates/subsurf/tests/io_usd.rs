@@ -801,3 +801,26 @@ fn a_prim_cycle_is_an_error_when_written_not_a_stack_overflow() {
     }
     let _ = stage.to_bytes(UsdFormat::Usdc);
 }
+
+/// A crate file holding a path whose parent is not shorter than itself (found by the fuzz
+/// target: collecting a path's ancestors for the crate writer's path table looped, growing
+/// without bound until memory ran out). Writing it ends, as a crate file that reads back
+/// with the same meshes, or as a typed error.
+#[test]
+fn a_path_without_a_shorter_parent_does_not_loop_when_written() {
+    let file = data_dir().join("path_parent_loop.usdc");
+    let Ok(stage) = Stage::read(&std::fs::read(&file).unwrap(), "path_parent_loop.usdc") else {
+        panic!("the fixture no longer reads: regenerate it from the fuzz artifact");
+    };
+    let meshes = stage.meshes().map(|m| m.len());
+    for format in [UsdFormat::Usda, UsdFormat::Usdc] {
+        match stage.to_bytes(format) {
+            Ok(bytes) if format == UsdFormat::Usdc => {
+                let back = Stage::read(&bytes, "back.usdc").and_then(|s| s.meshes());
+                assert_eq!(back.map(|m| m.len()).ok(), meshes.as_ref().ok().copied());
+            }
+            Ok(_) | Err(subsurf::Error::Usd { .. }) => {}
+            Err(e) => panic!("expected Error::Usd, got {e}"),
+        }
+    }
+}

@@ -84,7 +84,12 @@ impl Tables {
         // The unknown ancestors, nearest first (a loop, not recursion: a corrupt layer can
         // hold paths thousands of components deep).
         let mut chain = vec![p.clone()];
-        while let Some(parent) = chain.last().and_then(|q| q.parent()) {
+        // A corrupt path whose parent is not shorter (e.g. a property path whose prim part is
+        // the path itself) ends the chain instead of repeating forever.
+        while let Some(parent) = chain.last().and_then(|q| {
+            q.parent()
+                .filter(|parent| parent.as_str().len() < q.as_str().len())
+        }) {
             if self.path_ix.contains_key(&parent) {
                 break;
             }
