@@ -14,8 +14,9 @@
 //! quad split (face-interior edges first, `C + 2e + end` after), so the crease machinery of
 //! [`super::level`] serves both schemes.
 //!
-//! The child's rings are built from its face lists ([`Topology::from_face_lists`]) and its
-//! edges then renumbered and oriented as OpenSubdiv's.
+//! A manifold level refines by [`super::loop_rings`], every child table derived directly from
+//! the parent's. Otherwise the child's rings are built from its face lists
+//! ([`Topology::from_face_lists`]) and its edges then renumbered and oriented as OpenSubdiv's.
 
 use super::level::{child_edge_sharpness, edge_point_tags, vertex_child_tags};
 use crate::error::{Error, MeshError, Result};
@@ -82,17 +83,13 @@ fn child_lists(p: &Topology) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>) {
 /// Refines the all-triangle level `p` once (check with [`check_triangles`] first); returns the
 /// child topology with its sharpness, tags and rules.
 pub fn refine_tri_topology(p: &Topology) -> Result<Topology> {
+    if super::loop_rings::is_manifold(p) {
+        return Ok(super::loop_rings::refine_manifold(p));
+    }
     let (nv, ne, nc) = (p.num_vertices(), p.num_edges(), p.num_corners());
     let (face_verts, face_edges, edge_verts) = child_lists(p);
     let ce = edge_verts.len();
-    let manifold = p.vert_tags.iter().all(|&t| t & tags::V_NON_MANIFOLD == 0)
-        && p.edge_tags.iter().all(|&t| t & tags::E_NON_MANIFOLD == 0);
-    let (mut c, mut etags) = if manifold {
-        let c = super::loop_rings::direct_relations(p, face_verts, face_edges, edge_verts);
-        (c, vec![0u8; ce])
-    } else {
-        relations_from_faces(p, face_verts, face_edges, edge_verts)?
-    };
+    let (mut c, mut etags) = relations_from_faces(p, face_verts, face_edges, edge_verts)?;
 
     // Sharpness: interior edges smooth, children of edges decayed by the crease method.
     let mut es = vec![0.0f32; ce];

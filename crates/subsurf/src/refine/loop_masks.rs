@@ -6,15 +6,191 @@
 
 use super::level::child_end_at_vertex;
 use super::masks::{build_rows, LevelStencils, Scratch};
+use super::par;
 use super::stencil::StencilTable;
 use crate::rules::r#loop::{edge_mask, limit_mask, smooth_weights, vertex_mask};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
+use rayon::prelude::*;
 
 /// The stencils mapping vertex data of the triangle level `p` to its Loop child `c` (as
 /// [`super::loop_level::refine_tri_topology`] builds it): children of vertices, then edge
 /// points.
 pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    let nv = p.num_vertices();
+    let (vertex, edge) = if super::loop_rings::is_manifold(p) {
+        manifold_tables(p, c)
+    } else {
+        merged_tables(p, c)
+    };
+    LevelStencils {
+        num_parent_vertices: nv,
+        face: StencilTable {
+            offsets: vec![0],
+            indices: Vec::new(),
+            weights: Vec::new(),
+            num_inputs: nv,
+        },
+        vertex,
+        edge,
+    }
+}
+
+/// The vertex and edge tables of a step from a manifold level ([`super::loop_rings::
+/// is_manifold`]), written directly: there a vertex's neighbours are distinct and differ from
+/// it, an edge's ends differ from each other and from its opposite vertices, and only the two
+/// opposite vertices of an edge can coincide (two triangles on the same three vertices), so
+/// every row's length is known before it is formed and only that pair is merged (in `f64`, as
+/// [`merged_tables`] merges it). Same entries, order and weights as [`merged_tables`].
+fn manifold_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
+    let (nv, ne) = (p.num_vertices(), p.num_edges());
+    // The smooth rule applies the same weight to every neighbour; that weight
+    // `(5/8 - beta^2) / n` is positive (beta <= 5/8), so no entry is dropped.
+    let smooth = |v: usize| {
+        let nfaces = p.vertex_faces(v).len();
+        let pr = p.vert_rule[v];
+        (pr == rule::SMOOTH || pr == rule::DART) && nfaces == p.valence(v)
+    };
+    let vertex = write_rows(
+        nv,
+        nv,
+        |v, s| {
+            let n = p.valence(v);
+            if n == 0 {
+                1
+            } else if smooth(v) {
+                n + 1
+            } else {
+                let mask = loop_vertex_mask(p, c, v, s);
+                mask.edges.iter().filter(|&&w| w != 0.0).count() + 1
+            }
+        },
+        |v, s, idx, wts| {
+            let pe = p.vertex_edges(v);
+            if pe.is_empty() {
+                (idx[0], wts[0]) = (v as u32, 1.0);
+                return;
+            }
+            let n = pe.len();
+            if smooth(v) {
+                let (vw, ew) = smooth_weights(n);
+                for ((&e, i), w) in pe.iter().zip(&mut idx[..n]).zip(&mut wts[..n]) {
+                    (*i, *w) = (p.other_vertex(e as usize, v as u32), ew);
+                }
+                (idx[n], wts[n]) = (v as u32, vw);
+                return;
+            }
+            let mask = loop_vertex_mask(p, c, v, s);
+            let mut k = 0;
+            for (&e, &w) in pe.iter().zip(&mask.edges) {
+                if w != 0.0 {
+                    (idx[k], wts[k]) = (p.other_vertex(e as usize, v as u32), w);
+                    k += 1;
+                }
+            }
+            (idx[k], wts[k]) = (v as u32, mask.vertex);
+        },
+    );
+    // The edge mask and the opposite vertices of edge `e` (the second `u32::MAX` where the
+    // edge has one face or both opposite vertices are one).
+    let edge_row = |e: usize| {
+        let faces = p.edge_faces(e);
+        let m = edge_mask(p.edge_sharpness[e], c.vert_rule[nv + e], faces.len());
+        let opposite = |i: usize| {
+            let (f, k) = (faces[i] as usize, p.edge_faces_local(e)[i] as usize);
+            p.face_verts[3 * f + (k + 2) % 3]
+        };
+        let o0 = opposite(0);
+        let o1 = if faces.len() == 2 && opposite(1) != o0 {
+            opposite(1)
+        } else {
+            u32::MAX
+        };
+        (m, [o0, o1], faces.len() == 2 && o1 == u32::MAX)
+    };
+    let edge = write_rows(
+        ne,
+        nv,
+        |e, _| {
+            let (m, o, _) = edge_row(e);
+            if m.opposite == 0.0 {
+                2
+            } else {
+                3 + (o[1] != u32::MAX) as usize
+            }
+        },
+        |e, _, idx, wts| {
+            let ev = p.edge_verts[e];
+            let (m, o, merged) = edge_row(e);
+            (idx[0], wts[0]) = (ev[0], m.vertex);
+            (idx[1], wts[1]) = (ev[1], m.vertex);
+            if m.opposite != 0.0 {
+                let w = if merged {
+                    (m.opposite as f64 + m.opposite as f64) as f32
+                } else {
+                    m.opposite
+                };
+                (idx[2], wts[2]) = (o[0], w);
+                if o[1] != u32::MAX {
+                    (idx[3], wts[3]) = (o[1], w);
+                }
+            }
+        },
+    );
+    (vertex, edge)
+}
+
+/// Builds a table of `rows` rows over `num_inputs` inputs whose lengths `len(r)` are known
+/// before the rows are formed: sized in one parallel pass, then each row written by `row(r,
+/// indices, weights)` into its own slices of tables allocated once at their exact size.
+fn write_rows<L, R>(rows: usize, num_inputs: usize, len: L, row: R) -> StencilTable
+where
+    L: Fn(usize, &mut Scratch) -> usize + Sync,
+    R: Fn(usize, &mut Scratch, &mut [u32], &mut [f32]) + Sync,
+{
+    let b = par::bounds(rows);
+    let mut offsets = vec![0u32; rows + 1];
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut offsets[1..], &b, |r| r))
+        .for_each(|(r, out)| {
+            let mut s = Scratch::default();
+            let base = r.start;
+            for i in r {
+                out[i - base] = len(i, &mut s) as u32;
+            }
+        });
+    let mut acc = 0u32;
+    for o in &mut offsets[1..] {
+        acc += *o;
+        *o = acc;
+    }
+    let mut indices = vec![0u32; acc as usize];
+    let mut weights = vec![0.0f32; acc as usize];
+    let start = |r: usize| offsets[r] as usize;
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut indices, &b, start))
+        .zip(par::split(&mut weights, &b, start))
+        .for_each(|((r, io), wo)| {
+            let mut s = Scratch::default();
+            let base = start(r.start);
+            for i in r {
+                let (a, b) = (start(i) - base, start(i + 1) - base);
+                row(i, &mut s, &mut io[a..b], &mut wo[a..b]);
+            }
+        });
+    StencilTable {
+        offsets,
+        indices,
+        weights,
+        num_inputs,
+    }
+}
+
+/// The vertex and edge tables of a step, repeated inputs of a row merged in `f64`: what a
+/// non-manifold level needs, where a row can meet one vertex twice.
+fn merged_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
     let (nv, ne) = (p.num_vertices(), p.num_edges());
     let vertex = build_rows(nv, nv, |v, b, s: &mut Scratch| {
         if p.vertex_edges(v).is_empty() {
@@ -42,17 +218,7 @@ pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
             }
         }
     });
-    LevelStencils {
-        num_parent_vertices: nv,
-        face: StencilTable {
-            offsets: vec![0],
-            indices: Vec::new(),
-            weights: Vec::new(),
-            num_inputs: nv,
-        },
-        vertex,
-        edge,
-    }
+    (vertex, edge)
 }
 
 /// The Loop vertex-point mask of parent vertex `v` of the triangle level `p` (edge weights in

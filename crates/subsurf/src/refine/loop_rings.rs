@@ -1,108 +1,309 @@
-//! The relations of a Loop child level derived directly from a manifold parent's rings (no
-//! search, no sorting), in the ring order [`Topology`] documents: faces counter-clockwise,
-//! `vertex_edges(v)[i]` leaving `v` along face `i`, a boundary ring starting and ending with
-//! its boundary edges.
+//! One Loop refinement step of a manifold all-triangle level, every child table derived
+//! directly from the parent's (no search, no sorting) and filled in place: each table is
+//! allocated once at its exact size, its row starts following from the parent's offsets, and
+//! filled in parallel chunks over parent faces, edges and vertices. Numbering as
+//! [`super::loop_level`] documents it (OpenSubdiv's `Vtr::TriRefinement`); rings in the order
+//! [`Topology`] documents: faces counter-clockwise, `vertex_edges(v)[i]` leaving `v` along
+//! face `i`, a boundary ring starting and ending with its boundary edges.
 //!
-//! In a parent triangle `f` whose edge `k` runs from corner `k` to corner `k + 1`, the edge
-//! point of edge `k` lies in three child faces, counter-clockwise from the side of corner
-//! `k + 1`: the corner child `k + 1` (the edge point at its corner `k`), the centre child 3
-//! (corner `k + 2`) and the corner child `k` (corner `k + 1`); the edges leaving it along those
-//! faces are the child of edge `k` at corner `k + 1`, then the interior edges `3f + k + 1` and
-//! `3f + k`, and the last face's other edge is the child of edge `k` at corner `k`.
+//! In a parent triangle `f` whose edge `k` runs from corner `k` to corner `k + 1`, the child of
+//! edge `k` at corner `k` lies in corner child `k`, the child at corner `k + 1` in corner child
+//! `k + 1`, both as that child's edge `k`. The edge point of edge `k` lies in three child faces,
+//! counter-clockwise from the side of corner `k + 1`: the corner child `k + 1` (the edge point
+//! at its corner `k`), the centre child 3 (corner `k + 2`) and the corner child `k` (corner
+//! `k + 1`); the edges leaving it along those faces are the child of edge `k` at corner `k + 1`,
+//! then the interior edges `3f + k + 1` and `3f + k`, and the last face's other edge is the
+//! child of edge `k` at corner `k`.
+//!
+//! Sizes: a child of a vertex keeps its parent's ring sizes; the edge point of an edge of `k`
+//! faces (1 or 2 on a manifold level) has `3k` faces and `2 + 2k` edges; an interior child edge
+//! has two faces, a child of an edge as many as that edge.
 
-use crate::topology::tags::rule;
+use super::level::{child_edge_sharpness, edge_point_tags, iota, vertex_child_tags};
+use super::par;
+use crate::rules::crease;
+use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
+use rayon::prelude::*;
 
-/// Edge faces in face order (and the local index of the edge in each) of the child faces'
-/// edges `face_edges`, over `ce` edges.
-pub(super) fn edge_faces_of(face_edges: &[u32], ce: usize) -> (Vec<u32>, Vec<u32>, Vec<u16>) {
-    let mut offsets = vec![0u32; ce + 1];
-    for &e in face_edges {
-        offsets[e as usize + 1] += 1;
-    }
-    for i in 0..ce {
-        offsets[i + 1] += offsets[i];
-    }
-    let mut fill: Vec<u32> = offsets[..ce].to_vec();
-    let mut ef = vec![0u32; face_edges.len()];
-    let mut el = vec![0u16; face_edges.len()];
-    for (i, &e) in face_edges.iter().enumerate() {
-        let slot = &mut fill[e as usize];
-        ef[*slot as usize] = (i / 3) as u32;
-        el[*slot as usize] = (i % 3) as u16;
-        *slot += 1;
-    }
-    (offsets, ef, el)
+/// Whether the all-triangle level `p` refines by [`refine_manifold`]: no non-manifold vertex
+/// or edge, every edge with one or two faces.
+pub(super) fn is_manifold(p: &Topology) -> bool {
+    p.vert_tags.iter().all(|&t| t & tags::V_NON_MANIFOLD == 0)
+        && p.edge_tags.iter().all(|&t| t & tags::E_NON_MANIFOLD == 0)
+        && p.edge_face_offsets
+            .windows(2)
+            .all(|w| matches!(w[1] - w[0], 1 | 2))
 }
 
-/// The child of the manifold all-triangle level `p` with its relations (sharpness, tags and
-/// rules still zero), from the child lists of [`super::loop_level`].
-pub(super) fn direct_relations(
-    p: &Topology,
-    face_verts: Vec<u32>,
-    face_edges: Vec<u32>,
-    edge_verts: Vec<[u32; 2]>,
-) -> Topology {
-    let (nv, ne, nc) = (p.num_vertices(), p.num_edges(), p.num_corners());
-    let (cv, ce, cf) = (nv + ne, edge_verts.len(), face_verts.len() / 3);
-    let (edge_face_offsets, edge_faces, edge_face_local) = edge_faces_of(&face_edges, ce);
-
-    let pvf = p.vert_face_offsets[nv] as usize;
-    let pve = p.vert_edge_offsets[nv] as usize;
-    let mut vfo = Vec::with_capacity(cv + 1);
-    let mut veo = Vec::with_capacity(cv + 1);
-    vfo.extend_from_slice(&p.vert_face_offsets);
-    veo.extend_from_slice(&p.vert_edge_offsets);
-    let (mut nvf, mut nve) = (pvf, pve);
-    for e in 0..ne {
-        let k = p.edge_faces(e).len();
-        nvf += 3 * k;
-        nve += if k == 2 { 6 } else { 4 };
-        vfo.push(nvf as u32);
-        veo.push(nve as u32);
+/// The incident faces of edge `e` of `p` (one or two) as indices into `p.edge_faces(e)`, in
+/// increasing face order.
+#[inline]
+fn faces_in_order(p: &Topology, e: usize) -> ([usize; 2], usize) {
+    let faces = p.edge_faces(e);
+    if faces.len() == 2 && faces[1] < faces[0] {
+        ([1, 0], 2)
+    } else {
+        ([0, 1], faces.len())
     }
-    let mut vf = Vec::with_capacity(nvf);
-    let mut vl = Vec::with_capacity(nvf);
-    let mut ve = Vec::with_capacity(nve);
+}
 
-    // Children of vertices: the parent's rings, face by face and edge by edge.
-    for v in 0..nv {
-        for (&f, &k) in p.vertex_faces(v).iter().zip(p.vertex_faces_local(v)) {
-            vf.push(4 * f + k as u32);
-            vl.push(k);
-        }
-        for &e in p.vertex_edges(v) {
-            let end = (p.edge_verts[e as usize][0] != v as u32) as u32;
-            ve.push((nc + 2 * e as usize) as u32 + end);
-        }
+/// Refines the manifold all-triangle level `p` ([`is_manifold`]) once; returns the child
+/// topology with its sharpness, tags and rules.
+pub(super) fn refine_manifold(p: &Topology) -> Topology {
+    let (nv, nf, ne, nc) = (
+        p.num_vertices(),
+        p.num_faces(),
+        p.num_edges(),
+        p.num_corners(),
+    );
+    let (cv, cf, ce) = (nv + ne, 4 * nf, nc + 2 * ne);
+    let efo = |e: usize| p.edge_face_offsets[e] as usize;
+    let ep = |e: u32| nv as u32 + e;
+    let (fb, eb, vb) = (par::bounds(nf), par::bounds(ne), par::bounds(nv));
+    let (fr, er, vr) = (par::ranges(&fb), par::ranges(&eb), par::ranges(&vb));
+
+    // Faces and edges: four child faces and three interior edges per parent face, two child
+    // edges per parent edge.
+    let total_ef = 2 * nc + 2 * efo(ne);
+    let mut face_verts = vec![0u32; 4 * nc];
+    let mut face_edges = vec![0u32; 4 * nc];
+    let mut edge_verts = vec![[0u32; 2]; ce];
+    let mut edge_face_offsets = vec![0u32; ce + 1];
+    let mut edge_faces = vec![0u32; total_ef];
+    let mut edge_face_local = vec![0u16; total_ef];
+    {
+        let (ev_f, ev_e) = edge_verts.split_at_mut(nc);
+        let (eo_f, eo_e) = edge_face_offsets.split_at_mut(nc);
+        let (ef_f, ef_e) = edge_faces.split_at_mut(2 * nc);
+        let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
+        fr.clone()
+            .into_par_iter()
+            .zip(par::split(&mut face_verts, &fb, |f| 12 * f))
+            .zip(par::split(&mut face_edges, &fb, |f| 12 * f))
+            .zip(par::split(ev_f, &fb, |f| 3 * f))
+            .zip(par::split(eo_f, &fb, |f| 3 * f))
+            .zip(par::split(ef_f, &fb, |f| 6 * f))
+            .zip(par::split(el_f, &fb, |f| 6 * f))
+            .for_each(|((((((r, cfv), cfe), cev), ceo), cef), cel)| {
+                let base = r.start;
+                for f in r {
+                    let i = f - base;
+                    let fv = &p.face_verts[3 * f..3 * f + 3];
+                    let fe = &p.face_edges[3 * f..3 * f + 3];
+                    let e = [ep(fe[0]), ep(fe[1]), ep(fe[2])];
+                    cfv[12 * i..12 * i + 12].copy_from_slice(&[
+                        fv[0], e[0], e[2], e[0], fv[1], e[1], e[2], e[1], fv[2], e[1], e[2], e[0],
+                    ]);
+                    // pe[k] = [child of edge k at corner k, child at corner k + 1].
+                    let pe: [[u32; 2]; 3] = std::array::from_fn(|k| {
+                        let ev = p.edge_verts[fe[k] as usize];
+                        let reversed = (fv[k] != ev[0]) as u32;
+                        let c = (nc + 2 * fe[k] as usize) as u32;
+                        [c + reversed, c + 1 - reversed]
+                    });
+                    let fc = (3 * f) as u32;
+                    cfe[12 * i..12 * i + 12].copy_from_slice(&[
+                        pe[0][0],
+                        fc,
+                        pe[2][1],
+                        pe[0][1],
+                        pe[1][0],
+                        fc + 1,
+                        fc + 2,
+                        pe[1][1],
+                        pe[2][0],
+                        fc + 2,
+                        fc,
+                        fc + 1,
+                    ]);
+                    cev[3 * i..3 * i + 3].copy_from_slice(&[
+                        [e[0], e[2]],
+                        [e[1], e[0]],
+                        [e[2], e[1]],
+                    ]);
+                    let (o, c) = ((6 * f) as u32, (4 * f) as u32);
+                    ceo[3 * i..3 * i + 3].copy_from_slice(&[o, o + 2, o + 4]);
+                    cef[6 * i..6 * i + 6].copy_from_slice(&[c, c + 3, c + 1, c + 3, c + 2, c + 3]);
+                    cel[6 * i..6 * i + 6].copy_from_slice(&[1, 1, 2, 2, 0, 0]);
+                }
+            });
+        eo_e[2 * ne] = total_ef as u32;
+        er.clone()
+            .into_par_iter()
+            .zip(par::split(ev_e, &eb, |e| 2 * e))
+            .zip(par::split(&mut eo_e[..2 * ne], &eb, |e| 2 * e))
+            .zip(par::split(ef_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split(el_e, &eb, |e| 2 * efo(e)))
+            .for_each(|((((r, cev), ceo), cef), cel)| {
+                let (base, fbase) = (2 * r.start, 2 * efo(r.start));
+                for e in r {
+                    let ev = p.edge_verts[e];
+                    let i = 2 * e - base;
+                    cev[i] = [ep(e as u32), ev[0]];
+                    cev[i + 1] = [ep(e as u32), ev[1]];
+                    let (order, k) = faces_in_order(p, e);
+                    let s = 2 * efo(e);
+                    ceo[i] = (2 * nc + s) as u32;
+                    ceo[i + 1] = (2 * nc + s + k) as u32;
+                    let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
+                    let o = s - fbase;
+                    for (slot, &j) in order[..k].iter().enumerate() {
+                        let (f, kl) = (faces[j], locals[j]);
+                        let at_k = (p.face_verts[3 * f as usize + kl as usize] != ev[0]) as usize;
+                        cef[o + at_k * k + slot] = 4 * f + kl as u32;
+                        cef[o + (1 - at_k) * k + slot] = 4 * f + (kl as u32 + 1) % 3;
+                        cel[o + at_k * k + slot] = kl;
+                        cel[o + (1 - at_k) * k + slot] = kl;
+                    }
+                }
+            });
     }
+
+    // Sharpness: interior edges smooth, children of edges decayed by the crease method.
+    let mut edge_sharpness = vec![0.0f32; ce];
+    let mut edge_tags = vec![0u8; ce];
+    child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
+
+    // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
+    let (pvf, pve) = (
+        p.vert_face_offsets[nv] as usize,
+        p.vert_edge_offsets[nv] as usize,
+    );
+    let vert_face_offsets = iota(cv + 1, |i| {
+        if i <= nv {
+            p.vert_face_offsets[i]
+        } else {
+            (pvf + 3 * efo(i - nv)) as u32
+        }
+    });
+    let vert_edge_offsets = iota(cv + 1, |i| {
+        if i <= nv {
+            p.vert_edge_offsets[i]
+        } else {
+            (pve + 2 * (i - nv) + 2 * efo(i - nv)) as u32
+        }
+    });
+    let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
+    let mut vert_faces = vec![0u32; total_vf];
+    let mut vert_face_local = vec![0u16; total_vf];
+    let mut vert_edges = vec![0u32; total_ve];
+    let mut vert_sharpness = vec![0.0f32; cv];
+    let mut vert_tags = vec![0u16; cv];
+    let mut vert_rule = vec![rule::SMOOTH; cv];
+    let (vf_v, vf_e) = vert_faces.split_at_mut(pvf);
+    let (vl_v, vl_e) = vert_face_local.split_at_mut(pvf);
+    let (ve_v, ve_e) = vert_edges.split_at_mut(pve);
+    let (vt_v, vt_e) = vert_tags.split_at_mut(nv);
+    let (vr_v, vr_e) = vert_rule.split_at_mut(nv);
+
+    // Children of vertices: the parent's rings, face by face and edge by edge; tags and rules
+    // inherited, recounted where semi-sharp features decayed.
+    let pvfo = |v: usize| p.vert_face_offsets[v] as usize;
+    let pveo = |v: usize| p.vert_edge_offsets[v] as usize;
+    let etags = &edge_tags;
+    vr.into_par_iter()
+        .zip(par::split(vf_v, &vb, pvfo))
+        .zip(par::split(vl_v, &vb, pvfo))
+        .zip(par::split(ve_v, &vb, pveo))
+        .zip(par::split(&mut vert_sharpness[..nv], &vb, |v| v))
+        .zip(par::split(vt_v, &vb, |v| v))
+        .zip(par::split(vr_v, &vb, |v| v))
+        .for_each(|((((((r, cvf), cvl), cve), cvs), cvt), cvr)| {
+            let (fbase, ebase, base) = (pvfo(r.start), pveo(r.start), r.start);
+            for v in r {
+                let (a, b) = (pvfo(v), pvfo(v + 1));
+                let ring = cvf[a - fbase..b - fbase]
+                    .iter_mut()
+                    .zip(&mut cvl[a - fbase..b - fbase])
+                    .zip(&p.vert_faces[a..b])
+                    .zip(&p.vert_face_local[a..b]);
+                for (((cf, cl), &f), &k) in ring {
+                    *cf = 4 * f + k as u32;
+                    *cl = k;
+                }
+                let (mut inf, mut semi) = (0usize, 0usize);
+                let out = &mut cve[pveo(v) - ebase..pveo(v + 1) - ebase];
+                for (&e, o) in p.vertex_edges(v).iter().zip(out) {
+                    let end = (p.edge_verts[e as usize][0] != v as u32) as u32;
+                    let c = (nc + 2 * e as usize) as u32 + end;
+                    *o = c;
+                    let et = etags[c as usize];
+                    inf += (et & tags::E_INF_SHARP != 0) as usize;
+                    semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+                }
+                let s = crease::decrement(p.vert_sharpness[v]);
+                let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
+                cvs[v - base] = s;
+                cvt[v - base] = t & !tags::V_INCIDENT_HOLE;
+                cvr[v - base] = rl;
+            }
+        });
+
     // Edge points: three faces per incident face, the forward face (edge in its direction)
     // first, so an interior ring starts with the child at end 1.
-    for e in 0..ne {
-        let faces = p.edge_faces(e);
-        let locals = p.edge_faces_local(e);
-        let forward = |i: usize| {
-            let f = faces[i] as usize;
-            p.face_verts[3 * f + locals[i] as usize] == p.edge_verts[e][0]
-        };
-        let order: [usize; 2] = if faces.len() == 2 && !forward(0) {
-            [1, 0]
-        } else {
-            [0, 1]
-        };
-        let c0 = (nc + 2 * e) as u32;
-        for &i in order.iter().take(faces.len()) {
-            let f = faces[i];
-            let k = locals[i] as u32;
-            let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
-            vf.extend_from_slice(&[4 * f + k1, 4 * f + 3, 4 * f + k]);
-            vl.extend_from_slice(&[k as u16, k2 as u16, k1 as u16]);
-            // The child at corner k + 1 of this face: end 1 where the face runs forward.
-            let far = if forward(i) { c0 + 1 } else { c0 };
-            let near = if forward(i) { c0 } else { c0 + 1 };
-            ve.extend_from_slice(&[far, 3 * f + k1, 3 * f + k]);
-            if faces.len() == 1 {
-                ve.push(near);
+    er.into_par_iter()
+        .zip(par::split(vf_e, &eb, |e| 3 * efo(e)))
+        .zip(par::split(vl_e, &eb, |e| 3 * efo(e)))
+        .zip(par::split(ve_e, &eb, |e| 2 * e + 2 * efo(e)))
+        .zip(par::split(vt_e, &eb, |e| e))
+        .zip(par::split(vr_e, &eb, |e| e))
+        .for_each(|(((((r, cvf), cvl), cve), cvt), cvr)| {
+            let (fbase, ebase, base) = (3 * efo(r.start), 2 * r.start + 2 * efo(r.start), r.start);
+            for e in r {
+                let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
+                let ev = p.edge_verts[e];
+                let forward =
+                    |i: usize| p.face_verts[3 * faces[i] as usize + locals[i] as usize] == ev[0];
+                let order: [usize; 2] = if faces.len() == 2 && !forward(0) {
+                    [1, 0]
+                } else {
+                    [0, 1]
+                };
+                let c0 = (nc + 2 * e) as u32;
+                let (mut of, mut oe) = (3 * efo(e) - fbase, 2 * e + 2 * efo(e) - ebase);
+                for &i in order.iter().take(faces.len()) {
+                    let f = faces[i];
+                    let k = locals[i] as u32;
+                    let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
+                    cvf[of..of + 3].copy_from_slice(&[4 * f + k1, 4 * f + 3, 4 * f + k]);
+                    cvl[of..of + 3].copy_from_slice(&[k as u16, k2 as u16, k1 as u16]);
+                    of += 3;
+                    // The child at corner k + 1 of this face: end 1 where the face runs forward.
+                    let (far, near) = if forward(i) {
+                        (c0 + 1, c0)
+                    } else {
+                        (c0, c0 + 1)
+                    };
+                    cve[oe..oe + 3].copy_from_slice(&[far, 3 * f + k1, 3 * f + k]);
+                    oe += 3;
+                    if faces.len() == 1 {
+                        cve[oe] = near;
+                        oe += 1;
+                    }
+                }
+                let et = p.edge_tags[e];
+                let (t0, t1) = (etags[nc + 2 * e], etags[nc + 2 * e + 1]);
+                let (mut t, rl) = edge_point_tags(et, t0, t1);
+                if et & tags::E_BOUNDARY != 0 {
+                    t |= tags::V_BOUNDARY;
+                }
+                cvt[e - base] = t;
+                cvr[e - base] = rl;
+            }
+        });
+
+    // Holes: the four children of a hole.
+    let mut face_is_hole = vec![false; cf];
+    if p.face_is_hole.iter().any(|&h| h) {
+        for f in 0..nf {
+            if p.face_is_hole[f] {
+                for k in 4 * f..4 * f + 4 {
+                    face_is_hole[k] = true;
+                    for &v in &face_verts[3 * k..3 * k + 3] {
+                        vert_tags[v as usize] |= tags::V_INCIDENT_HOLE;
+                    }
+                }
             }
         }
     }
@@ -110,23 +311,23 @@ pub(super) fn direct_relations(
     Topology {
         options: p.options,
         num_vertices: cv,
-        face_offsets: (0..=cf as u32).map(|f| 3 * f).collect(),
+        face_offsets: iota(cf + 1, |f| 3 * f as u32),
         face_verts,
         face_edges,
         edge_verts,
         edge_face_offsets,
         edge_faces,
         edge_face_local,
-        vert_face_offsets: vfo,
-        vert_faces: vf,
-        vert_face_local: vl,
-        vert_edge_offsets: veo,
-        vert_edges: ve,
-        edge_sharpness: vec![0.0; ce],
-        vert_sharpness: vec![0.0; cv],
-        face_is_hole: vec![false; cf],
-        edge_tags: vec![0; ce],
-        vert_tags: vec![0; cv],
-        vert_rule: vec![rule::SMOOTH; cv],
+        vert_face_offsets,
+        vert_faces,
+        vert_face_local,
+        vert_edge_offsets,
+        vert_edges,
+        edge_sharpness,
+        vert_sharpness,
+        face_is_hole,
+        edge_tags,
+        vert_tags,
+        vert_rule,
     }
 }
