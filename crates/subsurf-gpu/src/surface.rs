@@ -4,6 +4,8 @@
 //! the p-rep passes and grid).
 
 use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, GpuUvRefiner, StencilKernel};
+use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::loop_tessellate::TriTessellation;
 use subsurf::limit::{PatchTable, Tessellation};
 use subsurf::prep::PrepTopology;
 use subsurf::refine::FVarRefinement;
@@ -111,6 +113,18 @@ impl Backend for GpuBackend {
             .map_err(gpu_err("evaluating the samples"))?;
         t.download(ctx)
             .map_err(gpu_err("reading the tessellation back"))
+    }
+
+    /// No Loop kernels are hooked up here yet: a typed refusal, not a silent CPU run.
+    fn loop_limit(
+        &self,
+        _limit: &LoopLimit,
+        _base: &Topology,
+        _segments: usize,
+    ) -> Result<TriTessellation, SurfaceError> {
+        Err(SurfaceError::Unsupported(
+            "the GPU backend does not evaluate the Loop limit surface; use the CPU backend".into(),
+        ))
     }
 
     fn prep(

@@ -181,6 +181,58 @@ pub enum TessError {
     },
 }
 
+/// A limit-surface query `(face, u, v)` outside the surface's domain, naming the query (its
+/// 0-based index in the list given) and the value at fault.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum QueryError {
+    /// The face does not exist.
+    #[error("query {query}: face {face} does not exist (there are {count} faces)")]
+    NoSuchFace {
+        /// The query's index.
+        query: usize,
+        /// The face given.
+        face: u64,
+        /// How many faces there are (base triangles for Loop, ptex faces otherwise).
+        count: usize,
+    },
+    /// A parameter that is NaN or infinite.
+    #[error("query {query}: face {face} at (u, v) = ({u}, {v}): parameters must be finite")]
+    NotFinite {
+        /// The query's index.
+        query: usize,
+        /// The face.
+        face: u64,
+        /// `u` given.
+        u: f64,
+        /// `v` given.
+        v: f64,
+    },
+    /// `(u, v)` off a triangle's domain `u, v ≥ 0`, `u + v ≤ 1` (Loop).
+    #[error("query {query}: face {face} at (u, v) = ({u}, {v}) is outside the triangle (u, v >= 0, u + v <= 1)")]
+    OutsideTriangle {
+        /// The query's index.
+        query: usize,
+        /// The face.
+        face: u64,
+        /// `u` given.
+        u: f64,
+        /// `v` given.
+        v: f64,
+    },
+    /// `(u, v)` off a ptex face's square `[0, 1]²`.
+    #[error("query {query}: ptex face {face} at (u, v) = ({u}, {v}) is outside [0, 1] x [0, 1]")]
+    OutsideSquare {
+        /// The query's index.
+        query: usize,
+        /// The face.
+        face: u64,
+        /// `u` given.
+        u: f64,
+        /// `v` given.
+        v: f64,
+    },
+}
+
 /// Every error the library returns.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
@@ -220,6 +272,9 @@ pub enum Error {
     /// Bad tessellation input.
     #[error(transparent)]
     Tess(#[from] TessError),
+    /// A limit-surface query outside the surface's domain.
+    #[error(transparent)]
+    Query(#[from] QueryError),
     /// A file could not be read or written.
     #[error("I/O error: {0}")]
     Io(#[from] std::io::Error),

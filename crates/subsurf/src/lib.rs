@@ -84,7 +84,7 @@ pub mod surface;
 pub mod tess;
 pub mod topology;
 
-pub use error::{Error, MeshError, Result, TessError};
+pub use error::{Error, MeshError, QueryError, Result, TessError};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
 pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,

@@ -126,6 +126,27 @@ impl LoopLimit {
     }
 }
 
+/// Per triangle of [`LoopLimit::tessellate`] on `base` with `segments` per edge, in its
+/// order: the base face and the `(u, v)` of the triangle's centroid there (what a patch
+/// lookup colours the triangle by).
+pub fn triangle_centres(base: &Topology, segments: usize) -> Vec<(u32, [f64; 2])> {
+    let n = segments.max(1);
+    let d = n as f64;
+    let mut out = Vec::new();
+    for f in (0..base.num_faces()).filter(|&f| !base.face_is_hole[f]) {
+        for j in 0..n {
+            for i in 0..n - j {
+                let (i, j) = (i as f64, j as f64);
+                out.push((f as u32, [(i + 1.0 / 3.0) / d, (j + 1.0 / 3.0) / d]));
+                if i + j + 2.0 <= d {
+                    out.push((f as u32, [(i + 2.0 / 3.0) / d, (j + 2.0 / 3.0) / d]));
+                }
+            }
+        }
+    }
+    out
+}
+
 impl TriTessellation {
     /// The triangles as an f32 [`crate::Mesh`] with its unit normals, keeping only the
     /// samples a triangle uses (the samples of hole faces are never evaluated), in sample

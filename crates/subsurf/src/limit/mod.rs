@@ -17,6 +17,7 @@
 //! - [`loop_eval`]: the Loop limit surface on its patches;
 //! - [`loop_tessellate`]: watertight triangle tessellation of the Loop limit surface;
 //! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
+//! - [`query`]: `(face, u, v)` queries checked against the surface's domain;
 //! - [`endcap`]: the 20 points of a Gregory end cap;
 //! - [`span`]: manifold fans around non-manifold vertices;
 //! - [`patch_map`]: the quadtree per ptex face ([`tri_patch_map`]: of triangles);
@@ -94,6 +95,7 @@ pub mod loop_patches;
 pub mod loop_tessellate;
 pub mod patch_map;
 pub mod points;
+pub mod query;
 pub mod span;
 pub mod sparse;
 pub mod table;

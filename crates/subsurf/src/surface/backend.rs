@@ -1,13 +1,16 @@
-//! Where the surface's heavy steps run. The library knows no GPU: [`Backend`] names the three
-//! steps (apply refinement stencils to positions and UVs, tessellate the limit surface, tessellate the p-rep) with
+//! Where the surface's heavy steps run. The library knows no GPU: [`Backend`] names the
+//! steps (apply refinement stencils to positions and UVs, tessellate the Catmull-Clark or the
+//! Loop limit surface, tessellate the p-rep) with
 //! the CPU as their default bodies; `subsurf-gpu` implements the trait with wgpu kernels, so
 //! a front end passes either [`Cpu`] or `subsurf_gpu::GpuBackend` to the same call.
 
 use super::SurfaceError;
+use crate::limit::loop_eval::LoopLimit;
+use crate::limit::loop_tessellate::TriTessellation;
 use crate::limit::{LimitSurface, PatchTable, Tessellation};
 use crate::prep::{PrepPatches, Tessellation as PrepTessellation};
 use crate::refine::FVarRefinement;
-use crate::{Error, FaceVarying, Mesh, Refiner};
+use crate::{Error, FaceVarying, Mesh, Refiner, Topology};
 
 /// The p-rep tessellation and which patches carry the bi-5 perturbation.
 #[derive(Debug, Clone)]
@@ -72,6 +75,19 @@ pub trait Backend: std::fmt::Debug + Send + Sync {
         samples: usize,
     ) -> Result<Tessellation, SurfaceError> {
         Ok(LimitSurface::new(table.clone(), base).tessellate(samples)?)
+    }
+
+    /// The watertight tessellation of the Loop limit surface `limit` (built on `base`),
+    /// `segments` per base edge ([`LoopLimit::tessellate`]: positions, normals and triangles
+    /// in its sample order). A backend without Loop kernels refuses with
+    /// [`SurfaceError::Unsupported`] rather than running this CPU body.
+    fn loop_limit(
+        &self,
+        limit: &LoopLimit,
+        base: &Topology,
+        segments: usize,
+    ) -> Result<TriTessellation, SurfaceError> {
+        Ok(limit.tessellate(base, segments)?)
     }
 
     /// The p-rep (Myles, Yeo and Peters 2008) of the quad mesh `quads`, tessellated with

@@ -12,12 +12,18 @@
 //! # Ok::<(), subsurf::surface::SurfaceError>(())
 //! ```
 //!
+//! On a Loop mesh, `limit` is the Loop limit surface (box-spline patches and Gregory-triangle
+//! end caps, `samples` per base edge, triangles, no UVs); `refine` is Loop refinement;
+//! `adaptive` and `prep` are Catmull-Clark constructions and are refused
+//! ([`SurfaceError::Unsupported`]).
+//!
 //! The GPU runs behind the same call: [`Backend`] is implemented by `subsurf_gpu::GpuBackend`;
 //! this crate knows no GPU.
 
 mod adaptive;
 mod backend;
 mod limit;
+mod loop_limit;
 mod prep;
 mod refine_mesh;
 mod refined;
@@ -25,12 +31,13 @@ mod triangulate;
 
 pub use adaptive::{tessellate as tessellate_adaptive, Adaptive};
 pub use backend::{Backend, Cpu, PrepOutput};
+pub use loop_limit::MAX_LOOP_SAMPLES;
 pub use refine_mesh::refine_mesh;
 pub use refined::{corner_uvs, crease_classes};
 pub use triangulate::{newell, triangulate, unit, Fans};
 
 use crate::limit::PatchOptions;
-use crate::{Error, Mesh, MeshError, Topology};
+use crate::{Error, Mesh, MeshError, Scheme, Topology};
 
 /// Triangle classes (indices into a categorical palette: 0 grey, 1 orange, 2 blue, 3 green,
 /// 4 red).
@@ -214,10 +221,27 @@ pub fn build(
     } else {
         Colors::None
     };
+    let is_loop = mesh.options.scheme == Scheme::Loop;
     let mut s = match &options.method {
         Method::Refine { level, limit } => refined::refined(mesh, *level, *limit, colors, backend)?,
+        Method::Limit { samples, options } if is_loop => {
+            loop_limit::loop_limit(mesh, *samples, options, colors, backend)?
+        }
         Method::Limit { samples, options } => {
             limit::limit(mesh, *samples, options, colors, backend)?
+        }
+        Method::Adaptive { origin, .. } if is_loop => {
+            return Err(SurfaceError::Unsupported(format!(
+                "{origin}: adaptive tessellation rates are implemented for the Catmull-Clark \
+                 limit surface only; the Loop limit surface takes a uniform rate"
+            )))
+        }
+        Method::Prep { .. } if is_loop => {
+            return Err(SurfaceError::Unsupported(
+                "the p-rep is built from Catmull-Clark quads; a Loop mesh has none \
+                 (use the limit or refine method)"
+                    .into(),
+            ))
         }
         Method::Adaptive {
             policy,
