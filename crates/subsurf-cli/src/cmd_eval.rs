@@ -1,28 +1,44 @@
-//! `subsurf eval`: limit positions and first derivatives on an `N × N` grid of every ptex
-//! face, one line per sample: `face u v px py pz dux duy duz dvx dvy dvz` (`face` the ptex
-//! index, `u, v = i/(N−1)`, `v` the outer loop; holes write nothing).
+//! `subsurf eval`: limit positions and first derivatives, one line per sample:
+//! `face u v px py pz dux duy duz dvx dvy dvz` (holes write nothing).
+//!
+//! Catmull-Clark and bilinear: an `N × N` grid of every ptex face (`face` the ptex index,
+//! `u, v = i/(N−1)`, `v` the outer loop). Loop (`--scheme loop`, the `loop_` file-name
+//! prefix or the file's scheme tag): the triangular grid `u = i/(N−1)`, `v = j/(N−1)`,
+//! `i + j ≤ N − 1` of every base triangle (`face` the triangle, `v` the outer loop), the
+//! library's Loop limit surface evaluated in double precision. `--at FILE` evaluates the
+//! `face u v` lines of a file instead; a query off the surface's domain (no such face,
+//! `u + v > 1` on a triangle, outside `[0, 1]²` on a ptex face) is an error naming it.
 
 use crate::cmd_limit::SurfaceArgs;
 use crate::common::{check_output_folder, create_output, gpu_context, shown, Backend};
 use anyhow::Context;
 use std::fmt::Display;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::query::check_square;
 use subsurf::limit::{LimitPoint, LimitSurface};
-use subsurf::Real;
+use subsurf::{Mesh, Real, Scheme, Topology};
 
 /// Sample the limit surface and its derivatives.
 #[derive(Debug, clap::Args)]
 pub struct EvalArgs {
     #[command(flatten)]
     pub surface: SurfaceArgs,
-    /// Samples per side of each ptex face (at least 2).
+    /// Samples per side of each ptex face, or per edge of each Loop triangle (at least 2).
     #[arg(long, default_value_t = 5)]
     pub samples: usize,
+    /// Evaluate at the queries of this text file instead of a grid: one `face u v` per line
+    /// (whitespace-separated, `#` starts a comment).
+    #[arg(long, conflicts_with = "samples")]
+    pub at: Option<PathBuf>,
     /// Output text file (any name; `-` writes standard output).
     #[arg(short, long)]
     pub output: PathBuf,
 }
+
+/// One written sample: face, parameters, position, `∂P/∂u`, `∂P/∂v`.
+type Row<R> = (u32, R, R, [[R; 3]; 3]);
 
 pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     check_output_folder(&a.output)?;
@@ -31,15 +47,20 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         "--samples {} not in 2..=4096",
         a.samples
     );
+    let mesh = a.surface.scheme.read(&a.surface.input)?;
+    if mesh.options.scheme == Scheme::Loop {
+        return run_loop(a, mesh);
+    }
     if a.surface.f64 {
-        let (mesh, table) = a.surface.load_table_real::<f64>()?;
-        let queries = grid_queries(table.num_ptex_faces(), a.samples);
+        let (mesh, table) = a.surface.table_for::<f64>(mesh)?;
+        let queries = queries(a, table.num_ptex_faces())?;
         let surface = LimitSurface::new(table, &mesh.positions);
         let results = surface.eval_batch(&queries);
-        return write_samples(a, &queries, &results, surface.table.num_ptex_faces());
+        let n = surface.table.num_ptex_faces();
+        return write_samples(a, rows(&queries, &results), n, "ptex faces");
     }
-    let (mesh, table) = a.surface.load_table()?;
-    let queries = grid_queries(table.num_ptex_faces(), a.samples);
+    let (mesh, table) = a.surface.table_for(mesh)?;
+    let queries = queries(a, table.num_ptex_faces())?;
     let results = match a.surface.backend {
         Backend::Cpu => LimitSurface::new(table.clone(), &mesh.positions).eval_batch(&queries),
         Backend::Gpu => {
@@ -69,11 +90,73 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
                 .collect::<Vec<Option<LimitPoint>>>()
         }
     };
-    write_samples(a, &queries, &results, table.num_ptex_faces())
+    write_samples(
+        a,
+        rows(&queries, &results),
+        table.num_ptex_faces(),
+        "ptex faces",
+    )
 }
 
-/// `(ptex, i/(n−1), j/(n−1))` for every ptex face, `j` the outer loop.
-fn grid_queries<R: Real>(num_ptex: usize, n: usize) -> Vec<(u32, R, R)> {
+/// `eval` on a Loop mesh: the library's Loop limit surface, in f64, on the CPU.
+fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
+    anyhow::ensure!(
+        a.surface.backend == Backend::Cpu,
+        "the Loop limit surface is evaluated on the CPU only (drop --backend gpu)"
+    );
+    let topo = Topology::new(&mesh)?;
+    let surface = LoopLimit::new(&topo, &mesh.positions, a.surface.isolation)
+        .context("building the Loop limit patches")?;
+    let queries: Vec<(u32, f64, f64)> = match &a.at {
+        Some(path) => read_queries(path)?,
+        None => {
+            let n = a.samples;
+            let d = (n - 1) as f64;
+            let mut q = Vec::with_capacity(topo.num_faces() * n * (n + 1) / 2);
+            for f in 0..topo.num_faces() as u32 {
+                for j in 0..n {
+                    for i in 0..n - j {
+                        q.push((f, i as f64 / d, j as f64 / d));
+                    }
+                }
+            }
+            q
+        }
+    };
+    let results = surface
+        .eval_batch(&queries)
+        .with_context(|| query_source(a))?;
+    let rows = queries
+        .iter()
+        .zip(&results)
+        .filter_map(|(&(f, u, v), r)| r.map(|r| (f, u, v, [r.p, r.du, r.dv])));
+    write_samples(a, rows, topo.num_faces(), "Loop triangles")
+}
+
+/// Where the queries came from, for errors.
+fn query_source(a: &EvalArgs) -> String {
+    match &a.at {
+        Some(p) => format!("--at {}", p.display()),
+        None => format!("--samples {}", a.samples),
+    }
+}
+
+/// The Catmull-Clark queries: the lines of `--at` (checked against the `num_ptex` ptex
+/// faces), else `(ptex, i/(n−1), j/(n−1))` for every ptex face, `j` the outer loop.
+fn queries<R: Real>(a: &EvalArgs, num_ptex: usize) -> anyhow::Result<Vec<(u32, R, R)>> {
+    if let Some(path) = &a.at {
+        let q = read_queries(path)?;
+        for (k, &(f, u, v)) in q.iter().enumerate() {
+            check_square(k, f as u64, u, v, num_ptex)
+                .map_err(subsurf::Error::from)
+                .with_context(|| query_source(a))?;
+        }
+        return Ok(q
+            .into_iter()
+            .map(|(f, u, v)| (f, R::from_f64(u), R::from_f64(v)))
+            .collect());
+    }
+    let n = a.samples;
     let d = R::from_f64((n - 1) as f64);
     let mut queries = Vec::with_capacity(num_ptex * n * n);
     for f in 0..num_ptex as u32 {
@@ -84,30 +167,65 @@ fn grid_queries<R: Real>(num_ptex: usize, n: usize) -> Vec<(u32, R, R)> {
             }
         }
     }
-    queries
+    Ok(queries)
 }
 
-/// One line per sample (holes write nothing), values in their shortest round-trip form.
-fn write_samples<R: Real + Display>(
+/// The `face u v` lines of `path` (`#` comments and blank lines skipped).
+fn read_queries(path: &Path) -> anyhow::Result<Vec<(u32, f64, f64)>> {
+    let text = std::fs::read_to_string(path)
+        .with_context(|| format!("reading --at {}", path.display()))?;
+    let mut q = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        let at = || format!("{}:{}", path.display(), k + 1);
+        let w: Vec<&str> = line.split_whitespace().collect();
+        anyhow::ensure!(w.len() == 3, "{}: expected `face u v`, got {line:?}", at());
+        let face = w[0]
+            .parse::<u32>()
+            .with_context(|| format!("{}: face {:?} is not an index", at(), w[0]))?;
+        let num = |s: &str| {
+            s.parse::<f64>()
+                .with_context(|| format!("{}: {s:?} is not a number", at()))
+        };
+        q.push((face, num(w[1])?, num(w[2])?));
+    }
+    Ok(q)
+}
+
+/// The evaluated samples of `queries` as rows (holes dropped).
+fn rows<'a, R: Real>(
+    queries: &'a [(u32, R, R)],
+    results: &'a [Option<LimitPoint<R>>],
+) -> impl Iterator<Item = Row<R>> + 'a {
+    queries
+        .iter()
+        .zip(results)
+        .filter_map(|(&(f, u, v), r)| r.as_ref().map(|r| (f, u, v, [r.p, r.du, r.dv])))
+}
+
+/// One line per sample, values in their shortest round-trip form.
+fn write_samples<R: Display>(
     a: &EvalArgs,
-    queries: &[(u32, R, R)],
-    results: &[Option<LimitPoint<R>>],
-    num_ptex: usize,
+    rows: impl Iterator<Item = Row<R>>,
+    num_faces: usize,
+    faces: &str,
 ) -> anyhow::Result<()> {
     let mut w = create_output(&a.output)?;
     let mut written = 0usize;
-    for (&(f, u, v), r) in queries.iter().zip(results) {
-        let Some(r) = r else { continue };
+    for (f, u, v, [p, du, dv]) in rows {
         writeln!(
             w,
             "{f} {u} {v} {} {} {} {} {} {} {} {} {}",
-            r.p[0], r.p[1], r.p[2], r.du[0], r.du[1], r.du[2], r.dv[0], r.dv[1], r.dv[2]
+            p[0], p[1], p[2], du[0], du[1], du[2], dv[0], dv[1], dv[2]
         )?;
         written += 1;
     }
     w.flush()?;
     crate::say!(
-        "{written} samples on {num_ptex} ptex faces -> {}",
+        "{written} samples on {num_faces} {faces} -> {}",
         shown(&a.output, true)
     );
     Ok(())

@@ -34,18 +34,8 @@ pub struct SurfaceArgs {
 }
 
 impl SurfaceArgs {
-    /// Reads the mesh and builds its patch table.
-    pub fn load_table(&self) -> anyhow::Result<(Mesh, PatchTable)> {
-        self.load_table_real()
-    }
-
-    /// [`SurfaceArgs::load_table`] with `f32` or `f64` tables; `--f64` needs the CPU.
-    pub fn load_table_real<R: subsurf::Real>(&self) -> anyhow::Result<(Mesh, PatchTable<R>)> {
-        let mesh = self.scheme.read(&self.input)?;
-        self.table_for(mesh)
-    }
-
-    /// The patch table of a mesh already read (see [`SurfaceArgs::load_table_real`]).
+    /// The `f32` or `f64` patch table of a mesh read with `self.scheme`; `--f64` needs the
+    /// CPU.
     pub fn table_for<R: subsurf::Real>(&self, mesh: Mesh) -> anyhow::Result<(Mesh, PatchTable<R>)> {
         anyhow::ensure!(
             !(self.f64 && self.backend == Backend::Gpu),

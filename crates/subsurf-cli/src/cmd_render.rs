@@ -10,6 +10,12 @@
 //! Gregory end caps (red); `level` colours by adaptive level (palette order: grey 0, orange
 //! 1, blue 2, green 3, red 4, ...). With `--tolerance`, `--max-edge-length`, `--pixels` (the
 //! image's own camera) or `--edge-rates`, `limit` takes per-edge rates instead.
+//!
+//! On a Loop mesh (`--scheme loop`, the `loop_` prefix or the file's tag), `refine` is Loop
+//! refinement and `limit` the Loop limit surface evaluated on the CPU (`--tess` samples per
+//! base edge; `patch-kind`: box splines of base faces blue, at adaptive levels green,
+//! Gregory-triangle end caps red); per-edge rates and `prep` are Catmull-Clark constructions
+//! and are refused.
 
 use crate::common::{read_mesh_with, SchemeArgs};
 use crate::progress::{note, quiet, Progress};

@@ -1,20 +1,17 @@
-//! `subsurf limit` on a Loop mesh: the Loop limit surface (box-spline patches and
-//! Gregory-triangle end caps, `subsurf::limit::loop_eval`), a triangular grid of `--tess − 1`
+//! `subsurf limit` on a Loop mesh: the Loop limit surface of `subsurf::surface::build`
+//! (box-spline patches and Gregory-triangle end caps), a triangular grid of `--tess − 1`
 //! segments per base edge, watertight, written with normals.
 
 use anyhow::Context;
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::{Mesh, Topology};
+use subsurf::limit::PatchOptions;
+use subsurf::surface::{Colors, Method, SurfaceOptions};
+use subsurf::Mesh;
 
-use crate::cmd_limit::LimitArgs;
-use crate::common::{shown, write_mesh, Backend};
+use crate::cmd_limit::{surface_backend, LimitArgs};
+use crate::common::{shown, write_mesh};
 
 /// Tessellates the Loop limit surface of `mesh` as `a` asks.
 pub fn run(a: &LimitArgs, mesh: Mesh) -> anyhow::Result<()> {
-    anyhow::ensure!(
-        a.surface.backend == Backend::Cpu,
-        "the Loop limit surface is evaluated on the CPU only (drop --backend gpu)"
-    );
     anyhow::ensure!(
         !a.adaptive.any(),
         "adaptive tessellation rates are implemented for the Catmull-Clark limit surface only; \
@@ -24,26 +21,25 @@ pub fn run(a: &LimitArgs, mesh: Mesh) -> anyhow::Result<()> {
         !a.quads,
         "--quads: the Loop limit surface is tessellated into triangles"
     );
-    anyhow::ensure!(
-        a.tess >= 2,
-        "--tess {}: at least 2 samples per edge (1 segment)",
-        a.tess
-    );
-    let topo = Topology::new(&mesh)?;
-    let surface = LoopLimit::new(&topo, &mesh.positions, a.surface.isolation)
-        .context("building the Loop limit patches")?;
-    let regular = surface.patches.iter().filter(|p| p.regular).count();
-    let tess = surface.tessellate(&topo, a.tess - 1)?;
-    let (out, normals) = tess.to_mesh();
-    write_mesh(&a.output, &out, Some(&normals))?;
+    let options = SurfaceOptions {
+        method: Method::Limit {
+            samples: a.tess,
+            options: PatchOptions {
+                isolation_level: a.surface.isolation,
+                ..Default::default()
+            },
+        },
+        colors: Colors::None,
+        cage: false,
+    };
+    let backend = surface_backend(a.surface.backend)?;
+    let s = subsurf::surface::build(&mesh, &options, backend.as_ref())
+        .context("building the Loop limit surface")?;
+    let out = Mesh::from_faces(s.positions, &s.triangles);
+    write_mesh(&a.output, &out, Some(&s.normals))?;
     crate::say!(
-        "{} Loop patches ({} box-spline, {} Gregory-triangle) on {} faces; \
-         {} segments per edge: {} vertices, {} triangles -> {}",
-        surface.patches.len(),
-        regular,
-        surface.patches.len() - regular,
-        topo.num_faces(),
-        a.tess - 1,
+        "{}: {} vertices, {} triangles -> {}",
+        s.summary,
         out.positions.len(),
         out.num_faces(),
         shown(&a.output, true)

@@ -136,3 +136,236 @@ fn limit_writes_the_loop_limit_surface_watertight() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("triangles"));
 }
+
+/// The `face u v px py pz dux duy duz dvx dvy dvz` lines of an `eval` output, parsed as f64.
+fn eval_lines(path: &std::path::Path) -> Vec<Vec<f64>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .map(|l| l.split(' ').map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+/// Every line of `eval` output is the library's Loop limit sample, bit for bit (f64
+/// written in its shortest round-trip form).
+fn assert_library_samples(lines: &[Vec<f64>], surface: &subsurf::limit::loop_eval::LoopLimit) {
+    for l in lines {
+        assert_eq!(l.len(), 12);
+        let r = surface.eval(l[0] as usize, l[1], l[2]).unwrap();
+        let want: Vec<f64> = [r.p, r.du, r.dv].concat();
+        assert_eq!(&l[3..], &want[..], "{l:?}");
+    }
+}
+
+/// `subsurf eval` on a Loop mesh samples the triangular grid `u = i/(N−1)`, `v = j/(N−1)`,
+/// `i + j ≤ N − 1` of every base triangle (`v` the outer loop) on the library's Loop limit
+/// surface (tested against OpenSubdiv in `osd-ref`), from the prefix and from `--scheme loop`
+/// alike; the derivatives are those of the surface (central differences along `u`).
+#[test]
+fn eval_writes_the_loop_limit_samples() {
+    use subsurf::limit::loop_eval::LoopLimit;
+    let input = repo("testdata/shapes/loop_icosahedron.obj");
+    let renamed = tmp("icosahedron.obj");
+    std::fs::copy(&input, &renamed).unwrap();
+    let mesh = subsurf::io::read_path(&input).unwrap();
+    let topo = Topology::new(&mesh).unwrap();
+    let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+    let mut outputs = Vec::new();
+    for (path, scheme) in [(&input, None), (&renamed, Some("loop"))] {
+        let out = tmp("loop_eval.txt");
+        let mut cmd = bin();
+        cmd.arg("eval")
+            .arg(path)
+            .args(["--samples", "5", "--isolation", "3", "-o"])
+            .arg(&out);
+        if let Some(s) = scheme {
+            cmd.args(["--scheme", s]);
+        }
+        run_ok(&mut cmd);
+        outputs.push(std::fs::read_to_string(&out).unwrap());
+        let lines = eval_lines(&out);
+        assert_eq!(lines.len(), 20 * 15);
+        let mut k = 0;
+        for f in 0..20 {
+            for j in 0..5 {
+                for i in 0..5 - j {
+                    let l = &lines[k];
+                    assert_eq!(
+                        (l[0], l[1], l[2]),
+                        (f as f64, i as f64 / 4.0, j as f64 / 4.0)
+                    );
+                    k += 1;
+                }
+            }
+        }
+        assert_library_samples(&lines, &surface);
+    }
+    assert_eq!(outputs[0], outputs[1]);
+    // ∂P/∂u against a central difference, inside a patch (off the seams u, v, u + v = k/8
+    // of the level-3 sub-triangles).
+    let h = 1e-6;
+    for (f, u, v) in [(0, 0.3, 0.3), (7, 0.53, 0.19), (19, 0.1, 0.6)] {
+        let r = surface.eval(f, u, v).unwrap();
+        let (a, b) = (
+            surface.eval(f, u + h, v).unwrap().p,
+            surface.eval(f, u - h, v).unwrap().p,
+        );
+        for c in 0..3 {
+            let d = (a[c] - b[c]) / (2.0 * h);
+            assert!((d - r.du[c]).abs() < 1e-5, "face {f}: {d} vs {}", r.du[c]);
+        }
+    }
+}
+
+/// `eval --at FILE` evaluates the file's `face u v` queries; one off the triangle
+/// (`u + v > 1`, a negative parameter) or naming a face that does not exist is an error
+/// naming the query, and the GPU backend is refused for Loop.
+#[test]
+fn eval_at_queries_and_refuses_those_off_the_triangles() {
+    use subsurf::limit::loop_eval::LoopLimit;
+    let input = repo("testdata/shapes/loop_xord_boundary.obj");
+    let mesh = subsurf::io::read_path(&input).unwrap();
+    let topo = Topology::new(&mesh).unwrap();
+    let surface = LoopLimit::new(&topo, &mesh.positions, 4).unwrap();
+    let queries = tmp("loop_queries.txt");
+    let nf = topo.num_faces();
+    std::fs::write(
+        &queries,
+        format!(
+            "# face u v\n0 0.2 0.7\n\n{} 1 0 # a corner\n1 0.125 0.875\n",
+            nf - 1
+        ),
+    )
+    .unwrap();
+    let out = tmp("loop_at.txt");
+    run_ok(
+        bin()
+            .arg("eval")
+            .arg(&input)
+            .arg("--at")
+            .arg(&queries)
+            .arg("-o")
+            .arg(&out),
+    );
+    let lines = eval_lines(&out);
+    assert_eq!(lines.len(), 3);
+    assert_eq!((lines[1][0], lines[1][1]), ((nf - 1) as f64, 1.0));
+    assert_library_samples(&lines, &surface);
+    for (bad, want) in [
+        (
+            "0 0.2 0.2\n2 0.6 0.5\n",
+            "query 1: face 2 at (u, v) = (0.6, 0.5) is outside the triangle",
+        ),
+        (
+            "1 -0.1 0.5\n",
+            "query 0: face 1 at (u, v) = (-0.1, 0.5) is outside",
+        ),
+        (
+            &format!("{nf} 0.1 0.1\n"),
+            &format!("query 0: face {nf} does not exist (there are {nf} faces)"),
+        ),
+        ("0 0.1\n", "expected `face u v`"),
+    ] {
+        std::fs::write(&queries, bad).unwrap();
+        let o = bin()
+            .arg("eval")
+            .arg(&input)
+            .arg("--at")
+            .arg(&queries)
+            .arg("-o")
+            .arg(tmp("loop_bad.txt"))
+            .output()
+            .unwrap();
+        assert!(!o.status.success());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(want), "{bad:?}: {err}");
+    }
+    let o = bin()
+        .arg("eval")
+        .arg(&input)
+        .args(["--backend", "gpu", "-o"])
+        .arg(tmp("loop_gpu.txt"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("CPU only"));
+}
+
+/// `eval --at` on a Catmull-Clark mesh: the library's ptex samples, and a query outside the
+/// unit square refused naming it.
+#[test]
+fn eval_at_on_ptex_faces() {
+    let input = repo("testdata/shapes/catmark_cube.obj");
+    let mesh = subsurf::io::read_path(&input).unwrap();
+    let topo = Topology::new(&mesh).unwrap();
+    let table = subsurf::limit::PatchTable::build(&topo, &Default::default()).unwrap();
+    let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
+    let queries = tmp("cc_queries.txt");
+    std::fs::write(&queries, "0 0.5 0.5\n5 0.25 1\n").unwrap();
+    let out = tmp("cc_at.txt");
+    run_ok(
+        bin()
+            .arg("eval")
+            .arg(&input)
+            .arg("--at")
+            .arg(&queries)
+            .arg("-o")
+            .arg(&out),
+    );
+    // f32 values, each in its shortest round-trip form: parsed as f32 they are exact.
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<Vec<f32>> = text
+        .lines()
+        .map(|l| l.split(' ').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(lines.len(), 2);
+    for l in &lines {
+        let r = surface.eval(l[0] as usize, l[1], l[2]).unwrap();
+        assert_eq!(&l[3..], &[r.p, r.du, r.dv].concat()[..]);
+    }
+    std::fs::write(&queries, "0 0.5 1.5\n").unwrap();
+    let o = bin()
+        .arg("eval")
+        .arg(&input)
+        .arg("--at")
+        .arg(&queries)
+        .arg("-o")
+        .arg(tmp("cc_bad.txt"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("query 0: ptex face 0 at (u, v) = (0.5, 1.5)"),
+        "{err}"
+    );
+}
+
+/// `limit --backend gpu` on a Loop mesh: the GPU backend has no Loop kernels and says so (or
+/// no adapter is found); `--tess 1` is refused naming the range.
+#[test]
+fn limit_refuses_what_the_loop_surface_cannot_do() {
+    let input = repo("testdata/shapes/loop_cube.obj");
+    let o = bin()
+        .arg("limit")
+        .arg(&input)
+        .args(["--backend", "gpu", "-o"])
+        .arg(tmp("loop_gpu.obj"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("does not evaluate the Loop limit surface") || err.contains("no GPU adapter"),
+        "{err}"
+    );
+    let o = bin()
+        .arg("limit")
+        .arg(&input)
+        .args(["--tess", "1", "-o"])
+        .arg(tmp("loop_tess1.obj"))
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("2..=1025"));
+}

@@ -149,3 +149,107 @@ fn render_limit_takes_the_adaptive_rate_flags() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("apply to --method limit"));
 }
+
+/// Decodes an 8-bit RGBA PNG: (width, height, pixels).
+fn read_png(path: &Path) -> (u32, u32, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgba);
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// `render --method limit` on a Loop mesh draws the Loop limit surface (evaluated on the
+/// CPU): on a transparent background the covered pixels span the projection of the library's
+/// limit triangles under the image's camera, to a pixel; the adaptive rate flags and the
+/// p-rep, Catmull-Clark constructions, are refused before any GPU is opened.
+#[test]
+fn render_limit_draws_the_loop_limit_surface() {
+    let shape = repo("testdata/shapes/loop_icosahedron.obj");
+    let out = tmp("loop_limit.png");
+    let (w, h) = (160u32, 120u32);
+    let Some(o) = run_gpu(
+        bin()
+            .arg("render")
+            .arg(&shape)
+            .arg("-o")
+            .arg(&out)
+            .args(["--method", "limit", "--tess", "9", "--size", "160x120"])
+            .args(["--background", "transparent", "--color-by", "patch-kind"]),
+    ) else {
+        return;
+    };
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("Gregory-triangle"), "{err}");
+    let mesh = subsurf::io::read_path(&shape).unwrap();
+    let options = subsurf::surface::SurfaceOptions {
+        method: subsurf::surface::Method::Limit {
+            samples: 9,
+            options: Default::default(),
+        },
+        ..Default::default()
+    };
+    let s = subsurf::surface::build(&mesh, &options, &subsurf::surface::Cpu).unwrap();
+    assert_eq!(rendered_triangles(&o), s.triangles.len());
+    assert_eq!(s.triangles.len(), 20 * 64);
+    let rm = subsurf_render::RenderMesh::from(s);
+    let camera = subsurf_render::RenderOptions {
+        width: w,
+        height: h,
+        fit: subsurf_render::Fit::Tight,
+        ..Default::default()
+    }
+    .camera(&rm)
+    .unwrap();
+    let (mut lo, mut hi) = ([f32::MAX; 2], [f32::MIN; 2]);
+    for &p in &rm.positions {
+        let q = camera.project(p, w, h);
+        for k in 0..2 {
+            lo[k] = lo[k].min(q[k]);
+            hi[k] = hi[k].max(q[k]);
+        }
+    }
+    let (iw, ih, px) = read_png(&out);
+    assert_eq!((iw, ih), (w, h));
+    let (mut plo, mut phi) = ([u32::MAX; 2], [0u32; 2]);
+    let mut covered = 0usize;
+    for y in 0..h {
+        for x in 0..w {
+            if px[4 * (y * w + x) as usize + 3] > 0 {
+                covered += 1;
+                plo = [plo[0].min(x), plo[1].min(y)];
+                phi = [phi[0].max(x), phi[1].max(y)];
+            }
+        }
+    }
+    assert!(covered > (w * h / 10) as usize, "{covered} pixels covered");
+    for k in 0..2 {
+        assert!(
+            (plo[k] as f32 - lo[k]).abs() <= 1.5,
+            "{k}: {plo:?} vs {lo:?}"
+        );
+        assert!(
+            (phi[k] as f32 + 1.0 - hi[k]).abs() <= 1.5,
+            "{k}: {phi:?} vs {hi:?}"
+        );
+    }
+    for (flags, want) in [
+        (
+            &["--tolerance", "1e-3"][..],
+            "Catmull-Clark limit surface only",
+        ),
+        (&["--method", "prep"][..], "a Loop mesh has none"),
+    ] {
+        let mut cmd = bin();
+        cmd.arg("render").arg(&shape).args(["-o", "x.png"]);
+        if flags[0] == "--tolerance" {
+            cmd.args(["--method", "limit"]);
+        }
+        let bad = cmd.args(flags).output().unwrap();
+        assert!(!bad.status.success());
+        let err = String::from_utf8_lossy(&bad.stderr);
+        assert!(err.contains(want), "{flags:?}: {err}");
+    }
+}
