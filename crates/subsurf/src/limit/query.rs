@@ -11,8 +11,8 @@ use rayon::prelude::*;
 /// rounding of `i / n + j / n` with `i + j = n`.
 pub const TRIANGLE_SLACK: f64 = 1e-12;
 
-/// Checks query `query`, `(face, u, v)` on a mesh of `count` triangles.
-pub fn check_triangle(
+/// The checks every domain shares: the face exists, the parameters are finite.
+fn check_face_and_finite(
     query: usize,
     face: u64,
     u: f64,
@@ -25,6 +25,18 @@ pub fn check_triangle(
     if !u.is_finite() || !v.is_finite() {
         return Err(QueryError::NotFinite { query, face, u, v });
     }
+    Ok(())
+}
+
+/// Checks query `query`, `(face, u, v)` on a mesh of `count` triangles.
+pub fn check_triangle(
+    query: usize,
+    face: u64,
+    u: f64,
+    v: f64,
+    count: usize,
+) -> Result<(), QueryError> {
+    check_face_and_finite(query, face, u, v, count)?;
     if u < 0.0 || v < 0.0 || u + v > 1.0 + TRIANGLE_SLACK {
         return Err(QueryError::OutsideTriangle { query, face, u, v });
     }
@@ -39,12 +51,7 @@ pub fn check_square(
     v: f64,
     count: usize,
 ) -> Result<(), QueryError> {
-    if face >= count as u64 {
-        return Err(QueryError::NoSuchFace { query, face, count });
-    }
-    if !u.is_finite() || !v.is_finite() {
-        return Err(QueryError::NotFinite { query, face, u, v });
-    }
+    check_face_and_finite(query, face, u, v, count)?;
     if !(0.0..=1.0).contains(&u) || !(0.0..=1.0).contains(&v) {
         return Err(QueryError::OutsideSquare { query, face, u, v });
     }
