@@ -4,6 +4,7 @@
 
 mod arrays;
 mod errors;
+mod limit;
 mod mesh;
 mod ops;
 
@@ -17,7 +18,7 @@ fn _subsurf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     subsurf_gpu::headless::disable_display_layers_when_headless();
     m.add_class::<mesh::PyMesh>()?;
     m.add_class::<ops::PyRefiner>()?;
-    m.add_class::<ops::PyLimit>()?;
+    m.add_class::<limit::PyLimit>()?;
     m.add_class::<ops::PyPrep>()?;
     m.add_function(wrap_pyfunction!(ops::refine, m)?)?;
     m.add_function(wrap_pyfunction!(ops::tessellate, m)?)?;

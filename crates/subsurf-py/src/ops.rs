@@ -1,11 +1,11 @@
-//! The work: refine, Refiner, LimitSurface, Prep, tessellate, render. Every call releases
+//! The work: refine, Refiner, Prep, tessellate, render (`LimitSurface` in `limit.rs`). Every call releases
 //! the GIL for its computation (`Python::detach`).
 
-use std::sync::{Arc, RwLock};
+use std::sync::Arc;
 
 use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::limit::PatchOptions;
 use subsurf::prep::PrepPatches;
 use subsurf::surface::{self, Backend, Colors, Method, SurfaceOptions};
 use subsurf::{FaceVarying, Mesh, Refiner, Topology};
@@ -264,15 +264,7 @@ impl PyRefiner {
     }
 }
 
-/// The limit surface: patch table built once, positions updatable.
-#[pyclass(frozen, name = "_LimitSurface", module = "subsurf._subsurf")]
-pub struct PyLimit {
-    table: Arc<PatchTable>,
-    num_vertices: usize,
-    surface: RwLock<Arc<LimitSurface>>,
-}
-
-fn tess_out(
+pub(crate) fn tess_out(
     py: Python<'_>,
     positions: Vec<[f32; 3]>,
     normals: Vec<[f32; 3]>,
@@ -283,158 +275,6 @@ fn tess_out(
         out2(py, normals)?,
         out2(py, triangles)?,
     ))
-}
-
-impl PyLimit {
-    fn current(&self) -> PyResult<Arc<LimitSurface>> {
-        self.surface
-            .read()
-            .map(|s| s.clone())
-            .map_err(|_| value_error("limit surface lock poisoned"))
-    }
-}
-
-#[pymethods]
-impl PyLimit {
-    #[new]
-    #[pyo3(signature = (mesh, isolation=4))]
-    fn new(py: Python<'_>, mesh: &PyMesh, isolation: u32) -> PyResult<Self> {
-        if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
-            return Err(value_error(format!(
-                "isolation {isolation}: at most {}",
-                subsurf::limit::MAX_ISOLATION_LEVEL
-            )));
-        }
-        let m = mesh.inner.clone();
-        let (table, s) = py
-            .detach(move || -> subsurf::Result<_> {
-                let t = PatchTable::build(
-                    &Topology::new(&m)?,
-                    &PatchOptions {
-                        isolation_level: isolation,
-                        ..Default::default()
-                    },
-                )?;
-                let s = LimitSurface::new(t.clone(), &m.positions);
-                Ok((t, s))
-            })
-            .map_err(|e| lib_error(py, e, None))?;
-        Ok(PyLimit {
-            table: Arc::new(table),
-            num_vertices: mesh.inner.positions.len(),
-            surface: RwLock::new(Arc::new(s)),
-        })
-    }
-
-    /// New control points (same count), e.g. after a deformation.
-    fn update(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
-        let p = rows::<3, f32>(&points, "points")?;
-        if p.len() != self.num_vertices {
-            return Err(value_error(format!(
-                "points: {} rows for {} vertices",
-                p.len(),
-                self.num_vertices
-            )));
-        }
-        if let Some(v) = p.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
-            return Err(crate::errors::mesh_error(
-                py,
-                &subsurf::MeshError::NonFiniteCoordinate {
-                    vertex: v,
-                    value: f32::NAN,
-                },
-            ));
-        }
-        let t = self.table.clone();
-        let s = py.detach(move || LimitSurface::new((*t).clone(), &p));
-        *self
-            .surface
-            .write()
-            .map_err(|_| value_error("lock poisoned"))? = Arc::new(s);
-        Ok(())
-    }
-
-    /// (points, du, dv) at ptex faces `faces` and parameters `u`, `v` in [0, 1].
-    fn evaluate(
-        &self,
-        py: Python<'_>,
-        faces: PyReadonlyArray1<'_, u32>,
-        u: PyReadonlyArray1<'_, f32>,
-        v: PyReadonlyArray1<'_, f32>,
-    ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
-        let f = vec1(&faces, "faces")?;
-        let u = vec1(&u, "u")?;
-        let v = vec1(&v, "v")?;
-        if f.len() != u.len() || f.len() != v.len() {
-            return Err(value_error(format!(
-                "faces, u, v: lengths {}, {}, {}",
-                f.len(),
-                u.len(),
-                v.len()
-            )));
-        }
-        let np = self.table.num_ptex_faces() as u32;
-        if let Some(k) = f.iter().position(|&x| x >= np) {
-            return Err(value_error(format!(
-                "faces[{k}] = {}: only {np} ptex faces",
-                f[k]
-            )));
-        }
-        if let Some(k) = u.iter().chain(&v).position(|x| !(0.0..=1.0).contains(x)) {
-            return Err(value_error(format!(
-                "u, v must lie in [0, 1] (entry {})",
-                k % f.len().max(1)
-            )));
-        }
-        let s = self.current()?;
-        let q: Vec<(u32, f32, f32)> = f
-            .iter()
-            .zip(&u)
-            .zip(&v)
-            .map(|((&f, &u), &v)| (f, u, v))
-            .collect();
-        let (p, du, dv) = py.detach(move || {
-            let r = s.eval_batch(&q);
-            let nan = [f32::NAN; 3];
-            let mut p = Vec::with_capacity(r.len());
-            let mut du = Vec::with_capacity(r.len());
-            let mut dv = Vec::with_capacity(r.len());
-            for x in r {
-                match x {
-                    Some(l) => {
-                        p.push(l.p);
-                        du.push(l.du);
-                        dv.push(l.dv);
-                    }
-                    None => {
-                        p.push(nan);
-                        du.push(nan);
-                        dv.push(nan);
-                    }
-                }
-            }
-            (p, du, dv)
-        });
-        Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
-    }
-
-    /// Watertight tessellation with `n` samples per ptex-face side.
-    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
-        if !(2..=1025).contains(&n) {
-            return Err(value_error(format!("n = {n}: use 2..=1025")));
-        }
-        let s = self.current()?;
-        let t = py
-            .detach(move || s.tessellate(n))
-            .map_err(|e| lib_error(py, e, None))?;
-        let tris = t.triangles();
-        tess_out(py, t.positions, t.normals, tris)
-    }
-
-    #[getter]
-    fn num_ptex_faces(&self) -> usize {
-        self.table.num_ptex_faces()
-    }
 }
 
 /// The p-rep of a closed quad mesh (built in f64).

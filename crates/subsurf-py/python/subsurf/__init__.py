@@ -310,12 +310,15 @@ class Refiner:
 
 
 class LimitSurface:
-    """The Catmull-Clark limit surface of ``mesh`` (B-spline, single-crease and Gregory
-    patches; extraordinary features isolated to ``isolation`` levels, 0..=10).
+    """The limit surface of ``mesh``, extraordinary features isolated to ``isolation`` levels
+    (0..=10). A Catmull-Clark or bilinear mesh: B-spline, single-crease and Gregory patches
+    over ptex faces (one per quad, one per n-gon corner), parameters in [0, 1]^2, float32.
+    A Loop mesh: quartic box-spline patches and Gregory-triangle end caps over its base
+    triangles, parameters ``u, v >= 0, u + v <= 1``, evaluated in float64 (``domain`` says
+    which: ``"square"`` or ``"triangle"``).
 
-    ``evaluate(faces, u, v)`` -> (points, du, dv), each (k, 3) float32, at ptex faces
-    ``faces`` (one per quad, one per n-gon corner) and parameters in [0, 1] (NaN at holes).
-    ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per ptex-face side.
+    ``evaluate(faces, u, v)`` -> (points, du, dv), each (k, 3), NaN at holes.
+    ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per face side.
     ``update(points)``: new control points (same count), e.g. after a deformation.
     """
 
@@ -326,14 +329,19 @@ class LimitSurface:
 
     @property
     def num_ptex_faces(self) -> int:
-        """Number of ptex faces (valid ``faces`` are below it)."""
+        """Number of faces a query may name (ptex faces, or a Loop mesh's triangles)."""
         return self._s.num_ptex_faces
+
+    @property
+    def domain(self) -> str:
+        """``"square"`` (ptex faces, [0, 1]^2) or ``"triangle"`` (Loop, u + v <= 1)."""
+        return self._s.domain
 
     def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Points and first derivatives at (face, u, v), vectorized."""
         f = _indices(faces, "faces")
-        uu = np.ascontiguousarray(np.asarray(u, dtype=np.float64).reshape(-1), dtype=np.float32)
-        vv = np.ascontiguousarray(np.asarray(v, dtype=np.float64).reshape(-1), dtype=np.float32)
+        uu = np.ascontiguousarray(np.asarray(u, dtype=np.float64).reshape(-1))
+        vv = np.ascontiguousarray(np.asarray(v, dtype=np.float64).reshape(-1))
         return self._s.evaluate(f, uu, vv)
 
     def tessellate(self, n: int = 8) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:

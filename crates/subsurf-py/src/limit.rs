@@ -1,0 +1,265 @@
+//! `LimitSurface`: the limit surface of a mesh, built once, its control points updatable. A
+//! Catmull-Clark or bilinear mesh gets the patch table (`PatchTable` + `LimitSurface`, ptex
+//! faces, unit-square parameters, float32); a Loop mesh the Loop limit surface (`LoopLimit`,
+//! base triangles, `u, v >= 0, u + v <= 1`, evaluated in float64).
+
+use std::sync::{Arc, RwLock};
+
+use numpy::{PyReadonlyArray1, PyReadonlyArray2};
+use pyo3::prelude::*;
+use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::{Mesh, Scheme, Topology};
+
+use crate::arrays::{out2, rows, vec1};
+use crate::errors::{lib_error, value_error};
+use crate::mesh::PyMesh;
+use crate::ops::tess_out;
+
+/// What the surface is built from: a patch table or the Loop patches.
+enum Kind {
+    Quad {
+        table: Arc<PatchTable>,
+        surface: RwLock<Arc<LimitSurface>>,
+    },
+    Loop {
+        topo: Arc<Topology>,
+        isolation: u32,
+        surface: RwLock<Arc<LoopLimit>>,
+    },
+}
+
+/// The limit surface: patches built once, positions updatable.
+#[pyclass(frozen, name = "_LimitSurface", module = "subsurf._subsurf")]
+pub struct PyLimit {
+    kind: Kind,
+    num_vertices: usize,
+}
+
+fn poisoned<T>(_: T) -> PyErr {
+    value_error("limit surface lock poisoned")
+}
+
+fn read<T>(lock: &RwLock<Arc<T>>) -> PyResult<Arc<T>> {
+    lock.read().map(|s| s.clone()).map_err(poisoned)
+}
+
+fn build(m: &Mesh, isolation: u32) -> subsurf::Result<Kind> {
+    let topo = Topology::new(m)?;
+    if m.options.scheme == Scheme::Loop {
+        let limit = LoopLimit::new(&topo, &m.positions, isolation)?;
+        return Ok(Kind::Loop {
+            topo: Arc::new(topo),
+            isolation,
+            surface: RwLock::new(Arc::new(limit)),
+        });
+    }
+    let table = PatchTable::build(
+        &topo,
+        &PatchOptions {
+            isolation_level: isolation,
+            ..Default::default()
+        },
+    )?;
+    let surface = LimitSurface::new(table.clone(), &m.positions);
+    Ok(Kind::Quad {
+        table: Arc::new(table),
+        surface: RwLock::new(Arc::new(surface)),
+    })
+}
+
+/// Samples as three (n, 3) arrays, NaN where no patch holds the point (holes).
+fn split<T: Copy + numpy::Element>(
+    samples: impl Iterator<Item = Option<[[T; 3]; 3]>>,
+    nan: T,
+) -> (Vec<[T; 3]>, Vec<[T; 3]>, Vec<[T; 3]>) {
+    let (mut p, mut du, mut dv) = (Vec::new(), Vec::new(), Vec::new());
+    for s in samples {
+        let [a, b, c] = s.unwrap_or([[nan; 3]; 3]);
+        p.push(a);
+        du.push(b);
+        dv.push(c);
+    }
+    (p, du, dv)
+}
+
+type Arrays3 = (Py<PyAny>, Py<PyAny>, Py<PyAny>);
+
+fn out3x<T: numpy::Element>(
+    py: Python<'_>,
+    (p, du, dv): (Vec<[T; 3]>, Vec<[T; 3]>, Vec<[T; 3]>),
+) -> PyResult<Arrays3> {
+    Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
+}
+
+#[pymethods]
+impl PyLimit {
+    #[new]
+    #[pyo3(signature = (mesh, isolation=4))]
+    fn new(py: Python<'_>, mesh: &PyMesh, isolation: u32) -> PyResult<Self> {
+        if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
+            return Err(value_error(format!(
+                "isolation {isolation}: at most {}",
+                subsurf::limit::MAX_ISOLATION_LEVEL
+            )));
+        }
+        let m = mesh.inner.clone();
+        let kind = py
+            .detach(move || build(&m, isolation))
+            .map_err(|e| lib_error(py, e, None))?;
+        Ok(PyLimit {
+            kind,
+            num_vertices: mesh.inner.positions.len(),
+        })
+    }
+
+    /// New control points (same count), e.g. after a deformation.
+    fn update(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
+        let p = rows::<3, f32>(&points, "points")?;
+        if p.len() != self.num_vertices {
+            return Err(value_error(format!(
+                "points: {} rows for {} vertices",
+                p.len(),
+                self.num_vertices
+            )));
+        }
+        if let Some(v) = p.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
+            return Err(crate::errors::mesh_error(
+                py,
+                &subsurf::MeshError::NonFiniteCoordinate {
+                    vertex: v,
+                    value: f32::NAN,
+                },
+            ));
+        }
+        match &self.kind {
+            Kind::Quad { table, surface } => {
+                let t = table.clone();
+                let s = py.detach(move || LimitSurface::new((*t).clone(), &p));
+                *surface.write().map_err(poisoned)? = Arc::new(s);
+            }
+            Kind::Loop {
+                topo,
+                isolation,
+                surface,
+            } => {
+                let (t, iso) = (topo.clone(), *isolation);
+                let s = py
+                    .detach(move || LoopLimit::new(&t, &p, iso))
+                    .map_err(|e| lib_error(py, e, None))?;
+                *surface.write().map_err(poisoned)? = Arc::new(s);
+            }
+        }
+        Ok(())
+    }
+
+    /// (points, du, dv) at faces `faces` and parameters `u`, `v`: ptex faces and `[0, 1]²`
+    /// (float32 results) or Loop base triangles and `u, v >= 0, u + v <= 1` (float64).
+    fn evaluate(
+        &self,
+        py: Python<'_>,
+        faces: PyReadonlyArray1<'_, u32>,
+        u: PyReadonlyArray1<'_, f64>,
+        v: PyReadonlyArray1<'_, f64>,
+    ) -> PyResult<Arrays3> {
+        let f = vec1(&faces, "faces")?;
+        let u = vec1(&u, "u")?;
+        let v = vec1(&v, "v")?;
+        if f.len() != u.len() || f.len() != v.len() {
+            return Err(value_error(format!(
+                "faces, u, v: lengths {}, {}, {}",
+                f.len(),
+                u.len(),
+                v.len()
+            )));
+        }
+        let q: Vec<(u32, f64, f64)> = f
+            .iter()
+            .zip(&u)
+            .zip(&v)
+            .map(|((&f, &u), &v)| (f, u, v))
+            .collect();
+        match &self.kind {
+            Kind::Quad { table, surface } => {
+                let count = table.num_ptex_faces();
+                for (k, &(f, u, v)) in q.iter().enumerate() {
+                    subsurf::limit::query::check_square(k, f as u64, u, v, count)
+                        .map_err(|e| value_error(e.to_string()))?;
+                }
+                let s = read(surface)?;
+                let q: Vec<(u32, f32, f32)> =
+                    q.iter().map(|&(f, u, v)| (f, u as f32, v as f32)).collect();
+                let r = py.detach(move || {
+                    split(
+                        s.eval_batch(&q)
+                            .into_iter()
+                            .map(|x| x.map(|l| [l.p, l.du, l.dv])),
+                        f32::NAN,
+                    )
+                });
+                out3x(py, r)
+            }
+            Kind::Loop { surface, .. } => {
+                let s = read(surface)?;
+                let r = py
+                    .detach(move || {
+                        s.eval_batch(&q).map(|r| {
+                            split(
+                                r.into_iter().map(|x| x.map(|l| [l.p, l.du, l.dv])),
+                                f64::NAN,
+                            )
+                        })
+                    })
+                    .map_err(|e| lib_error(py, e, None))?;
+                out3x(py, r)
+            }
+        }
+    }
+
+    /// Watertight tessellation with `n` samples per side of every ptex face or Loop triangle.
+    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<Arrays3> {
+        if !(2..=1025).contains(&n) {
+            return Err(value_error(format!("n = {n}: use 2..=1025")));
+        }
+        match &self.kind {
+            Kind::Quad { surface, .. } => {
+                let s = read(surface)?;
+                let t = py
+                    .detach(move || s.tessellate(n))
+                    .map_err(|e| lib_error(py, e, None))?;
+                let tris = t.triangles();
+                tess_out(py, t.positions, t.normals, tris)
+            }
+            Kind::Loop { topo, surface, .. } => {
+                let (s, t) = (read(surface)?, topo.clone());
+                let (mesh, normals) = py
+                    .detach(move || s.tessellate(&t, n - 1).map(|x| x.to_mesh()))
+                    .map_err(|e| lib_error(py, e, None))?;
+                let tris = mesh
+                    .face_indices
+                    .chunks_exact(3)
+                    .map(|c| [c[0], c[1], c[2]])
+                    .collect();
+                tess_out(py, mesh.positions, normals, tris)
+            }
+        }
+    }
+
+    /// Faces a query may name: ptex faces, or base triangles of a Loop mesh.
+    #[getter]
+    fn num_ptex_faces(&self) -> usize {
+        match &self.kind {
+            Kind::Quad { table, .. } => table.num_ptex_faces(),
+            Kind::Loop { surface, .. } => read(surface).map_or(0, |s| s.num_faces()),
+        }
+    }
+
+    /// `"square"` (ptex faces, `[0, 1]²`) or `"triangle"` (Loop, `u + v <= 1`).
+    #[getter]
+    fn domain(&self) -> &'static str {
+        match &self.kind {
+            Kind::Quad { .. } => "square",
+            Kind::Loop { .. } => "triangle",
+        }
+    }
+}
