@@ -68,11 +68,14 @@ fn build(m: &Mesh, isolation: u32) -> subsurf::Result<Kind> {
     })
 }
 
+/// Points, `du` and `dv` of a batch, one row each per query.
+type Columns<T> = (Vec<[T; 3]>, Vec<[T; 3]>, Vec<[T; 3]>);
+
 /// Samples as three (n, 3) arrays, NaN where no patch holds the point (holes).
 fn split<T: Copy + numpy::Element>(
     samples: impl Iterator<Item = Option<[[T; 3]; 3]>>,
     nan: T,
-) -> (Vec<[T; 3]>, Vec<[T; 3]>, Vec<[T; 3]>) {
+) -> Columns<T> {
     let (mut p, mut du, mut dv) = (Vec::new(), Vec::new(), Vec::new());
     for s in samples {
         let [a, b, c] = s.unwrap_or([[nan; 3]; 3]);
@@ -87,7 +90,7 @@ type Arrays3 = (Py<PyAny>, Py<PyAny>, Py<PyAny>);
 
 fn out3x<T: numpy::Element>(
     py: Python<'_>,
-    (p, du, dv): (Vec<[T; 3]>, Vec<[T; 3]>, Vec<[T; 3]>),
+    (p, du, dv): Columns<T>,
 ) -> PyResult<Arrays3> {
     Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
 }
