@@ -117,6 +117,7 @@ pub fn lib_error(py: Python<'_>, e: Error, path: Option<&str>) -> PyErr {
             PyErr::new::<pyo3::exceptions::PyOSError, _>(msg)
         }
         Error::Query(q) => value_error(q.to_string()),
+        Error::Tess(t) => value_error(t.to_string()),
         Error::Unsupported(s) => raise(py, "UnsupportedError", format!("unsupported: {s}"), &[]),
         other => PyRuntimeError::new_err(other.to_string()),
     }

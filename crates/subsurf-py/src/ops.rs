@@ -8,6 +8,7 @@ use pyo3::prelude::*;
 use subsurf::limit::PatchOptions;
 use subsurf::prep::PrepPatches;
 use subsurf::surface::{self, Backend, Colors, Method, SurfaceOptions};
+use subsurf::tess::{set_edge_rate, EdgeRates, RatePolicy};
 use subsurf::{FaceVarying, Mesh, Refiner, Topology};
 
 use crate::arrays::{out1, out2, out4, rows, vec1};
@@ -382,8 +383,54 @@ fn surface_options(
     })
 }
 
+/// The adaptive rate policy of `tessellate`'s keywords (at most one), with its origin for
+/// errors; `None` when none is given. `edge_rates` rows are `(v0, v1, rate)`; unlisted edges
+/// take `n − 1` segments, as `--edge-rates` takes `--tess`.
+fn rate_policy(
+    py: Python<'_>,
+    mesh: &Mesh,
+    n: usize,
+    tolerance: Option<f32>,
+    max_edge_length: Option<f32>,
+    edge_rates: Option<Vec<[u64; 3]>>,
+) -> PyResult<Option<(RatePolicy, String)>> {
+    let given = [
+        tolerance.is_some(),
+        max_edge_length.is_some(),
+        edge_rates.is_some(),
+    ];
+    if given.iter().filter(|&&g| g).count() > 1 {
+        return Err(value_error(
+            "tolerance, max_edge_length, edge_rates: give at most one",
+        ));
+    }
+    if let Some(e) = tolerance {
+        return Ok(Some((RatePolicy::Tolerance(e), "tolerance".into())));
+    }
+    if let Some(l) = max_edge_length {
+        return Ok(Some((
+            RatePolicy::MaxEdgeLength(l),
+            "max_edge_length".into(),
+        )));
+    }
+    let Some(rows) = edge_rates else {
+        return Ok(None);
+    };
+    let py_err = |e| lib_error(py, e, None);
+    let t = Topology::new(mesh).map_err(py_err)?;
+    let default = u32::try_from(n.saturating_sub(1)).unwrap_or(u32::MAX).max(1);
+    let mut rates = EdgeRates::uniform(&t, default);
+    for (k, [v0, v1, r]) in rows.into_iter().enumerate() {
+        set_edge_rate(&mut rates, &t, &format!("edge_rates[{k}]"), [v0, v1], r)
+            .map_err(py_err)?;
+    }
+    Ok(Some((RatePolicy::Explicit(rates), "edge_rates".into())))
+}
+
 #[pyfunction]
-#[pyo3(signature = (mesh, method="limit", n=8, backend="cpu", isolation=4))]
+#[pyo3(signature = (mesh, method="limit", n=8, backend="cpu", isolation=4, *, tolerance=None, max_edge_length=None, edge_rates=None))]
+// One argument per keyword of the Python `tessellate`.
+#[allow(clippy::too_many_arguments)]
 pub fn tessellate(
     py: Python<'_>,
     mesh: &PyMesh,
@@ -391,8 +438,28 @@ pub fn tessellate(
     n: usize,
     backend: &str,
     isolation: u32,
+    tolerance: Option<f32>,
+    max_edge_length: Option<f32>,
+    edge_rates: Option<PyReadonlyArray2<'_, u64>>,
 ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
-    let o = surface_options(method, n, "none", false, isolation)?;
+    let mut o = surface_options(method, n, "none", false, isolation)?;
+    let rows = edge_rates
+        .map(|a| rows::<3, u64>(&a, "edge_rates"))
+        .transpose()?;
+    if let Some((policy, origin)) =
+        rate_policy(py, &mesh.inner, n, tolerance, max_edge_length, rows)?
+    {
+        let Method::Limit { options, .. } = o.method else {
+            return Err(value_error(format!(
+                "{origin}: adaptive rates need method 'limit', not {method:?}"
+            )));
+        };
+        o.method = Method::Adaptive {
+            policy,
+            origin,
+            options,
+        };
+    }
     let b = self::backend(py, backend)?;
     let m = mesh.inner.clone();
     let s = py

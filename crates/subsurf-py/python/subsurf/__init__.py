@@ -381,7 +381,9 @@ class Prep:
 
 
 def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cpu",
-               isolation: int = 4) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+               isolation: int = 4, *, tolerance: Optional[float] = None,
+               max_edge_length: Optional[float] = None,
+               edge_rates: Any = None) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The surface API: ``(points (p, 3) float32, unit normals (p, 3) float32, triangles
     (t, 3) uint32)``.
 
@@ -391,8 +393,24 @@ def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cp
     n : level (refine) or samples per side (limit, prep), an integer
     backend : "cpu" or "gpu"
     isolation : levels of feature-adaptive isolation of the limit patches (0..=10, default 4)
+
+    Adaptive per-edge rates (method "limit", Catmull-Clark and bilinear meshes; at most one,
+    watertight with any mix of rates): ``tolerance`` (chordal error as a fraction of the
+    bounding-box diagonal), ``max_edge_length`` (world units) or ``edge_rates`` ((k, 3)
+    integers ``v0 v1 rate``: the base edge joining v0 and v1 gets ``rate`` segments, 1..=4096;
+    unlisted edges get ``n - 1``), as ``subsurf limit --tolerance / --max-edge-length /
+    --edge-rates``.
     """
-    return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"))
+    rates = None
+    if edge_rates is not None:
+        rates = np.ascontiguousarray(np.asarray(edge_rates, dtype=np.int64).reshape(-1, 3))
+        if (rates < 0).any():
+            raise ValueError("edge_rates: vertex indices and rates must be non-negative")
+        rates = rates.astype(np.uint64)
+    return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"),
+                               tolerance=None if tolerance is None else float(tolerance),
+                               max_edge_length=None if max_edge_length is None else float(max_edge_length),
+                               edge_rates=rates)
 
 
 _BACKGROUNDS = {"white": (255, 255, 255, 255), "black": (0, 0, 0, 255), "transparent": (255, 255, 255, 0)}

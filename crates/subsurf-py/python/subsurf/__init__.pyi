@@ -105,7 +105,15 @@ class Prep:
     ) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.uint32]]: ...
 
 def tessellate(
-    mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cpu", isolation: int = 4
+    mesh: Mesh,
+    method: str = "limit",
+    n: int = 8,
+    backend: str = "cpu",
+    isolation: int = 4,
+    *,
+    tolerance: Optional[float] = None,
+    max_edge_length: Optional[float] = None,
+    edge_rates: Optional[npt.ArrayLike] = None,
 ) -> _Tess: ...
 def render(
     mesh: Mesh,

@@ -18,4 +18,4 @@ pub mod rates;
 
 pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;
-pub use rates::{parse_edge_rates, RatePolicy, ScreenCamera};
+pub use rates::{parse_edge_rates, set_edge_rate, RatePolicy, ScreenCamera};

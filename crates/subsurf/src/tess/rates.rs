@@ -386,24 +386,37 @@ pub fn parse_edge_rates(text: &str, file: &str, t: &Topology, default: u32) -> R
             num(fields[1], "vertex")?,
             num(fields[2], "rate")?,
         );
-        let edge = (v0 < t.num_vertices() as u64 && v1 < t.num_vertices() as u64)
-            .then(|| t.find_edge(v0 as u32, v1 as u32))
-            .flatten()
-            .ok_or(TessError::NoSuchEdge {
-                origin: origin.clone(),
-                v0,
-                v1,
-            })?;
-        if !(1..=u64::from(MAX_RATE)).contains(&rate) {
-            return Err(TessError::RateOutOfRange {
-                origin,
-                v0: v0 as u32,
-                v1: v1 as u32,
-                rate,
-            }
-            .into());
-        }
-        rates.edges[edge as usize] = rate as u32;
+        set_edge_rate(&mut rates, t, &origin, [v0, v1], rate)?;
     }
     Ok(rates)
+}
+
+/// Sets the rate of the base edge `v0–v1` of `t` (either direction) to `rate`; an edge that
+/// does not exist or a rate outside `1..=4096` is an error naming `origin`.
+pub fn set_edge_rate(
+    rates: &mut EdgeRates,
+    t: &Topology,
+    origin: &str,
+    [v0, v1]: [u64; 2],
+    rate: u64,
+) -> Result<()> {
+    let edge = (v0 < t.num_vertices() as u64 && v1 < t.num_vertices() as u64)
+        .then(|| t.find_edge(v0 as u32, v1 as u32))
+        .flatten()
+        .ok_or(TessError::NoSuchEdge {
+            origin: origin.to_string(),
+            v0,
+            v1,
+        })?;
+    if !(1..=u64::from(MAX_RATE)).contains(&rate) {
+        return Err(TessError::RateOutOfRange {
+            origin: origin.to_string(),
+            v0: v0 as u32,
+            v1: v1 as u32,
+            rate,
+        }
+        .into());
+    }
+    rates.edges[edge as usize] = rate as u32;
+    Ok(())
 }
