@@ -26,17 +26,30 @@ fn angle(a: [f64; 3], b: [f64; 3]) -> f64 {
     n(c).atan2(a[0] * b[0] + a[1] * b[1] + a[2] * b[2])
 }
 
-/// Worst position (relative to the diagonal) and normal (rad) error, samples compared.
-#[derive(Default, Clone, Copy)]
+/// Worst position (relative to the diagonal) and normal (rad) error, samples compared, and
+/// the shapes where the worst errors occur.
+#[derive(Default, Clone)]
 struct Worst {
     p: f64,
     n: f64,
     count: usize,
+    p_at: String,
+    n_at: String,
 }
 
 impl Worst {
     fn differs(&self) -> bool {
         self.p > 1e-5 || self.n > 1e-3
+    }
+
+    fn merge(&mut self, w: &Worst, name: &str) {
+        if w.p > self.p {
+            (self.p, self.p_at) = (w.p, name.to_string());
+        }
+        if w.n > self.n {
+            (self.n, self.n_at) = (w.n, name.to_string());
+        }
+        self.count += w.count;
     }
 }
 
@@ -95,9 +108,7 @@ fn compare_at(level: u32) -> (Worst, Worst, Vec<String>) {
                     w.p, w.n
                 ));
             }
-            all.p = all.p.max(w.p);
-            all.n = all.n.max(w.n);
-            all.count += w.count;
+            all.merge(w, &name);
         }
     }
     (all_reg, all_cap, failures)
@@ -109,11 +120,12 @@ fn limit_surface_matches_opensubdiv_on_every_loop_shape() {
     let mut failures = Vec::new();
     for level in 1..=4 {
         let (reg, cap, f) = compare_at(level);
-        eprintln!(
-            "isolation {level}: regular: {} samples, position {:e}, normal {:e} rad; \
-             end caps: {} samples, position {:e}, normal {:e} rad",
-            reg.count, reg.p, reg.n, cap.count, cap.p, cap.n
-        );
+        for (kind, w) in [("regular", &reg), ("end caps", &cap)] {
+            eprintln!(
+                "isolation {level} {kind}: {} samples, position {:.1e} ({}), normal {:.1e} rad ({})",
+                w.count, w.p, w.p_at, w.n, w.n_at
+            );
+        }
         failures.extend(f);
         // The end caps are really exercised: thousands of samples lie on them (fewer at each
         // level, as isolation shrinks the irregular triangles).
