@@ -398,6 +398,16 @@ int osd_adaptive_counts(const osd_adaptive *a, int64_t *counts) {
                           pt.GetPatchParamTable().size() * sizeof(Far::PatchParam));
     counts[2] = a->num_ptex;
     counts[3] = pt.GetNumLocalPoints();
+    // Regular patches: the arrays of the scheme's regular patch type (B-spline for Catmark,
+    // quartic box-spline for Loop); every other array holds end caps.
+    int64_t regular = 0;
+    for (int i = 0; i < pt.GetNumPatchArrays(); ++i) {
+        Far::PatchDescriptor::Type t = pt.GetPatchArrayDescriptor(i).GetType();
+        if (t == Far::PatchDescriptor::REGULAR || t == Far::PatchDescriptor::LOOP) {
+            regular += pt.GetNumPatches(i);
+        }
+    }
+    counts[4] = regular;
     return 0;
 }
 

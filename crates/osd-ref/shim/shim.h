@@ -94,7 +94,8 @@ typedef struct osd_adaptive osd_adaptive;
 osd_adaptive *osd_adaptive_new(const osd_mesh_desc *mesh, int isolation, int single_crease,
                                int inf_sharp, int end_cap);
 void osd_adaptive_free(osd_adaptive *a);
-/* counts[4] = patches, bytes of control-vertex + param arrays, ptex faces, local points */
+/* counts[5] = patches, bytes of control-vertex + param arrays, ptex faces, local points,
+ * regular patches (B-spline or Loop box-spline; the others are end caps) */
 int osd_adaptive_counts(const osd_adaptive *a, int64_t *counts);
 /* Adaptive refinement and the patch table only (no patch map, no points), for timing:
  * counts[3] = patches, bytes of control-vertex + param arrays, refined vertices (all levels).

@@ -86,6 +86,9 @@ pub struct PatchStats {
     pub num_ptex_faces: usize,
     /// End-cap local points (`GetNumLocalPoints()`).
     pub num_local_points: usize,
+    /// Regular patches: those of the scheme's regular type (`REGULAR` B-spline patches for
+    /// Catmark, `LOOP` box-spline patches for Loop); the other patches are end caps.
+    pub num_regular_patches: usize,
 }
 
 /// An adaptively refined mesh with its patch table, patch map and all points computed.
@@ -120,14 +123,15 @@ impl Adaptive {
     }
 
     fn stats(&self) -> Result<PatchStats> {
-        let mut c = [0i64; 4];
-        // SAFETY: live handle; 4 slots.
+        let mut c = [0i64; 5];
+        // SAFETY: live handle; 5 slots.
         check(unsafe { ffi::osd_adaptive_counts(self.raw.as_ptr(), c.as_mut_ptr()) })?;
         Ok(PatchStats {
             num_patches: c[0] as usize,
             bytes: c[1] as usize,
             num_ptex_faces: c[2] as usize,
             num_local_points: c[3] as usize,
+            num_regular_patches: c[4] as usize,
         })
     }
 }

@@ -25,8 +25,8 @@
 //! - Mid-edge points `M`: the regular quartic point `(v_0 + v_1) / 3 + (v_2 + opposite) / 6`
 //!   (or the midpoint of a boundary edge), else the midpoint of the two cubic edge points.
 //!
-//! Finally the cubic edge points are raised to quartic, `E ← P / 4 + 3 E / 4` (a sharp
-//! corner's edge point along a boundary stays).
+//! Finally every cubic edge point is raised to quartic, `E ← P / 4 + 3 E / 4` (sharp corners
+//! included: there `E = (3 v + v_next) / 4`).
 //!
 //! Points are stored per corner as `P, E+, E−, F+, F−` (index `5 k + …`), then `M` of
 //! edges 0, 1, 2 (15, 16, 17).
@@ -434,14 +434,6 @@ pub fn gregory_tri_points(t: &Topology, f: usize) -> Vec<Row> {
     }
     for k in 0..3 {
         for j in [1, 2] {
-            let on_boundary = if j == 1 {
-                c[k].ep_on_boundary
-            } else {
-                c[k].em_on_boundary
-            };
-            if on_boundary && c[k].sharp {
-                continue;
-            }
             pts[5 * k + j] = lin(&[(&pts[5 * k], 0.25), (&pts[5 * k + j], 0.75)]);
         }
     }

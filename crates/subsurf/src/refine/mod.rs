@@ -30,6 +30,7 @@ mod level;
 mod level_tags;
 mod loop_level;
 mod loop_masks;
+mod loop_nonmanifold;
 mod loop_rings;
 mod masks;
 pub(crate) mod par;
