@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bin, repo, run_ok, tmp};
+use common::{bin, repo, run_gpu, run_ok, tmp};
 use subsurf::{Refiner, Scheme, Topology};
 
 fn refine(input: &std::path::Path, flags: &[&str], out: &str) -> subsurf::Mesh {
@@ -341,24 +341,35 @@ fn eval_at_on_ptex_faces() {
     );
 }
 
-/// `limit --backend gpu` on a Loop mesh: the GPU backend has no Loop kernels and says so (or
-/// no adapter is found); `--tess 1` is refused naming the range.
+/// `limit --backend gpu` on a Loop mesh: the GPU evaluates the library's tessellation (same
+/// triangles, positions within 1e-5 of the bounding-box diagonal); `--tess 1` is refused
+/// naming the range.
 #[test]
-fn limit_refuses_what_the_loop_surface_cannot_do() {
+fn limit_on_the_gpu_and_what_the_loop_surface_cannot_do() {
+    use subsurf::limit::loop_eval::LoopLimit;
     let input = repo("testdata/shapes/loop_cube.obj");
-    let o = bin()
-        .arg("limit")
-        .arg(&input)
-        .args(["--backend", "gpu", "-o"])
-        .arg(tmp("loop_gpu.obj"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("does not evaluate the Loop limit surface") || err.contains("no GPU adapter"),
-        "{err}"
-    );
+    let path = tmp("loop_gpu.obj");
+    if run_gpu(
+        bin()
+            .arg("limit")
+            .arg(&input)
+            .args(["--backend", "gpu", "--tess", "5", "--isolation", "3", "-o"])
+            .arg(&path),
+    )
+    .is_some()
+    {
+        let got = subsurf::io::read_path(&path).unwrap();
+        let mesh = subsurf::io::read_path(&input).unwrap();
+        let topo = Topology::new(&mesh).unwrap();
+        let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+        let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
+        assert_eq!(got.face_indices, want.face_indices);
+        assert_eq!(got.positions.len(), want.positions.len());
+        let tol = 1e-5 * subsurf::mesh::bbox_diagonal(&want.positions);
+        for (g, w) in got.positions.iter().zip(&want.positions) {
+            assert!((0..3).all(|k| (g[k] - w[k]).abs() <= tol), "{g:?} vs {w:?}");
+        }
+    }
     let o = bin()
         .arg("limit")
         .arg(&input)

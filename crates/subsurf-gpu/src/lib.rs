@@ -13,7 +13,9 @@
 //! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
 //! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`) and
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
-//! patches, `limit_eval`) and [`GpuUvRefiner`] (face-varying refinement of UVs).
+//! patches, `limit_eval`) and [`GpuLoopLimit`] (the Loop limit surface: box-spline and
+//! Gregory-triangle patches, `loop_eval`) and [`GpuUvRefiner`] (face-varying refinement of
+//! UVs).
 //!
 //! # Example
 //!
@@ -91,6 +93,8 @@ pub mod kernels;
 pub mod limit;
 pub mod limit_chunks;
 mod limit_twin;
+pub mod loop_limit;
+mod loop_twin;
 pub mod prep;
 pub mod prep_chunks;
 pub mod refine;
@@ -104,6 +108,7 @@ pub use context::GpuContext;
 pub use error::GpuError;
 pub use kernels::stencil::{ChunkLimits, StencilKernel};
 pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
+pub use loop_limit::GpuLoopLimit;
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use prep_chunks::PrepChunks;
 pub use refine::GpuRefiner;
@@ -130,6 +135,8 @@ pub mod shaders {
     pub const PREP_EVAL_GRID: &str = include_str!(concat!(env!("OUT_DIR"), "/prep_eval_grid.wgsl"));
     /// `shaders/limit_eval.wgsl`.
     pub const LIMIT_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/limit_eval.wgsl"));
+    /// `shaders/loop_eval.wgsl`.
+    pub const LOOP_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/loop_eval.wgsl"));
     /// `shaders/refine_level.wgsl`.
     pub const REFINE_LEVEL: &str = include_str!(concat!(env!("OUT_DIR"), "/refine_level.wgsl"));
 }
