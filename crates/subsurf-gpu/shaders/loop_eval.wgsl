@@ -218,13 +218,14 @@ fn factorial(n: u32) -> u32 {
 fn bezier_weight(n: u32, uvw: vec3<f32>, which: u32) -> f32 {
     let e = bezier_exponents(n);
     let multinomial = f32(24u / (factorial(e.x) * factorial(e.y) * factorial(e.z)));
+    // The library sums c * partial with c = +-1: exact, so a plain sum and difference.
     var sum = 0.0;
     if which == 0u {
-        sum = sum + 1.0 * partial(uvw, e, vec3<u32>(0u, 0u, 0u));
+        sum = sum + partial(uvw, e, vec3<u32>(0u, 0u, 0u));
     } else {
         let d = select(vec3<u32>(0u, 1u, 0u), vec3<u32>(1u, 0u, 0u), which == 1u);
-        sum = sum + 1.0 * partial(uvw, e, d);
-        sum = sum + -1.0 * partial(uvw, e, vec3<u32>(0u, 0u, 1u));
+        sum = sum + partial(uvw, e, d);
+        sum = sum - partial(uvw, e, vec3<u32>(0u, 0u, 1u));
     }
     return multinomial * sum;
 }

@@ -294,13 +294,14 @@ fn factorial(n: u32) -> u32 {
 fn bezier_weight(n: u32, uvw: V, which: u32) -> f32 {
     let e = bezier_exponents(n);
     let multinomial = (24 / (factorial(e[0]) * factorial(e[1]) * factorial(e[2]))) as f32;
+    // The library sums `c · partial` with `c = ±1`: exact, so a plain sum and difference.
     let mut sum = 0.0f32;
     if which == 0 {
-        sum += 1.0 * partial(uvw, e, [0, 0, 0]);
+        sum += partial(uvw, e, [0, 0, 0]);
     } else {
         let d = if which == 1 { [1, 0, 0] } else { [0, 1, 0] };
-        sum += 1.0 * partial(uvw, e, d);
-        sum += -1.0 * partial(uvw, e, [0, 0, 1]);
+        sum += partial(uvw, e, d);
+        sum -= partial(uvw, e, [0, 0, 1]);
     }
     multinomial * sum
 }
