@@ -76,6 +76,7 @@
 //! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row; a source larger than one binding gathered per chunk, window by window, into a scratch buffer ([`gather`]) |
 //! | [`GpuRefiner`] | every level's tables, by child row; a level whose buffers exceed one binding refined from inputs gathered the same way, writing the child through a window |
 //! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`]); `update` through the split stencils and refiners above |
+//! | [`GpuLoopLimit`] samples | queries and outputs; the patch tables are bound whole (refused with [`GpuError::TooLarge`] past one binding: about 620,000 end caps at 128 MiB) |
 //! | [`GpuPrep`] | the mesh, into sub-problems of faces with their corners' rings ([`prep_chunks`]: positions, rings, vertex and patch coefficients of each fit one binding); dispatch grids; the tessellation's vertex and index buffers |
 //!
 //! Splitting is rarely needed at 128 MiB: a p-rep is split from about 700,000 faces (192
