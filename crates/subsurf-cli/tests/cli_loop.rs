@@ -280,15 +280,31 @@ fn eval_at_queries_and_refuses_those_off_the_triangles() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(want), "{bad:?}: {err}");
     }
-    let o = bin()
-        .arg("eval")
-        .arg(&input)
-        .args(["--backend", "gpu", "-o"])
-        .arg(tmp("loop_gpu.txt"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("CPU only"));
+    // On the GPU: the same lines within f32 rounding (positions within 1e-5 of the
+    // bounding-box diagonal, derivatives relative to their size).
+    let (cpu_out, gpu_out) = (tmp("loop_cpu.txt"), tmp("loop_gpu.txt"));
+    run_ok(bin().arg("eval").arg(&input).arg("-o").arg(&cpu_out));
+    if run_gpu(
+        bin()
+            .arg("eval")
+            .arg(&input)
+            .args(["--backend", "gpu", "-o"])
+            .arg(&gpu_out),
+    )
+    .is_some()
+    {
+        let (want, got) = (eval_lines(&cpu_out), eval_lines(&gpu_out));
+        assert_eq!(got.len(), want.len());
+        let mesh = subsurf::io::read_path(&input).unwrap();
+        let diag = subsurf::mesh::bbox_diagonal(&mesh.positions) as f64;
+        for (g, w) in got.iter().zip(&want) {
+            assert_eq!(g[..3], w[..3]);
+            for k in 3..12 {
+                let scale = if k < 6 { diag } else { diag.max(w[k].abs()) };
+                assert!((g[k] - w[k]).abs() <= 1e-5 * scale, "{g:?} vs {w:?}");
+            }
+        }
+    }
 }
 
 /// `eval --at` on a Catmull-Clark mesh: the library's ptex samples, and a query outside the
