@@ -5,7 +5,8 @@
 //! `u, v = i/(N−1)`, `v` the outer loop). Loop (`--scheme loop`, the `loop_` file-name
 //! prefix or the file's scheme tag): the triangular grid `u = i/(N−1)`, `v = j/(N−1)`,
 //! `i + j ≤ N − 1` of every base triangle (`face` the triangle, `v` the outer loop), the
-//! library's Loop limit surface evaluated in double precision. `--at FILE` evaluates the
+//! library's Loop limit surface evaluated in double precision (`--backend gpu`: by the GPU's
+//! `loop_eval`, in single precision). `--at FILE` evaluates the
 //! `face u v` lines of a file instead; a query off the surface's domain (no such face,
 //! `u + v > 1` on a triangle, outside `[0, 1]²` on a ptex face) is an error naming it.
 
@@ -16,7 +17,7 @@ use std::fmt::Display;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::query::check_square;
+use subsurf::limit::query::{check_square, check_triangle};
 use subsurf::limit::{LimitPoint, LimitSurface};
 use subsurf::{Mesh, Real, Scheme, Topology};
 
@@ -98,12 +99,9 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     )
 }
 
-/// `eval` on a Loop mesh: the library's Loop limit surface, in f64, on the CPU.
+/// `eval` on a Loop mesh: the library's Loop limit surface, in f64 on the CPU, or in f32 by
+/// the GPU's `loop_eval` (`--backend gpu`).
 fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
-    anyhow::ensure!(
-        a.surface.backend == Backend::Cpu,
-        "the Loop limit surface is evaluated on the CPU only (drop --backend gpu)"
-    );
     let topo = Topology::new(&mesh)?;
     let surface = LoopLimit::new(&topo, &mesh.positions, a.surface.isolation)
         .context("building the Loop limit patches")?;
@@ -123,14 +121,60 @@ fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
             q
         }
     };
-    let results = surface
-        .eval_batch(&queries)
-        .with_context(|| query_source(a))?;
+    let results: Vec<Option<[[f64; 3]; 3]>> = match a.surface.backend {
+        Backend::Cpu => surface
+            .eval_batch(&queries)
+            .with_context(|| query_source(a))?
+            .into_iter()
+            .map(|r| r.map(|r| [r.p, r.du, r.dv]))
+            .collect(),
+        Backend::Gpu => loop_eval_gpu(a, &surface, &queries)?,
+    };
     let rows = queries
         .iter()
         .zip(&results)
-        .filter_map(|(&(f, u, v), r)| r.map(|r| (f, u, v, [r.p, r.du, r.dv])));
+        .filter_map(|(&(f, u, v), r)| r.map(|r| (f, u, v, r)));
     write_samples(a, rows, topo.num_faces(), "Loop triangles")
+}
+
+/// The Loop queries (checked as on the CPU) evaluated by `loop_eval`: the patch of each is
+/// found with the patch map (holes: none, not sent), position and derivatives widened.
+fn loop_eval_gpu(
+    a: &EvalArgs,
+    surface: &LoopLimit,
+    queries: &[(u32, f64, f64)],
+) -> anyhow::Result<Vec<Option<[[f64; 3]; 3]>>> {
+    for (k, &(f, u, v)) in queries.iter().enumerate() {
+        check_triangle(k, f as u64, u, v, surface.num_faces())
+            .map_err(subsurf::Error::from)
+            .with_context(|| query_source(a))?;
+    }
+    let patches: Vec<Option<u32>> = queries
+        .iter()
+        .map(|&(f, u, v)| surface.patch_map.find_triangle(f as usize, u, v))
+        .collect();
+    let sent: Vec<(u32, f32, f32)> = queries
+        .iter()
+        .zip(&patches)
+        .filter_map(|(&(_, u, v), p)| p.map(|p| (p, u as f32, v as f32)))
+        .collect();
+    let ctx = gpu_context()?;
+    let gpu = subsurf_gpu::GpuLoopLimit::new(&ctx, surface)
+        .context("--backend gpu: uploading the Loop patches")?;
+    let samples = gpu.samples(&ctx, &sent, true)?;
+    gpu.eval(&ctx, &samples)
+        .context("--backend gpu: evaluating the samples")?;
+    let out = samples
+        .download(&ctx)
+        .context("--backend gpu: reading the samples back")?;
+    let mut points = out.chunks_exact(12).map(|o| {
+        let v = |k: usize| [o[k], o[k + 1], o[k + 2]].map(f64::from);
+        [v(0), v(6), v(9)]
+    });
+    Ok(patches
+        .iter()
+        .map(|p| p.and_then(|_| points.next()))
+        .collect())
 }
 
 /// Where the queries came from, for errors.

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bin, repo, run_ok, tmp};
+use common::{bin, repo, run_gpu, run_ok, tmp};
 use subsurf::{Refiner, Scheme, Topology};
 
 fn refine(input: &std::path::Path, flags: &[&str], out: &str) -> subsurf::Mesh {
@@ -280,15 +280,31 @@ fn eval_at_queries_and_refuses_those_off_the_triangles() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(want), "{bad:?}: {err}");
     }
-    let o = bin()
-        .arg("eval")
-        .arg(&input)
-        .args(["--backend", "gpu", "-o"])
-        .arg(tmp("loop_gpu.txt"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("CPU only"));
+    // On the GPU: the same lines within f32 rounding (positions within 1e-5 of the
+    // bounding-box diagonal, derivatives relative to their size).
+    let (cpu_out, gpu_out) = (tmp("loop_cpu.txt"), tmp("loop_gpu.txt"));
+    run_ok(bin().arg("eval").arg(&input).arg("-o").arg(&cpu_out));
+    if run_gpu(
+        bin()
+            .arg("eval")
+            .arg(&input)
+            .args(["--backend", "gpu", "-o"])
+            .arg(&gpu_out),
+    )
+    .is_some()
+    {
+        let (want, got) = (eval_lines(&cpu_out), eval_lines(&gpu_out));
+        assert_eq!(got.len(), want.len());
+        let mesh = subsurf::io::read_path(&input).unwrap();
+        let diag = subsurf::mesh::bbox_diagonal(&mesh.positions) as f64;
+        for (g, w) in got.iter().zip(&want) {
+            assert_eq!(g[..3], w[..3]);
+            for k in 3..12 {
+                let scale = if k < 6 { diag } else { diag.max(w[k].abs()) };
+                assert!((g[k] - w[k]).abs() <= 1e-5 * scale, "{g:?} vs {w:?}");
+            }
+        }
+    }
 }
 
 /// `eval --at` on a Catmull-Clark mesh: the library's ptex samples, and a query outside the
@@ -341,24 +357,35 @@ fn eval_at_on_ptex_faces() {
     );
 }
 
-/// `limit --backend gpu` on a Loop mesh: the GPU backend has no Loop kernels and says so (or
-/// no adapter is found); `--tess 1` is refused naming the range.
+/// `limit --backend gpu` on a Loop mesh: the GPU evaluates the library's tessellation (same
+/// triangles, positions within 1e-5 of the bounding-box diagonal); `--tess 1` is refused
+/// naming the range.
 #[test]
-fn limit_refuses_what_the_loop_surface_cannot_do() {
+fn limit_on_the_gpu_and_what_the_loop_surface_cannot_do() {
+    use subsurf::limit::loop_eval::LoopLimit;
     let input = repo("testdata/shapes/loop_cube.obj");
-    let o = bin()
-        .arg("limit")
-        .arg(&input)
-        .args(["--backend", "gpu", "-o"])
-        .arg(tmp("loop_gpu.obj"))
-        .output()
-        .unwrap();
-    assert!(!o.status.success());
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("does not evaluate the Loop limit surface") || err.contains("no GPU adapter"),
-        "{err}"
-    );
+    let path = tmp("loop_gpu.obj");
+    if run_gpu(
+        bin()
+            .arg("limit")
+            .arg(&input)
+            .args(["--backend", "gpu", "--tess", "5", "--isolation", "3", "-o"])
+            .arg(&path),
+    )
+    .is_some()
+    {
+        let got = subsurf::io::read_path(&path).unwrap();
+        let mesh = subsurf::io::read_path(&input).unwrap();
+        let topo = Topology::new(&mesh).unwrap();
+        let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+        let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
+        assert_eq!(got.face_indices, want.face_indices);
+        assert_eq!(got.positions.len(), want.positions.len());
+        let tol = 1e-5 * subsurf::mesh::bbox_diagonal(&want.positions);
+        for (g, w) in got.positions.iter().zip(&want.positions) {
+            assert!((0..3).all(|k| (g[k] - w[k]).abs() <= tol), "{g:?} vs {w:?}");
+        }
+    }
     let o = bin()
         .arg("limit")
         .arg(&input)

@@ -96,3 +96,14 @@ struct LimitConfig {
     // Ptex faces: patch_map[0..num_roots] are the roots, inner nodes follow (4 words each).
     num_roots: u32,
 }
+
+// Per-dispatch parameters of loop_eval (one uniform per chunk of samples).
+struct LoopConfig {
+    // Samples in this chunk, and invocations along x of its grid.
+    item_count: u32,
+    grid_width: u32,
+    // Floats written per sample: 6 (p, n) or 12 (p, n, du, dv).
+    out_stride: u32,
+    // Patches: a sample whose patch is not below this evaluates to zeros.
+    num_patches: u32,
+}

@@ -13,7 +13,9 @@
 //! [`GpuRefiner`] (uniform refinement level by level, `refine_level` kernel) and [`GpuPrep`]
 //! (the p-rep: `prep_vertex_pass`, `prep_patch_pass`, watertight `prep_eval_grid`) and
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
-//! patches, `limit_eval`) and [`GpuUvRefiner`] (face-varying refinement of UVs).
+//! patches, `limit_eval`) and [`GpuLoopLimit`] (the Loop limit surface: box-spline and
+//! Gregory-triangle patches, `loop_eval`) and [`GpuUvRefiner`] (face-varying refinement of
+//! UVs).
 //!
 //! # Example
 //!
@@ -74,6 +76,7 @@
 //! | [`StencilKernel`], [`GpuUvRefiner`] | table rows (own `offsets`/`indices`/`weights`), destination at the chunk's aligned first row; a source larger than one binding gathered per chunk, window by window, into a scratch buffer ([`gather`]) |
 //! | [`GpuRefiner`] | every level's tables, by child row; a level whose buffers exceed one binding refined from inputs gathered the same way, writing the child through a window |
 //! | [`GpuLimit`] samples | queries and outputs; when the patch tables or the point array exceed one binding, also compacted copies of the patch map, patch data, control indices and points a chunk reads ([`limit_chunks`]); `update` through the split stencils and refiners above |
+//! | [`GpuLoopLimit`] samples | queries and outputs; the patch tables are bound whole (refused with [`GpuError::TooLarge`] past one binding: about 620,000 end caps at 128 MiB) |
 //! | [`GpuPrep`] | the mesh, into sub-problems of faces with their corners' rings ([`prep_chunks`]: positions, rings, vertex and patch coefficients of each fit one binding); dispatch grids; the tessellation's vertex and index buffers |
 //!
 //! Splitting is rarely needed at 128 MiB: a p-rep is split from about 700,000 faces (192
@@ -91,6 +94,8 @@ pub mod kernels;
 pub mod limit;
 pub mod limit_chunks;
 mod limit_twin;
+pub mod loop_limit;
+mod loop_twin;
 pub mod prep;
 pub mod prep_chunks;
 pub mod refine;
@@ -104,6 +109,7 @@ pub use context::GpuContext;
 pub use error::GpuError;
 pub use kernels::stencil::{ChunkLimits, StencilKernel};
 pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
+pub use loop_limit::GpuLoopLimit;
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use prep_chunks::PrepChunks;
 pub use refine::GpuRefiner;
@@ -130,6 +136,8 @@ pub mod shaders {
     pub const PREP_EVAL_GRID: &str = include_str!(concat!(env!("OUT_DIR"), "/prep_eval_grid.wgsl"));
     /// `shaders/limit_eval.wgsl`.
     pub const LIMIT_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/limit_eval.wgsl"));
+    /// `shaders/loop_eval.wgsl`.
+    pub const LOOP_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/loop_eval.wgsl"));
     /// `shaders/refine_level.wgsl`.
     pub const REFINE_LEVEL: &str = include_str!(concat!(env!("OUT_DIR"), "/refine_level.wgsl"));
 }

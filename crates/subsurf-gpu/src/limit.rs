@@ -152,6 +152,31 @@ pub struct GpuTessellation {
 }
 
 impl GpuSamples {
+    /// A set evaluated by `chunks` (bind group, workgroup grid) reading whole tables;
+    /// `buffers` are kept alive with it.
+    pub(crate) fn from_chunks(
+        count: usize,
+        stride: usize,
+        output: wgpu::Buffer,
+        chunks: Vec<(wgpu::BindGroup, (u32, u32))>,
+        buffers: Vec<wgpu::Buffer>,
+    ) -> Self {
+        Self {
+            count,
+            stride,
+            output,
+            chunks,
+            gather: None,
+            compacted: false,
+            _buffers: buffers,
+        }
+    }
+
+    /// The dispatches: bind group and workgroup grid of each chunk.
+    pub(crate) fn chunks(&self) -> &[(wgpu::BindGroup, (u32, u32))] {
+        &self.chunks
+    }
+
     /// Number of dispatches evaluating the set (more than one when chunked).
     pub fn num_dispatches(&self) -> usize {
         self.chunks.len()

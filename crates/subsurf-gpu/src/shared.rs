@@ -102,3 +102,20 @@ pub struct LimitConfig {
 }
 
 const _: () = assert!(std::mem::size_of::<LimitConfig>() == 16);
+
+/// Per-dispatch parameters of `loop_eval` (keep in sync with shaders/common.wgsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct LoopConfig {
+    /// Samples (queries) in this chunk.
+    pub item_count: u32,
+    /// Invocations along x of the dispatch grid.
+    pub grid_width: u32,
+    /// Floats written per sample: 6 (position, normal) or 12 (position, normal, `∂/∂u`,
+    /// `∂/∂v`).
+    pub out_stride: u32,
+    /// Patches: a sample whose patch index is not below this evaluates to zeros.
+    pub num_patches: u32,
+}
+
+const _: () = assert!(std::mem::size_of::<LoopConfig>() == 16);

@@ -1,9 +1,11 @@
 //! [`GpuBackend`]: the GPU behind `subsurf::surface::build`. The library defines the
 //! [`Backend`] trait with CPU bodies and knows no GPU; this crate overrides each step with its
-//! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation,
-//! the p-rep passes and grid).
+//! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation on
+//! Catmull-Clark and Loop meshes, the p-rep passes and grid).
 
-use crate::{GpuContext, GpuError, GpuLimit, GpuPrep, GpuRefiner, GpuUvRefiner, StencilKernel};
+use crate::{
+    GpuContext, GpuError, GpuLimit, GpuLoopLimit, GpuPrep, GpuRefiner, GpuUvRefiner, StencilKernel,
+};
 use subsurf::limit::loop_eval::LoopLimit;
 use subsurf::limit::loop_tessellate::TriTessellation;
 use subsurf::limit::{PatchTable, Tessellation};
@@ -115,16 +117,18 @@ impl Backend for GpuBackend {
             .map_err(gpu_err("reading the tessellation back"))
     }
 
-    /// No Loop kernels are hooked up here yet: a typed refusal, not a silent CPU run.
+    /// The patches (and their points, gathered by the library) uploaded, every sample of
+    /// the library's tessellation plan evaluated by `loop_eval`.
     fn loop_limit(
         &self,
-        _limit: &LoopLimit,
-        _base: &Topology,
-        _segments: usize,
+        limit: &LoopLimit,
+        base: &Topology,
+        segments: usize,
     ) -> Result<TriTessellation, SurfaceError> {
-        Err(SurfaceError::Unsupported(
-            "the GPU backend does not evaluate the Loop limit surface; use the CPU backend".into(),
-        ))
+        let ctx = &self.ctx;
+        let gpu = GpuLoopLimit::new(ctx, limit).map_err(gpu_err("uploading the Loop patches"))?;
+        gpu.tessellate(ctx, limit, base, segments)
+            .map_err(gpu_err("evaluating the Loop limit surface"))
     }
 
     fn prep(

@@ -3,6 +3,7 @@
 //! dispatch grid, so that it computes exactly what the shader computes, in the same order.
 
 pub mod limit_eval;
+pub mod loop_eval;
 pub mod prep_eval_grid;
 pub mod prep_patch_pass;
 pub mod prep_vertex_pass;

@@ -61,67 +61,95 @@ impl Numbering<'_> {
     }
 }
 
+/// The samples and triangles of [`LoopLimit::tessellate`], before evaluation: what a
+/// backend evaluating the samples elsewhere needs to produce the very same mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TriTessellationPlan {
+    /// Segments per base edge.
+    pub segments: usize,
+    /// Per sample: the base face it is evaluated on (the first non-hole face reaching it)
+    /// and its `(u, v)` there; `None` for a sample no non-hole face reaches.
+    pub samples: Vec<Option<(u32, [f64; 2])>>,
+    /// Counter-clockwise triangles (as their base faces), indices into `samples`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The plan of the watertight tessellation of every non-hole triangle of `base` with
+/// `segments` (`1..=1024`) segments per edge (see the module documentation).
+pub fn tri_tessellation_plan(base: &Topology, segments: usize) -> Result<TriTessellationPlan> {
+    let n = segments;
+    if n == 0 || n > 1024 {
+        return Err(Error::Unsupported(format!(
+            "{n} segments per edge (1..=1024)"
+        )));
+    }
+    let nb = Numbering {
+        t: base,
+        n,
+        edge_base: base.num_vertices(),
+        face_base: base.num_vertices() + base.num_edges() * (n - 1),
+    };
+    let total = nb.face_base + base.num_faces() * (n - 1) * n.saturating_sub(2) / 2;
+    let mut samples = vec![None; total];
+    let mut triangles = Vec::new();
+    for f in (0..base.num_faces()).filter(|&f| !base.face_is_hole[f]) {
+        for j in 0..=n {
+            for i in 0..=n - j {
+                let id = nb.id(f, i, j);
+                if samples[id].is_none() {
+                    samples[id] = Some((f as u32, [i as f64 / n as f64, j as f64 / n as f64]));
+                }
+            }
+        }
+        for j in 0..n {
+            for i in 0..n - j {
+                let id = |a, b| nb.id(f, a, b) as u32;
+                triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
+                if i + j + 2 <= n {
+                    triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+        }
+    }
+    Ok(TriTessellationPlan {
+        segments: n,
+        samples,
+        triangles,
+    })
+}
+
 impl LoopLimit {
     /// Tessellates every non-hole base triangle of `base` (the topology the surface was
     /// built from) with `segments ≥ 1` segments per edge; regular patches and Gregory-triangle
-    /// end caps alike.
+    /// end caps alike. Samples no face reaches (those of hole faces only) are NaN.
     pub fn tessellate(&self, base: &Topology, segments: usize) -> Result<TriTessellation> {
-        let n = segments;
-        if n == 0 || n > 1024 {
-            return Err(Error::Unsupported(format!(
-                "{n} segments per edge (1..=1024)"
-            )));
-        }
-        let nb = Numbering {
-            t: base,
-            n,
-            edge_base: base.num_vertices(),
-            face_base: base.num_vertices() + base.num_edges() * (n - 1),
-        };
-        let total = nb.face_base + base.num_faces() * (n - 1) * n.saturating_sub(2) / 2;
+        let plan = tri_tessellation_plan(base, segments)?;
+        let total = plan.samples.len();
         let mut positions = vec![[f64::NAN; 3]; total];
         let mut normals = vec![[0.0; 3]; total];
-        let mut done = vec![false; total];
-        let mut triangles = Vec::new();
-        for f in (0..base.num_faces()).filter(|&f| !base.face_is_hole[f]) {
-            for j in 0..=n {
-                for i in 0..=n - j {
-                    let id = nb.id(f, i, j);
-                    if done[id] {
-                        continue;
-                    }
-                    let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
-                    let s = self.eval(f, u, v).ok_or_else(|| {
-                        Error::Internal(format!("no Loop patch of face {f} holds ({u}, {v})"))
-                    })?;
-                    positions[id] = s.p;
-                    let c = [
-                        s.du[1] * s.dv[2] - s.du[2] * s.dv[1],
-                        s.du[2] * s.dv[0] - s.du[0] * s.dv[2],
-                        s.du[0] * s.dv[1] - s.du[1] * s.dv[0],
-                    ];
-                    let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-                    if len > 0.0 {
-                        normals[id] = c.map(|x| x / len);
-                    }
-                    done[id] = true;
-                }
-            }
-            for j in 0..n {
-                for i in 0..n - j {
-                    let id = |a, b| nb.id(f, a, b) as u32;
-                    triangles.push([id(i, j), id(i + 1, j), id(i, j + 1)]);
-                    if i + j + 2 <= n {
-                        triangles.push([id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-                    }
-                }
+        for (id, sample) in plan.samples.iter().enumerate() {
+            let Some((f, [u, v])) = *sample else {
+                continue;
+            };
+            let s = self.eval(f as usize, u, v).ok_or_else(|| {
+                Error::Internal(format!("no Loop patch of face {f} holds ({u}, {v})"))
+            })?;
+            positions[id] = s.p;
+            let c = [
+                s.du[1] * s.dv[2] - s.du[2] * s.dv[1],
+                s.du[2] * s.dv[0] - s.du[0] * s.dv[2],
+                s.du[0] * s.dv[1] - s.du[1] * s.dv[0],
+            ];
+            let len = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+            if len > 0.0 {
+                normals[id] = c.map(|x| x / len);
             }
         }
         Ok(TriTessellation {
-            segments: n,
+            segments: plan.segments,
             positions,
             normals,
-            triangles,
+            triangles: plan.triangles,
         })
     }
 }
