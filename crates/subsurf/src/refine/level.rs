@@ -70,9 +70,9 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Faces: vertices and edges.
     let face_offsets = iota(cf + 1, |i| 4 * i as u32);
-    let mut face_verts = vec![0u32; 4 * cf];
-    let mut face_edges = vec![0u32; 4 * cf];
-    let mut edge_verts = vec![[0u32; 2]; ce];
+    let mut face_verts = super::alloc::zeroed(4 * cf, 0u32);
+    let mut face_edges = super::alloc::zeroed(4 * cf, 0u32);
+    let mut edge_verts = super::alloc::zeroed(ce, [0u32; 2]);
     fr.clone()
         .into_par_iter()
         .zip(par::split(&mut face_verts, &fb, |f| 4 * fo(f)))
@@ -95,10 +95,10 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
     // children of parent edge e have as many as e.
-    let mut edge_face_offsets = vec![0u32; ce + 1];
+    let mut edge_face_offsets = super::alloc::zeroed(ce + 1, 0u32);
     let total_ef = 2 * nc + 2 * efo(ne);
-    let mut edge_faces = vec![0u32; total_ef];
-    let mut edge_face_local = vec![0u16; total_ef];
+    let mut edge_faces = super::alloc::zeroed(total_ef, 0u32);
+    let mut edge_face_local = super::alloc::zeroed(total_ef, 0u16);
     {
         let (efo_f, efo_e) = edge_face_offsets.split_at_mut(nc + 1);
         efo_f
@@ -164,12 +164,12 @@ pub fn refine_topology(p: &Topology) -> Topology {
     }
 
     // Edge sharpness and tags (children of faces are smooth).
-    let mut edge_sharpness = vec![0.0f32; ce];
-    let mut edge_tags = vec![0u8; ce];
+    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
+    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
     child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
 
     let vert_sharpness = {
-        let mut s = vec![0.0f32; cv];
+        let mut s = super::alloc::zeroed(cv, 0.0f32);
         s[..nv]
             .par_iter_mut()
             .zip(&p.vert_sharpness[..nv])
@@ -190,11 +190,11 @@ pub fn refine_topology(p: &Topology) -> Topology {
     });
     let total_vf = vf0 + nc + 2 * efo(ne);
     let total_ve = ve0 + nc + 2 * ne + efo(ne);
-    let mut vert_faces = vec![0u32; total_vf];
-    let mut vert_face_local = vec![0u16; total_vf];
-    let mut vert_edges = vec![0u32; total_ve];
-    let mut vert_tags = vec![0u16; cv];
-    let mut vert_rule = vec![rule::SMOOTH; cv];
+    let mut vert_faces = super::alloc::zeroed(total_vf, 0u32);
+    let mut vert_face_local = super::alloc::zeroed(total_vf, 0u16);
+    let mut vert_edges = super::alloc::zeroed(total_ve, 0u32);
+    let mut vert_tags = super::alloc::zeroed(cv, 0u16);
+    let mut vert_rule = super::alloc::filled(cv, rule::SMOOTH);
     let (vf_v, vf_rest) = vert_faces.split_at_mut(vf0);
     let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
     let (vl_v, vl_rest) = vert_face_local.split_at_mut(vf0);
@@ -297,7 +297,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
             }
         });
 
-    let mut face_is_hole = vec![false; nc];
+    let mut face_is_hole = super::alloc::zeroed(nc, false);
     if p.face_is_hole.iter().any(|&h| h) {
         for f in 0..nf {
             if p.face_is_hole[f] {
@@ -410,7 +410,7 @@ fn face_point_ring(s: usize, n: usize, (vf, vl, ve): (&mut [u32], &mut [u16], &m
 
 /// `(0..len).map(f)`, filled in parallel.
 pub(super) fn iota(len: usize, f: impl Fn(usize) -> u32 + Sync) -> Vec<u32> {
-    let mut out = vec![0u32; len];
+    let mut out = super::alloc::zeroed(len, 0u32);
     out.par_chunks_mut(1 << 14).enumerate().for_each(|(c, o)| {
         for (i, x) in o.iter_mut().enumerate() {
             *x = f((c << 14) + i);
@@ -428,7 +428,7 @@ fn child_vertex_offsets(
     edge_start: impl Fn(usize) -> usize + Sync,
 ) -> Vec<u32> {
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    let mut out = vec![0u32; nv + nf + ne + 1];
+    let mut out = super::alloc::zeroed(nv + nf + ne + 1, 0u32);
     let (a, rest) = out.split_at_mut(nv);
     let (b, c) = rest.split_at_mut(nf);
     a.copy_from_slice(&parent[..nv]);

@@ -149,7 +149,7 @@ where
     R: Fn(usize, &mut Scratch, &mut [u32], &mut [f32]) + Sync,
 {
     let b = par::bounds(rows);
-    let mut offsets = vec![0u32; rows + 1];
+    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
     par::ranges(&b)
         .into_par_iter()
         .zip(par::split(&mut offsets[1..], &b, |r| r))
@@ -165,8 +165,8 @@ where
         acc += *o;
         *o = acc;
     }
-    let mut indices = vec![0u32; acc as usize];
-    let mut weights = vec![0.0f32; acc as usize];
+    let mut indices = super::alloc::zeroed(acc as usize, 0u32);
+    let mut weights = super::alloc::zeroed(acc as usize, 0.0f32);
     let start = |r: usize| offsets[r] as usize;
     par::ranges(&b)
         .into_par_iter()
@@ -285,14 +285,26 @@ pub fn loop_limit_stencils(t: &Topology) -> StencilTable {
 
 impl super::Refiner {
     /// The Loop refinement of `base` (all triangles, checked by the caller), every level with
-    /// its full topology.
+    /// its full topology. The next level's topology is built while the stencils of the step
+    /// to the current one are: both read only that level, so they run side by side
+    /// (`rayon::join`; one after the other on one thread, with the same results).
     pub(super) fn new_loop(base: Topology, level: usize) -> crate::error::Result<super::Refiner> {
+        use super::loop_level::refine_tri_topology;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
-        for _ in 0..level {
-            let parent = &levels[levels.len() - 1];
-            let child = super::loop_level::refine_tri_topology(parent)?;
-            stencils.push(loop_level_stencils(parent, &child));
+        let mut ahead = None;
+        for k in 0..level {
+            let parent = &levels[k];
+            let child = match ahead.take() {
+                Some(child) => child,
+                None => refine_tri_topology(parent)?,
+            };
+            let (s, next) = rayon::join(
+                || loop_level_stencils(parent, &child),
+                || (k + 1 < level).then(|| refine_tri_topology(&child)),
+            );
+            ahead = next.transpose()?;
+            stencils.push(s);
             levels.push(child);
         }
         Ok(super::Refiner {

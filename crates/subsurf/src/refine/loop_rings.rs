@@ -66,12 +66,12 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     // Faces and edges: four child faces and three interior edges per parent face, two child
     // edges per parent edge.
     let total_ef = 2 * nc + 2 * efo(ne);
-    let mut face_verts = vec![0u32; 4 * nc];
-    let mut face_edges = vec![0u32; 4 * nc];
-    let mut edge_verts = vec![[0u32; 2]; ce];
-    let mut edge_face_offsets = vec![0u32; ce + 1];
-    let mut edge_faces = vec![0u32; total_ef];
-    let mut edge_face_local = vec![0u16; total_ef];
+    let mut face_verts = super::alloc::zeroed(4 * nc, 0u32);
+    let mut face_edges = super::alloc::zeroed(4 * nc, 0u32);
+    let mut edge_verts = super::alloc::zeroed(ce, [0u32; 2]);
+    let mut edge_face_offsets = super::alloc::zeroed(ce + 1, 0u32);
+    let mut edge_faces = super::alloc::zeroed(total_ef, 0u32);
+    let mut edge_face_local = super::alloc::zeroed(total_ef, 0u16);
     {
         let (ev_f, ev_e) = edge_verts.split_at_mut(nc);
         let (eo_f, eo_e) = edge_face_offsets.split_at_mut(nc);
@@ -161,8 +161,8 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     }
 
     // Sharpness: interior edges smooth, children of edges decayed by the crease method.
-    let mut edge_sharpness = vec![0.0f32; ce];
-    let mut edge_tags = vec![0u8; ce];
+    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
+    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
     child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
 
     // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
@@ -185,12 +185,12 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
         }
     });
     let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
-    let mut vert_faces = vec![0u32; total_vf];
-    let mut vert_face_local = vec![0u16; total_vf];
-    let mut vert_edges = vec![0u32; total_ve];
-    let mut vert_sharpness = vec![0.0f32; cv];
-    let mut vert_tags = vec![0u16; cv];
-    let mut vert_rule = vec![rule::SMOOTH; cv];
+    let mut vert_faces = super::alloc::zeroed(total_vf, 0u32);
+    let mut vert_face_local = super::alloc::zeroed(total_vf, 0u16);
+    let mut vert_edges = super::alloc::zeroed(total_ve, 0u32);
+    let mut vert_sharpness = super::alloc::zeroed(cv, 0.0f32);
+    let mut vert_tags = super::alloc::zeroed(cv, 0u16);
+    let mut vert_rule = super::alloc::filled(cv, rule::SMOOTH);
     let (vf_v, vf_e) = vert_faces.split_at_mut(pvf);
     let (vl_v, vl_e) = vert_face_local.split_at_mut(pvf);
     let (ve_v, ve_e) = vert_edges.split_at_mut(pve);
@@ -294,7 +294,7 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
         });
 
     // Holes: the four children of a hole.
-    let mut face_is_hole = vec![false; cf];
+    let mut face_is_hole = super::alloc::zeroed(cf, false);
     if p.face_is_hole.iter().any(|&h| h) {
         for f in 0..nf {
             if p.face_is_hole[f] {

@@ -124,7 +124,7 @@ impl<W: Real> Scratch<W> {
 /// disjoint slices of tables allocated once at their exact size.
 fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable<W> {
     let b = par::bounds(rows);
-    let mut offsets = vec![0u32; rows + 1];
+    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
     par::ranges(&b)
         .into_par_iter()
         .zip(par::split(&mut offsets[1..], &b, |r| r))
@@ -148,8 +148,8 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
         *o = acc;
     }
     let total = acc as usize;
-    let mut indices = vec![0u32; total];
-    let mut weights = vec![W::ZERO; total];
+    let mut indices = super::alloc::zeroed(total, 0u32);
+    let mut weights = super::alloc::zeroed(total, W::ZERO);
     let start = |r: usize| offsets[r] as usize;
     par::ranges(&b)
         .into_par_iter()
@@ -180,7 +180,7 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
 fn face_table<W: Real>(p: &Topology) -> StencilTable<W> {
     let nf = p.num_faces();
     let b = par::bounds(nf);
-    let mut weights = vec![W::ZERO; p.num_corners()];
+    let mut weights = super::alloc::zeroed(p.num_corners(), W::ZERO);
     let start = |f: usize| p.face_offsets[f] as usize;
     par::ranges(&b)
         .into_par_iter()

@@ -19,6 +19,7 @@
 //! stencils, in any of OpenSubdiv's `FVarLinearInterpolation` modes:
 //! [`Refiner::refine_uvs`], or [`Refiner::fvar_refinement`] to keep the tables.
 
+mod alloc;
 mod fvar_limit;
 mod fvar_propagate;
 mod fvar_stencils;
@@ -309,7 +310,7 @@ impl Refiner {
     pub fn refine_positions<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
         let mut cur = base.to_vec();
         for s in &self.stencils {
-            let mut dst = vec![[0.0; N]; s.num_rows()];
+            let mut dst = alloc::zeroed(s.num_rows(), [0.0f32; N]);
             s.apply(&cur, &mut dst);
             cur = dst;
         }

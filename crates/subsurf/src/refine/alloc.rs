@@ -1,0 +1,134 @@
+//! Large refinement tables allocated so that their first touch can map 2 MiB pages.
+//!
+//! Much of a refinement step's time is the kernel handing out fresh pages: each table is new,
+//! and every 4 KiB page is faulted in and zero-filled on its first write. Linux maps
+//! transparent huge pages (2 MiB, one fault for 512 small ones) into a region the process has
+//! advised with `madvise(MADV_HUGEPAGE)` when the system's policy is `madvise` (a common
+//! default, `/sys/kernel/mm/transparent_hugepage/enabled`), and into any region under
+//! `always`. A huge page needs a whole, aligned 2 MiB window of one mapping with nothing in it
+//! touched yet; the allocator places a large table in a mapping of its own, which the kernel
+//! merges with its neighbours of the same advice, so windows across the tables of one level
+//! (allocated together, filled after) qualify too.
+//!
+//! [`zeroed`] and [`filled`] allocate a table and advise the pages it spans before anything
+//! writes them; elsewhere than Linux, or for tables under [`ADVISE_MIN`] bytes, they are
+//! `vec![x; len]`. A zero table costs no extra pass: a large zeroed allocation is fresh memory
+//! that the allocator does not write, so the builder's first write is its first touch.
+
+/// Size of a transparent huge page on the platforms advised (x86-64 and aarch64 with 4 KiB
+/// base pages).
+#[cfg(test)]
+const HUGE_PAGE: usize = 2 << 20;
+
+/// Base page size assumed when rounding a buffer out to whole pages.
+const SMALL_PAGE: usize = 4096;
+
+/// Smallest table (in bytes) advised: smaller ones come from the allocator's shared heap,
+/// rarely span a whole huge page, and are left alone.
+pub(crate) const ADVISE_MIN: usize = 1 << 18;
+
+/// A table of `len` copies of `zero`, the pages it spans advised for transparent huge pages
+/// before first touch where large enough. `zero` is a value of all zero bits (`0`, `0.0`,
+/// `false`, arrays of those): the allocator then hands out memory it has not written.
+pub(crate) fn zeroed<T: Clone>(len: usize, zero: T) -> Vec<T> {
+    let v = vec![zero; len];
+    advise_huge(&v);
+    v
+}
+
+/// A table of `len` copies of `x` (any value), advised as [`zeroed`] before it is filled.
+pub(crate) fn filled<T: Copy>(len: usize, x: T) -> Vec<T> {
+    let mut v = Vec::with_capacity(len);
+    advise_huge(v.spare_capacity_mut());
+    v.resize(len, x);
+    v
+}
+
+/// Advises the pages spanned by `v` (rounded out to whole 4 KiB pages) for transparent huge
+/// pages: Linux only, a no-op elsewhere and for buffers under [`ADVISE_MIN`] bytes. Only pages
+/// not yet touched are affected, so call it before the first write. Returns whether a range
+/// was advised and accepted.
+pub(crate) fn advise_huge<T>(v: &[T]) -> bool {
+    let bytes = std::mem::size_of_val(v);
+    if bytes < ADVISE_MIN {
+        return false;
+    }
+    let start = v.as_ptr() as usize;
+    let first = start / SMALL_PAGE * SMALL_PAGE;
+    let end = (start + bytes).next_multiple_of(SMALL_PAGE);
+    sys::madvise_huge(first, end - first)
+}
+
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+mod sys {
+    /// `madvise(addr, len, MADV_HUGEPAGE)`; whether the kernel accepted it.
+    pub(super) fn madvise_huge(addr: usize, len: usize) -> bool {
+        // SAFETY: `addr` is page aligned and `addr..addr + len` is the caller's live buffer
+        // rounded out to whole pages, all mapped (a page holding part of a live allocation is
+        // mapped in full). MADV_HUGEPAGE is advice only: it sets how the kernel backs pages of
+        // the range not yet touched (and may let the kernel merge small pages later), and never
+        // frees memory or changes its contents, so no value, ours or a neighbouring
+        // allocation's, changes and no Rust reference is invalidated. A kernel without THP
+        // answers EINVAL, reported as `false` and otherwise ignored.
+        unsafe { libc::madvise(addr as *mut libc::c_void, len, libc::MADV_HUGEPAGE) == 0 }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+mod sys {
+    pub(super) fn madvise_huge(_addr: usize, _len: usize) -> bool {
+        false
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn small_tables_are_plain_zeros() {
+        let v: Vec<u32> = zeroed(1000, 0u32);
+        assert_eq!(v.len(), 1000);
+        assert!(v.iter().all(|&x| x == 0));
+        assert!(!advise_huge(&v));
+    }
+
+    #[test]
+    fn large_tables_are_zeros_and_stay_writable() {
+        let n = 3 * HUGE_PAGE / 4 + 12345;
+        assert!(4 * n >= ADVISE_MIN);
+        let mut v: Vec<u32> = zeroed(n, 0u32);
+        assert_eq!(v.len(), n);
+        assert!(v.iter().all(|&x| x == 0));
+        for (i, x) in v.iter_mut().enumerate() {
+            *x = i as u32;
+        }
+        assert!(v.iter().enumerate().all(|(i, &x)| x == i as u32));
+        let f: Vec<[f32; 2]> = zeroed(HUGE_PAGE, [0.0f32; 2]);
+        assert!(f.iter().all(|x| *x == [0.0, 0.0]));
+    }
+
+    /// Where the kernel supports transparent huge pages, advising a large table succeeds, and
+    /// the table, and the memory around it, read back what was written before and after.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn advice_is_accepted_where_thp_exists() {
+        if std::fs::metadata("/sys/kernel/mm/transparent_hugepage/enabled").is_err() {
+            return;
+        }
+        // Neighbours written before the advice, sharing pages with the table.
+        let before: Vec<u32> = (0..1000).collect();
+        let mut v = filled(3 * HUGE_PAGE / 4 + 1, 5u32);
+        let after: Vec<u32> = (0..1000).rev().collect();
+        let mut w = vec![0u8; 3 * HUGE_PAGE];
+        assert!(advise_huge(&w));
+        assert!(v.iter().all(|&x| x == 5));
+        w.iter_mut().step_by(4096).for_each(|x| *x = 7);
+        assert_eq!(w.iter().filter(|&&x| x == 7).count(), 3 * HUGE_PAGE / 4096);
+        v[12345] = 6;
+        assert_eq!(v.iter().filter(|&&x| x == 6).count(), 1);
+        assert!(before.iter().enumerate().all(|(i, &x)| x == i as u32));
+        assert!(after.iter().rev().enumerate().all(|(i, &x)| x == i as u32));
+    }
+}
