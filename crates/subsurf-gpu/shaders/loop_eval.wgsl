@@ -167,26 +167,51 @@ fn fold_boundary(w: ptr<function, array<f32, 18>>, mask: u32) {
     }
 }
 
-fn box_spline_weights(s: f32, t: f32, ds: u32, dt: u32, mask: u32) -> array<f32, 18> {
-    var m: array<f32, 15>;
+// Weights of the points: position and the two first derivatives.
+struct Weights {
+    p: array<f32, 18>,
+    du: array<f32, 18>,
+    dv: array<f32, 18>,
+}
+
+// Box-spline weights at (s, t), boundary folded; the three sums share one pass over the
+// coefficients (each is the library's sum, in its order).
+fn box_spline_weights(s: f32, t: f32, mask: u32) -> Weights {
+    var mp: array<f32, 15>;
+    var mu: array<f32, 15>;
+    var mv: array<f32, 15>;
     for (var k = 0u; k < 15u; k++) {
-        m[k] = monomial(k, s, t, ds, dt);
+        mp[k] = monomial(k, s, t, 0u, 0u);
+        mu[k] = monomial(k, s, t, 1u, 0u);
+        mv[k] = monomial(k, s, t, 0u, 1u);
     }
-    var w: array<f32, 18>;
+    // Three arrays, not a Weights: naga 30's SPIR-V output fails on a pointer to a member.
+    var wp: array<f32, 18>;
+    var wu: array<f32, 18>;
+    var wv: array<f32, 18>;
     for (var i = 0u; i < 12u; i++) {
-        var acc = 0.0;
+        var ap = 0.0;
+        var au = 0.0;
+        var av = 0.0;
         for (var k = 0u; k < 15u; k++) {
             let c = BOX_COEFFS[15u * i + k];
             if c != 0 {
-                acc = acc + f32(c) * m[k];
+                let cf = f32(c);
+                ap = ap + cf * mp[k];
+                au = au + cf * mu[k];
+                av = av + cf * mv[k];
             }
         }
-        w[i] = acc * TWELFTH;
+        wp[i] = ap * TWELFTH;
+        wu[i] = au * TWELFTH;
+        wv[i] = av * TWELFTH;
     }
     if mask != 0u {
-        fold_boundary(&w, mask);
+        fold_boundary(&wp, mask);
+        fold_boundary(&wu, mask);
+        fold_boundary(&wv, mask);
     }
-    return w;
+    return Weights(wp, wu, wv);
 }
 
 // Exponents (i, j, k) of u^i v^j w^k of Bezier point n (rows of constant j).
@@ -218,20 +243,16 @@ fn factorial(n: u32) -> u32 {
     return r;
 }
 
-// Weight of Bezier point n: which = 0 position, 1 d/ds = du - dw, 2 d/dt = dv - dw.
-fn bezier_weight(n: u32, uvw: vec3<f32>, which: u32) -> f32 {
+// Weights of Bezier point n: position, d/ds = du - dw, d/dt = dv - dw. The library sums
+// c * partial with c = +-1: exact, so a plain sum and difference.
+fn bezier_weights(n: u32, uvw: vec3<f32>) -> vec3<f32> {
     let e = bezier_exponents(n);
     let multinomial = f32(24u / (factorial(e.x) * factorial(e.y) * factorial(e.z)));
-    // The library sums c * partial with c = +-1: exact, so a plain sum and difference.
-    var sum = 0.0;
-    if which == 0u {
-        sum = sum + partial(uvw, e, vec3<u32>(0u, 0u, 0u));
-    } else {
-        let d = select(vec3<u32>(0u, 1u, 0u), vec3<u32>(1u, 0u, 0u), which == 1u);
-        sum = sum + partial(uvw, e, d);
-        sum = sum - partial(uvw, e, vec3<u32>(0u, 0u, 1u));
-    }
-    return multinomial * sum;
+    let dw = partial(uvw, e, vec3<u32>(0u, 0u, 1u));
+    let p = 0.0 + partial(uvw, e, vec3<u32>(0u, 0u, 0u));
+    let ds = (0.0 + partial(uvw, e, vec3<u32>(1u, 0u, 0u))) - dw;
+    let dt = (0.0 + partial(uvw, e, vec3<u32>(0u, 1u, 0u))) - dw;
+    return vec3<f32>(multinomial * p, multinomial * ds, multinomial * dt);
 }
 
 // (a / (a + b), b / (a + b)), or (1, 0) where a + b is not positive.
@@ -243,21 +264,22 @@ fn blend_pair(a: f32, b: f32) -> vec2<f32> {
     return vec2<f32>(1.0, 0.0);
 }
 
-fn gregory_weights(s: f32, t: f32, g: array<f32, 6>, which: u32) -> array<f32, 18> {
+fn gregory_weights(s: f32, t: f32, g: array<f32, 6>) -> Weights {
     let uvw = vec3<f32>(s, t, 1.0 - s - t);
-    var b: array<f32, 15>;
+    var b: array<vec3<f32>, 15>;
     for (var n = 0u; n < 15u; n++) {
-        b[n] = bezier_weight(n, uvw, which);
+        b[n] = bezier_weights(n, uvw);
     }
-    var w: array<f32, 18>;
+    var w: Weights;
     for (var k = 0u; k < 18u; k++) {
-        let x = b[GREGORY_BEZIER[k]];
+        var x = b[GREGORY_BEZIER[k]];
         let r = GREGORY_BLEND[k];
         if r < 6u {
-            w[k] = x * g[r];
-        } else {
-            w[k] = x;
+            x = x * g[r];
         }
+        w.p[k] = x.x;
+        w.du[k] = x.y;
+        w.dv[k] = x.z;
     }
     return w;
 }
@@ -301,23 +323,16 @@ fn eval_raw(index: u32, u: f32, v: f32) -> Eval {
         s = scale - pu - u * scale;
         t = scale - pv - v * scale;
     }
-    var wp: array<f32, 18>;
-    var wu: array<f32, 18>;
-    var wv: array<f32, 18>;
+    var w: Weights;
     let regular = kind == KIND_BOX_SPLINE;
     if regular {
-        wp = box_spline_weights(s, t, 0u, 0u, boundary);
-        wu = box_spline_weights(s, t, 1u, 0u, boundary);
-        wv = box_spline_weights(s, t, 0u, 1u, boundary);
+        w = box_spline_weights(s, t, boundary);
     } else {
-        let w = 1.0 - s - t;
+        let c = 1.0 - s - t;
         let g0 = blend_pair(s, t);
-        let g1 = blend_pair(t, w);
-        let g2 = blend_pair(w, s);
-        let g = array<f32, 6>(g0.x, g0.y, g1.x, g1.y, g2.x, g2.y);
-        wp = gregory_weights(s, t, g, 0u);
-        wu = gregory_weights(s, t, g, 1u);
-        wv = gregory_weights(s, t, g, 2u);
+        let g1 = blend_pair(t, c);
+        let g2 = blend_pair(c, s);
+        w = gregory_weights(s, t, array<f32, 6>(g0.x, g0.y, g1.x, g1.y, g2.x, g2.y));
     }
     let a = select(1.0, -1.0, is_rotated) * scale;
     let count = select(18u, 12u, regular);
@@ -326,9 +341,9 @@ fn eval_raw(index: u32, u: f32, v: f32) -> Eval {
     let x0 = point(first + select(0u, 4u, regular));
     for (var k = 0u; k < count; k++) {
         let x = point(first + k) - x0;
-        r.p += wp[k] * x;
-        r.du += (wu[k] * a) * x;
-        r.dv += (wv[k] * a) * x;
+        r.p += w.p[k] * x;
+        r.du += (w.du[k] * a) * x;
+        r.dv += (w.dv[k] * a) * x;
     }
     r.p += x0;
     r.found = true;

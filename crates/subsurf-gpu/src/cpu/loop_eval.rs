@@ -236,25 +236,34 @@ fn fold_boundary(w: &mut W18, mask: u32) {
     }
 }
 
-/// Box-spline weights of the derivative `(ds, dt)` at `(s, t)`, boundary folded.
-fn box_spline_weights(s: f32, t: f32, ds: u32, dt: u32, mask: u32) -> W18 {
-    let mut m = [0.0f32; 15];
-    for (k, x) in m.iter_mut().enumerate() {
-        *x = monomial(k, s, t, ds, dt);
+/// Box-spline weights (position, `∂/∂s`, `∂/∂t`) at `(s, t)`, boundary folded; the three
+/// sums share one pass over the coefficients (each is the library's sum, in its order).
+fn box_spline_weights(s: f32, t: f32, mask: u32) -> [W18; 3] {
+    let (mut mp, mut mu, mut mv) = ([0.0f32; 15], [0.0f32; 15], [0.0f32; 15]);
+    for k in 0..15 {
+        mp[k] = monomial(k, s, t, 0, 0);
+        mu[k] = monomial(k, s, t, 1, 0);
+        mv[k] = monomial(k, s, t, 0, 1);
     }
-    let mut w = [0.0f32; 18];
-    for i in 0..12 {
-        let mut acc = 0.0f32;
-        for k in 0..15 {
-            let c = BOX_COEFFS[i][k];
+    let mut w = [[0.0f32; 18]; 3];
+    for (i, row) in BOX_COEFFS.iter().enumerate() {
+        let (mut ap, mut au, mut av) = (0.0f32, 0.0f32, 0.0f32);
+        for (k, &c) in row.iter().enumerate() {
             if c != 0 {
-                acc += c as f32 * m[k];
+                let cf = c as f32;
+                ap += cf * mp[k];
+                au += cf * mu[k];
+                av += cf * mv[k];
             }
         }
-        w[i] = acc * TWELFTH;
+        w[0][i] = ap * TWELFTH;
+        w[1][i] = au * TWELFTH;
+        w[2][i] = av * TWELFTH;
     }
     if mask != 0 {
-        fold_boundary(&mut w, mask);
+        for x in &mut w {
+            fold_boundary(x, mask);
+        }
     }
     w
 }
@@ -289,21 +298,16 @@ fn factorial(n: u32) -> u32 {
     (1..=n).product()
 }
 
-/// Weight of Bézier point `n` for `which` = 0 (position), 1 (`∂/∂s = ∂u − ∂w`) or
-/// 2 (`∂/∂t = ∂v − ∂w`).
-fn bezier_weight(n: u32, uvw: V, which: u32) -> f32 {
+/// Weights of Bézier point `n`: position, `∂/∂s = ∂u − ∂w`, `∂/∂t = ∂v − ∂w`. The library
+/// sums `c · partial` with `c = ±1`: exact, so a plain sum and difference.
+fn bezier_weights(n: u32, uvw: V) -> V {
     let e = bezier_exponents(n);
     let multinomial = (24 / (factorial(e[0]) * factorial(e[1]) * factorial(e[2]))) as f32;
-    // The library sums `c · partial` with `c = ±1`: exact, so a plain sum and difference.
-    let mut sum = 0.0f32;
-    if which == 0 {
-        sum += partial(uvw, e, [0, 0, 0]);
-    } else {
-        let d = if which == 1 { [1, 0, 0] } else { [0, 1, 0] };
-        sum += partial(uvw, e, d);
-        sum -= partial(uvw, e, [0, 0, 1]);
-    }
-    multinomial * sum
+    let dw = partial(uvw, e, [0, 0, 1]);
+    let p = 0.0 + partial(uvw, e, [0, 0, 0]);
+    let ds = (0.0 + partial(uvw, e, [1, 0, 0])) - dw;
+    let dt = (0.0 + partial(uvw, e, [0, 1, 0])) - dw;
+    [multinomial * p, multinomial * ds, multinomial * dt]
 }
 
 /// `u/(u+v), v/(u+v), v/(v+w), w/(v+w), w/(w+u), u/(w+u)`, a pair `(1, 0)` where its
@@ -324,18 +328,23 @@ fn blend_factors(s: f32, t: f32) -> [f32; 6] {
     [g0, g1, g2, g3, g4, g5]
 }
 
-/// Gregory-triangle weights of `which` (as [`bezier_weight`]) at `(s, t)`.
-fn gregory_weights(s: f32, t: f32, g: &[f32; 6], which: u32) -> W18 {
+/// Gregory-triangle weights (position, `∂/∂s`, `∂/∂t`) at `(s, t)` with blend factors `g`.
+fn gregory_weights(s: f32, t: f32, g: &[f32; 6]) -> [W18; 3] {
     let uvw = [s, t, 1.0 - s - t];
-    let mut b = [0.0f32; 15];
+    let mut b = [[0.0f32; 3]; 15];
     for (n, x) in b.iter_mut().enumerate() {
-        *x = bezier_weight(n as u32, uvw, which);
+        *x = bezier_weights(n as u32, uvw);
     }
-    let mut w = [0.0f32; 18];
+    let mut w = [[0.0f32; 18]; 3];
     for k in 0..18 {
-        let x = b[GREGORY_BEZIER[k] as usize];
+        let mut x = b[GREGORY_BEZIER[k] as usize];
         let r = GREGORY_BLEND[k] as usize;
-        w[k] = if r < 6 { x * g[r] } else { x };
+        if r < 6 {
+            x = x.map(|y| y * g[r]);
+        }
+        for (d, y) in x.into_iter().enumerate() {
+            w[d][k] = y;
+        }
     }
     w
 }
@@ -354,19 +363,10 @@ pub fn patch_weights(kind: u32, field1: u32, u: f32, v: f32) -> (W18, W18, W18) 
     } else {
         (u * scale - pu, v * scale - pv)
     };
-    let (p, mut du, mut dv) = if kind == KIND_BOX_SPLINE {
-        (
-            box_spline_weights(s, t, 0, 0, boundary),
-            box_spline_weights(s, t, 1, 0, boundary),
-            box_spline_weights(s, t, 0, 1, boundary),
-        )
+    let [p, mut du, mut dv] = if kind == KIND_BOX_SPLINE {
+        box_spline_weights(s, t, boundary)
     } else {
-        let g = blend_factors(s, t);
-        (
-            gregory_weights(s, t, &g, 0),
-            gregory_weights(s, t, &g, 1),
-            gregory_weights(s, t, &g, 2),
-        )
+        gregory_weights(s, t, &blend_factors(s, t))
     };
     let sign = if rotated { -1.0 } else { 1.0 };
     let a = sign * scale;
