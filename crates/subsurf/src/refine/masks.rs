@@ -289,8 +289,12 @@ impl LevelStencils {
         }
         let fd: &[[f32; N]] = fd;
         let p = self.num_parent_vertices;
-        let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
-        let run = |t: &StencilTable, out: &mut [[f32; N]]| {
+        fn run<'s, const N: usize>(
+            t: &StencilTable,
+            out: &mut [[f32; N]],
+            x: impl Fn(usize) -> &'s [f32; N] + Sync + Copy,
+            parallel: bool,
+        ) {
             if parallel {
                 const CHUNK: usize = 4096;
                 out.par_chunks_mut(CHUNK)
@@ -299,9 +303,17 @@ impl LevelStencils {
             } else {
                 t.eval_rows(0, out, x);
             }
-        };
-        run(&self.vertex, vd);
-        run(&self.edge, ed);
+        }
+        if fd.is_empty() {
+            // No face points (a Loop step): every input is a parent vertex.
+            let x = |k: usize| &src[k];
+            run(&self.vertex, vd, x, parallel);
+            run(&self.edge, ed, x, parallel);
+        } else {
+            let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
+            run(&self.vertex, vd, x, parallel);
+            run(&self.edge, ed, x, parallel);
+        }
     }
 
     /// The same step as one table over the parent vertices only (face points expanded and

@@ -119,6 +119,7 @@ impl StencilTable {
             j += n;
             *o = match n {
                 4 => row(&ri[..4], &rw[..4]),
+                7 => row(&ri[..7], &rw[..7]),
                 9 => row(&ri[..9], &rw[..9]),
                 _ => row(ri, rw),
             };
