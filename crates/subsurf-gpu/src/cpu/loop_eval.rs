@@ -33,6 +33,10 @@
 
 use crate::shared::LoopConfig;
 use subsurf::limit::loop_eval::LoopLimit;
+// Stam's coefficients (times 12) of the 12 box-spline basis functions, their monomials'
+// exponents and the point rotation: the library's tables (`subsurf::patch::box_spline`), which
+// the WGSL kernel repeats as private arrays.
+use subsurf::patch::box_spline::{COEFFS as BOX_COEFFS, MONOMIALS, ROTATE};
 
 /// Invocations per workgroup (same as the shader's `WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
@@ -51,45 +55,6 @@ const _: () = assert!(WORKGROUP_SIZE == crate::shader_consts::LOOP_EVAL_WORKGROU
 
 /// `1/12` rounded to f32, the common factor of Stam's coefficients.
 const TWELFTH: f32 = (1.0f64 / 12.0) as f32;
-
-/// Stam's coefficients (times 12) of the 12 box-spline basis functions in the monomials
-/// `1, s, t, s², st, t², s³, s²t, st², t³, s⁴, s³t, s²t², st³, t⁴` (row `i`: point `i`).
-const BOX_COEFFS: [[i32; 15]; 12] = [
-    [1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1],
-    [1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1],
-    [0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0],
-    [1, -4, -2, 6, 6, 0, -4, -6, 0, 2, 1, 2, 0, -2, -1],
-    [6, 0, 0, -12, -12, -12, 8, 12, 12, 8, -1, -2, 0, -2, -1],
-    [1, 4, 2, 6, 6, 0, -4, -6, -12, -4, -1, -2, 0, 4, 2],
-    [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 2, 0, 0, 0],
-    [1, -2, 2, 0, -6, 0, 2, 6, 0, -4, -1, -2, 0, 4, 2],
-    [1, 2, 4, 0, 6, 6, -4, -12, -6, -4, 2, 4, 0, -2, -1],
-    [0, 0, 0, 0, 0, 0, 2, 6, 6, 2, -1, -2, 0, -2, -1],
-    [0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -2, -1],
-    [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 1],
-];
-
-/// Exponents `(a, b)` of monomial `m = s^a t^b`.
-const MONOMIALS: [(u32, u32); 15] = [
-    (0, 0),
-    (1, 0),
-    (0, 1),
-    (2, 0),
-    (1, 1),
-    (0, 2),
-    (3, 0),
-    (2, 1),
-    (1, 2),
-    (0, 3),
-    (4, 0),
-    (3, 1),
-    (2, 2),
-    (1, 3),
-    (0, 4),
-];
-
-/// The rotation of the 12 points taking corner `k` to corner `k + 1`.
-const ROTATE: [u32; 12] = [6, 9, 11, 2, 5, 8, 10, 1, 4, 7, 0, 3];
 
 /// Phantom rules `P[r0] = P[r1] + P[r2] − P[r3]` of edge 0 and corner 0: edge 0's first
 /// point without / with edge 2 on the boundary, its middle point, its last point without /
@@ -187,7 +152,7 @@ fn falling(n: u32, k: u32) -> f32 {
 
 /// `∂^ds_s ∂^dt_t` of monomial `m` at `(s, t)`.
 fn monomial(m: usize, s: f32, t: f32, ds: u32, dt: u32) -> f32 {
-    let (a, b) = MONOMIALS[m];
+    let (a, b) = (u32::from(MONOMIALS[m].0), u32::from(MONOMIALS[m].1));
     if a < ds || b < dt {
         return 0.0;
     }
@@ -197,7 +162,7 @@ fn monomial(m: usize, s: f32, t: f32, ds: u32, dt: u32) -> f32 {
 fn rotated(i: u32, k: u32) -> u32 {
     let mut r = i;
     for _ in 0..k {
-        r = ROTATE[r as usize];
+        r = ROTATE[r as usize] as u32;
     }
     r
 }
@@ -250,7 +215,7 @@ fn box_spline_weights(s: f32, t: f32, mask: u32) -> [W18; 3] {
         let (mut ap, mut au, mut av) = (0.0f32, 0.0f32, 0.0f32);
         for (k, &c) in row.iter().enumerate() {
             if c != 0 {
-                let cf = c as f32;
+                let cf = f32::from(c);
                 ap += cf * mp[k];
                 au += cf * mu[k];
                 av += cf * mv[k];

@@ -52,7 +52,7 @@ use crate::real::Real;
 
 /// Stam's coefficients (times 12) of the 12 box-spline basis functions in the monomials
 /// `1, s, t, s², st, t², s³, s²t, st², t³, s⁴, s³t, s²t², st³, t⁴`.
-const COEFFS: [[i8; 15]; 12] = [
+pub const COEFFS: [[i8; 15]; 12] = [
     [1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1],
     [1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1],
     [0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0],
@@ -68,7 +68,7 @@ const COEFFS: [[i8; 15]; 12] = [
 ];
 
 /// Exponents `(a, b)` of monomial `m = s^a t^b`, in the order of [`COEFFS`].
-const MONOMIALS: [(u8, u8); 15] = [
+pub const MONOMIALS: [(u8, u8); 15] = [
     (0, 0),
     (1, 0),
     (0, 1),
