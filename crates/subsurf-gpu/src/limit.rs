@@ -442,32 +442,9 @@ impl GpuLimit {
         queries: &[(u32, f32, f32)],
         derivatives: bool,
     ) -> Result<GpuSamples> {
-        if let Some(i) = queries
-            .iter()
-            .position(|q| !(q.1.is_finite() && q.2.is_finite()))
-        {
-            return Err(GpuError::BufferMismatch(format!(
-                "sample {i} has a non-finite parameter {:?}",
-                queries[i]
-            )));
-        }
-        let stride = if derivatives { 12 } else { 6 };
-        let count = queries.len();
-        if count >= u32::MAX as usize / stride {
-            return Err(GpuError::BufferMismatch(format!(
-                "{count} samples exceed 32-bit indexing"
-            )));
-        }
+        let (count, stride) = check_samples(queries, derivatives)?;
         let words = pack_queries(queries);
-        let out_bytes = (count * stride) as u64 * WORD;
-        let output = ctx.scoped(|| {
-            Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("limit samples"),
-                size: out_bytes.max(WORD),
-                usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX,
-                mapped_at_creation: false,
-            }))
-        })?;
+        let output = sample_output(ctx, "limit samples", count, stride)?;
         let layout = self.pipeline.get_bind_group_layout(0);
         let (patch_map, patch_info, cvs) = match &self.tables {
             Tables::Whole {
@@ -667,4 +644,48 @@ fn part(
 
 fn entry(binding: u32, resource: wgpu::BindingResource<'_>) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry { binding, resource }
+}
+
+/// Checks a sample set for evaluation (finite parameters, 32-bit indexing of the output);
+/// returns the number of samples and the output words per sample (12 with derivatives, else
+/// 6).
+pub(crate) fn check_samples(
+    queries: &[(u32, f32, f32)],
+    derivatives: bool,
+) -> Result<(usize, usize)> {
+    if let Some(i) = queries
+        .iter()
+        .position(|q| !(q.1.is_finite() && q.2.is_finite()))
+    {
+        return Err(GpuError::BufferMismatch(format!(
+            "sample {i} has a non-finite parameter {:?}",
+            queries[i]
+        )));
+    }
+    let stride = if derivatives { 12 } else { 6 };
+    let count = queries.len();
+    if count >= u32::MAX as usize / stride {
+        return Err(GpuError::BufferMismatch(format!(
+            "{count} samples exceed 32-bit indexing"
+        )));
+    }
+    Ok((count, stride))
+}
+
+/// The output buffer of `count` evaluated samples of `stride` words (storage, and a vertex
+/// buffer for drawing).
+pub(crate) fn sample_output(
+    ctx: &GpuContext,
+    label: &str,
+    count: usize,
+    stride: usize,
+) -> Result<wgpu::Buffer> {
+    ctx.scoped(|| {
+        Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size: ((count * stride) as u64 * WORD).max(WORD),
+            usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX,
+            mapped_at_creation: false,
+        }))
+    })
 }

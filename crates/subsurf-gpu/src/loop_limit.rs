@@ -17,7 +17,7 @@
 //! whose points exceed one binding (about 620,000 end caps at 128 MiB) is refused with
 //! [`GpuError::TooLarge`].
 
-use crate::buffers::{storage_buffer_init, STORAGE_USAGE};
+use crate::buffers::storage_buffer_init;
 use crate::context::GpuContext;
 use crate::cpu::loop_eval::{pack_queries, LoopTables, QUERY_WORDS, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
@@ -108,30 +108,8 @@ impl GpuLoopLimit {
         queries: &[(u32, f32, f32)],
         derivatives: bool,
     ) -> Result<GpuSamples> {
-        if let Some(i) = queries
-            .iter()
-            .position(|q| !(q.1.is_finite() && q.2.is_finite()))
-        {
-            return Err(GpuError::BufferMismatch(format!(
-                "sample {i} has a non-finite parameter {:?}",
-                queries[i]
-            )));
-        }
-        let stride = if derivatives { 12 } else { 6 };
-        let count = queries.len();
-        if count >= u32::MAX as usize / stride {
-            return Err(GpuError::BufferMismatch(format!(
-                "{count} samples exceed 32-bit indexing"
-            )));
-        }
-        let output = ctx.scoped(|| {
-            Ok(ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("Loop limit samples"),
-                size: ((count * stride) as u64 * WORD).max(WORD),
-                usage: STORAGE_USAGE | wgpu::BufferUsages::VERTEX,
-                mapped_at_creation: false,
-            }))
-        })?;
+        let (count, stride) = crate::limit::check_samples(queries, derivatives)?;
+        let output = crate::limit::sample_output(ctx, "Loop limit samples", count, stride)?;
         let words = pack_queries(queries);
         let queries_buf =
             storage_buffer_init(ctx, "Loop limit queries", bytemuck::cast_slice(&words))?;
