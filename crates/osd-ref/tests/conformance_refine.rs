@@ -210,6 +210,11 @@ fn lean_last_level_matches_opensubdiv_lean() {
         "catmark_nonman_verts",
         "catmark_pole64",
         "bilinear_nonquads1",
+        "loop_chaikin1",
+        "loop_cube_creases1",
+        "loop_nonman_verts",
+        "loop_pole64",
+        "loop_saddle_edgecorner",
     ] {
         let mesh =
             subsurf::io::obj::read_file(common::shapes_dir().join(format!("{name}.obj"))).unwrap();

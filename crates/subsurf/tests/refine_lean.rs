@@ -1,4 +1,4 @@
-//! A lean last level (`RefineOptions::lean`) against a full one on every catmark and bilinear
+//! A lean last level (`RefineOptions::lean`) against a full one on every catmark, bilinear and Loop
 //! regression shape: the same face lists, holes and vertex count, bit-identical stencils and
 //! positions, and the same limit positions and UVs (rebuilt on demand). One-shot refinement
 //! (`refine_once`, no tables kept) against the `Refiner`, bit for bit.
@@ -9,13 +9,13 @@ use subsurf::{CreaseMethod, FVarLinearInterpolation, Mesh, RefineOptions, Refine
 
 fn shapes() -> Vec<PathBuf> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
-    subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_"]).unwrap()
+    subsurf::shapes::regression_shapes(&dir, &["catmark_", "bilinear_", "loop_"]).unwrap()
 }
 
 #[test]
 fn lean_last_level_matches_full_on_every_shape() {
     let paths = shapes();
-    assert!(paths.len() >= 60, "regression shapes: {}", paths.len());
+    assert!(paths.len() >= 90, "regression shapes: {}", paths.len());
     for path in paths {
         let name = path.file_stem().unwrap().to_string_lossy().into_owned();
         let mut mesh = subsurf::io::read_path(&path).unwrap();
@@ -111,4 +111,38 @@ fn refine_once_refuses_data_of_the_wrong_length() {
     let base = Topology::new(&mesh).unwrap();
     let short = &mesh.positions[..mesh.positions.len() - 1];
     assert!(refine_once(base, 2, short, RefineOptions::lean()).is_err());
+}
+
+/// The written (tagged) last level of a lean refiner, of a full one and of `refine_once_mesh`
+/// (full and lean) are one mesh on every creased Loop shape: a lean Loop level derives the
+/// sharpness that remains from its parent, numbering edge points after the vertices.
+#[test]
+fn lean_loop_levels_are_written_with_the_full_level_tags() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
+    let mut tagged = 0;
+    for path in subsurf::shapes::regression_shapes(&dir, &["loop_"]).unwrap() {
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let mesh = subsurf::io::read_path(&path).unwrap();
+        let base = Topology::new(&mesh).unwrap();
+        for level in 1..=2 {
+            let full = Refiner::new(base.clone(), level).unwrap();
+            let lean = Refiner::with_options(base.clone(), level, RefineOptions::lean()).unwrap();
+            let p = full.refine_positions(&mesh.positions);
+            let m = full.to_tagged_mesh(level, p.clone()).unwrap();
+            tagged += (!m.creases.is_empty() || !m.corners.is_empty()) as usize;
+            let l = lean.to_tagged_mesh(level, p).unwrap();
+            assert_eq!(l, m, "{name} L{level}: lean");
+            for options in [RefineOptions::lean(), RefineOptions::default()] {
+                let once = subsurf::refine::refine_once_mesh(
+                    base.clone(),
+                    level,
+                    &mesh.positions,
+                    options,
+                )
+                .unwrap();
+                assert_eq!(once, m, "{name} L{level}: refine_once_mesh {options:?}");
+            }
+        }
+    }
+    assert!(tagged >= 10, "only {tagged} tagged Loop levels");
 }

@@ -159,7 +159,12 @@ fn vertex_rows(
             let faces = p.vertex_faces(v);
             // Loop's mask has no face weights (no face points): the face loop adds nothing.
             let mask = if tri_split {
-                super::loop_masks::loop_vertex_mask(p, c, v, &mut s.masks)
+                super::loop_masks::loop_vertex_mask(
+                    p,
+                    super::last_level::ChildSharpness::of_child(p, c),
+                    v,
+                    &mut s.masks,
+                )
             } else {
                 s.masks.vertex_mask_at(p, c, v)
             };

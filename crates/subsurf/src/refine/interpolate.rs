@@ -69,13 +69,21 @@ fn refine_once_with<const N: usize>(
     }
     if base.options.scheme == crate::options::Scheme::Loop {
         // Loop levels are refined through their tables (see `Refiner::new_loop`).
-        let mut r = super::Refiner::new_loop(base, level)?;
+        let mut r = super::Refiner::new_loop(base, level, options);
         let values = r.refine_positions(data);
+        let tags = match (tagged, r.is_full(level)) {
+            (false, _) => None,
+            (true, true) => Some(level_tags(r.last())?),
+            (true, false) => {
+                let p = &r.levels[level - 1];
+                let sharpness = ChildSharpnessBuf::new(p);
+                Some(child_level_tags(p, sharpness.view(p), r.last()))
+            }
+        };
         let t = r
             .levels
             .pop()
             .ok_or_else(|| Error::Internal("no base level".into()))?;
-        let tags = if tagged { Some(level_tags(&t)?) } else { None };
         return Ok((t, values, tags));
     }
     let mut tags = None;

@@ -13,11 +13,22 @@ use super::level::{
     child_edge_sharpness, child_end_at_vertex, edge_point_tags, iota, sharp_tag, vertex_child_tags,
 };
 use super::par;
-use crate::options::CreaseMethod;
+use crate::options::{CreaseMethod, Scheme};
 use crate::rules::crease;
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
 use rayon::prelude::*;
+
+/// Number of face points a step from `p` creates: one per face, none under Loop (whose child
+/// numbering is vertex children, then edge points).
+#[inline]
+pub(crate) fn face_points(p: &Topology) -> usize {
+    if p.options.scheme == Scheme::Loop {
+        0
+    } else {
+        p.num_faces()
+    }
+}
 
 /// What the stencils of one step read about the child level: the sharpness of the children
 /// of the parent's vertices and edges, and the rule of every child vertex.
@@ -73,7 +84,7 @@ impl<'a> ChildSharpness<'a> {
         match self {
             ChildSharpness::Stored { rule, .. } => rule[i],
             ChildSharpness::Derived(p) => {
-                let (nv, nf) = (p.num_vertices(), p.num_faces());
+                let (nv, nf) = (p.num_vertices(), face_points(p));
                 if i < nv {
                     let s = crease::decrement(p.vert_sharpness[i]);
                     let pt = p.vert_tags[i];
@@ -135,7 +146,7 @@ impl ChildSharpnessBuf {
         if derivable(p) {
             return ChildSharpnessBuf { stored: None };
         }
-        let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
+        let (nv, nf, ne) = (p.num_vertices(), face_points(p), p.num_edges());
         let mut edge = vec![0.0f32; 2 * ne];
         let mut edge_tags = vec![0u8; 2 * ne];
         child_edge_sharpness(p, &mut edge, &mut edge_tags);

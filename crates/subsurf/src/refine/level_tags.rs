@@ -110,7 +110,7 @@ pub(crate) fn child_level_tags(
     cs: ChildSharpness<'_>,
     child: &Topology,
 ) -> LevelTags {
-    let (nv, nf) = (p.num_vertices(), p.num_faces());
+    let (nv, nf) = (p.num_vertices(), super::last_level::face_points(p));
     let mut creases = Vec::new();
     for e in 0..p.num_edges() {
         let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);

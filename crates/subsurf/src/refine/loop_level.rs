@@ -25,6 +25,7 @@ use crate::error::{MeshError, Result};
 use crate::rules::crease;
 use crate::topology::tags;
 use crate::topology::Topology;
+use rayon::prelude::*;
 
 /// The first face of `t` that is not a triangle, as the error Loop subdivision gives it
 /// (OpenSubdiv's factory refuses such a mesh for the Loop scheme).
@@ -39,11 +40,60 @@ pub fn check_triangles(t: &Topology) -> Result<()> {
     }
 }
 
+/// The four child triangles of a parent triangle with corners `fv` and edge points `e` (edge
+/// point `k` on the edge from corner `k` to corner `k + 1`), in the order above.
+#[inline]
+pub(super) fn child_triangles(fv: &[u32], e: [u32; 3]) -> [u32; 12] {
+    [
+        fv[0], e[0], e[2], e[0], fv[1], e[1], e[2], e[1], fv[2], e[1], e[2], e[0],
+    ]
+}
+
+/// Refines the all-triangle level `p` once keeping only the child's face lists, hole flags
+/// and vertex count (a lean last level, [`super::RefineOptions::lean`]): the face vertices are
+/// those of [`refine_tri_topology`]; every other table is left empty.
+pub(crate) fn refine_tri_face_lists(p: &Topology) -> Topology {
+    let (nv, nf) = (p.num_vertices(), p.num_faces());
+    let fb = super::par::bounds(nf);
+    let mut face_verts = super::alloc::zeroed(12 * nf, 0u32);
+    super::par::ranges(&fb)
+        .into_par_iter()
+        .zip(super::par::split(&mut face_verts, &fb, |f| 12 * f))
+        .for_each(|(r, cfv)| {
+            let base = r.start;
+            for f in r {
+                let fe = &p.face_edges[3 * f..3 * f + 3];
+                let e = [0, 1, 2].map(|k| (nv + fe[k] as usize) as u32);
+                let i = 12 * (f - base);
+                cfv[i..i + 12].copy_from_slice(&child_triangles(&p.face_verts[3 * f..], e));
+            }
+        });
+    let mut face_is_hole = vec![false; 4 * nf];
+    for f in 0..nf {
+        if p.face_is_hole[f] {
+            face_is_hole[4 * f..4 * f + 4].fill(true);
+        }
+    }
+    Topology {
+        options: p.options,
+        num_vertices: nv + p.num_edges(),
+        face_offsets: super::level::iota(4 * nf + 1, |f| 3 * f as u32),
+        face_verts,
+        face_is_hole,
+        ..Default::default()
+    }
+}
+
 /// Refines the all-triangle level `p` once (check with [`check_triangles`] first); returns the
 /// child topology with its sharpness, tags and rules.
 pub fn refine_tri_topology(p: &Topology) -> Result<Topology> {
+    Ok(refine_tri(p))
+}
+
+/// [`refine_tri_topology`], which cannot fail once the level is all triangles.
+pub(super) fn refine_tri(p: &Topology) -> Topology {
     if super::loop_rings::is_manifold(p) {
-        return Ok(super::loop_rings::refine_manifold(p));
+        return super::loop_rings::refine_manifold(p);
     }
     let (nv, ne, nc) = (p.num_vertices(), p.num_edges(), p.num_corners());
     let mut c = super::loop_nonmanifold::child_relations(p);
@@ -97,5 +147,5 @@ pub fn refine_tri_topology(p: &Topology) -> Result<Topology> {
             }
         }
     }
-    Ok(c)
+    c
 }

@@ -4,6 +4,7 @@
 //! A Loop step has no face points, so its [`LevelStencils`] has an empty face table and its
 //! vertex and edge rows refer to parent vertices only.
 
+use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::masks::{build_rows, LevelStencils, Scratch};
 use super::par;
@@ -17,6 +18,12 @@ use rayon::prelude::*;
 /// [`super::loop_level::refine_tri_topology`] builds it): children of vertices, then edge
 /// points.
 pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
+    loop_level_stencils_with(p, ChildSharpness::of_child(p, c))
+}
+
+/// [`loop_level_stencils`] from what the rows read of the child: its sharpness and rules
+/// (stored in a full child, or derived from `p` for a lean last level).
+pub(crate) fn loop_level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
     let nv = p.num_vertices();
     let (vertex, edge) = if super::loop_rings::is_manifold(p) {
         manifold_tables(p, c)
@@ -42,7 +49,7 @@ pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
 /// opposite vertices of an edge can coincide (two triangles on the same three vertices), so
 /// every row's length is known before it is formed and only that pair is merged (in `f64`, as
 /// [`merged_tables`] merges it). Same entries, order and weights as [`merged_tables`].
-fn manifold_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
+fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, StencilTable) {
     let (nv, ne) = (p.num_vertices(), p.num_edges());
     // The smooth rule applies the same weight to every neighbour; that weight
     // `(5/8 - beta^2) / n` is positive (beta <= 5/8), so no entry is dropped.
@@ -92,31 +99,37 @@ fn manifold_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
         },
     );
     // The edge mask and the opposite vertices of edge `e` (the second `u32::MAX` where the
-    // edge has one face or both opposite vertices are one).
+    // edge has one face or both opposite vertices are one). A smooth edge's mask needs no
+    // child rule (`edge_mask` reads it only for a sharp edge), so none is looked up there.
+    let opposite = |e: usize, i: usize| {
+        let o = p.edge_face_offsets[e] as usize + i;
+        let (f, k) = (p.edge_faces[o] as usize, p.edge_face_local[o] as usize);
+        p.face_verts[3 * f + if k == 0 { 2 } else { k - 1 }]
+    };
     let edge_row = |e: usize| {
-        let faces = p.edge_faces(e);
-        let m = edge_mask(p.edge_sharpness[e], c.vert_rule[nv + e], faces.len());
-        let opposite = |i: usize| {
-            let (f, k) = (faces[i] as usize, p.edge_faces_local(e)[i] as usize);
-            p.face_verts[3 * f + (k + 2) % 3]
-        };
-        let o0 = opposite(0);
-        let o1 = if faces.len() == 2 && opposite(1) != o0 {
-            opposite(1)
-        } else {
-            u32::MAX
-        };
-        (m, [o0, o1], faces.len() == 2 && o1 == u32::MAX)
+        let nfaces = (p.edge_face_offsets[e + 1] - p.edge_face_offsets[e]) as usize;
+        let s = p.edge_sharpness[e];
+        let child_rule = if s > 0.0 { c.rule(nv + e) } else { rule::SMOOTH };
+        let m = edge_mask(s, child_rule, nfaces);
+        let o0 = opposite(e, 0);
+        let o1 = if nfaces == 2 { opposite(e, 1) } else { o0 };
+        let o1 = if o1 != o0 { o1 } else { u32::MAX };
+        (m, [o0, o1], nfaces == 2 && o1 == u32::MAX)
     };
     let edge = write_rows(
         ne,
         nv,
         |e, _| {
-            let (m, o, _) = edge_row(e);
-            if m.opposite == 0.0 {
-                2
+            if p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2 {
+                // Smooth: both opposite vertices, merged where they are one.
+                3 + (opposite(e, 0) != opposite(e, 1)) as usize
             } else {
-                3 + (o[1] != u32::MAX) as usize
+                let (m, o, _) = edge_row(e);
+                if m.opposite == 0.0 {
+                    2
+                } else {
+                    3 + (o[1] != u32::MAX) as usize
+                }
             }
         },
         |e, _, idx, wts| {
@@ -190,7 +203,7 @@ where
 
 /// The vertex and edge tables of a step, repeated inputs of a row merged in `f64`: what a
 /// non-manifold level needs, where a row can meet one vertex twice.
-fn merged_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
+fn merged_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, StencilTable) {
     let (nv, ne) = (p.num_vertices(), p.num_edges());
     let vertex = build_rows(nv, nv, |v, b, s: &mut Scratch| {
         if p.vertex_edges(v).is_empty() {
@@ -208,7 +221,7 @@ fn merged_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
     let edge = build_rows(ne, nv, |e, b, _| {
         let ev = p.edge_verts[e];
         let faces = p.edge_faces(e);
-        let m = edge_mask(p.edge_sharpness[e], c.vert_rule[nv + e], faces.len());
+        let m = edge_mask(p.edge_sharpness[e], c.rule(nv + e), faces.len());
         b.add(ev[0], m.vertex);
         b.add(ev[1], m.vertex);
         if m.opposite != 0.0 {
@@ -226,11 +239,10 @@ fn merged_tables(p: &Topology, c: &Topology) -> (StencilTable, StencilTable) {
 /// rules of `p` and its child `c`. `v` must have edges.
 pub(super) fn loop_vertex_mask<'s>(
     p: &Topology,
-    c: &Topology,
+    c: ChildSharpness<'_>,
     v: usize,
     s: &'s mut Scratch,
 ) -> &'s crate::rules::catmark::VertexMask {
-    let nc = p.num_corners();
     let pe = p.vertex_edges(v);
     let nfaces = p.vertex_faces(v).len();
     let pr = p.vert_rule[v];
@@ -247,12 +259,12 @@ pub(super) fn loop_vertex_mask<'s>(
     // The per-thread scratch, not fresh vectors: this runs once per vertex of every level.
     s.ce.clear();
     s.ce.extend((0..pe.len()).map(|i| {
-        c.edge_sharpness[nc + 2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize]
+        c.edge(2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize)
     }));
     vertex_mask(
         nfaces,
-        [pr, c.vert_rule[v]],
-        [p.vert_sharpness[v], c.vert_sharpness[v]],
+        [pr, c.rule(v)],
+        [p.vert_sharpness[v], c.vertex(v)],
         &s.pe,
         &s.ce,
         p.options.crease_method,
@@ -285,34 +297,51 @@ pub fn loop_limit_stencils(t: &Topology) -> StencilTable {
 
 impl super::Refiner {
     /// The Loop refinement of `base` (all triangles, checked by the caller), every level with
-    /// its full topology. The next level's topology is built while the stencils of the step
-    /// to the current one are: both read only that level, so they run side by side
-    /// (`rayon::join`; one after the other on one thread, with the same results).
-    pub(super) fn new_loop(base: Topology, level: usize) -> crate::error::Result<super::Refiner> {
-        use super::loop_level::refine_tri_topology;
+    /// its full topology but a lean last one where `options` say
+    /// ([`super::RefineOptions::lean`]: its face lists only, its stencils reading the child's
+    /// sharpness and rules derived from the parent). The next level's topology is built while
+    /// the stencils of the step to the current one are: both read only that level, so they run
+    /// side by side (`rayon::join`; one after the other on one thread, with the same results).
+    pub(super) fn new_loop(
+        base: Topology,
+        level: usize,
+        options: super::RefineOptions,
+    ) -> super::Refiner {
+        use super::last_level::ChildSharpnessBuf;
+        use super::loop_level::{refine_tri, refine_tri_face_lists};
+        let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
         let mut ahead = None;
         for k in 0..level {
             let parent = &levels[k];
-            let child = match ahead.take() {
-                Some(child) => child,
-                None => refine_tri_topology(parent)?,
-            };
+            if !full(k) {
+                let (s, child) = rayon::join(
+                    || {
+                        let sharpness = ChildSharpnessBuf::new(parent);
+                        loop_level_stencils_with(parent, sharpness.view(parent))
+                    },
+                    || refine_tri_face_lists(parent),
+                );
+                stencils.push(s);
+                levels.push(child);
+                continue;
+            }
+            let child = ahead.take().unwrap_or_else(|| refine_tri(parent));
             let (s, next) = rayon::join(
                 || loop_level_stencils(parent, &child),
-                || (k + 1 < level).then(|| refine_tri_topology(&child)),
+                || (k + 1 < level && full(k + 1)).then(|| refine_tri(&child)),
             );
-            ahead = next.transpose()?;
+            ahead = next;
             stencils.push(s);
             levels.push(child);
         }
-        Ok(super::Refiner {
+        super::Refiner {
             levels,
             stencils,
             limit_table: std::sync::OnceLock::new(),
             frame_plans: std::sync::OnceLock::new(),
-            options: super::RefineOptions::default(),
-        })
+            options,
+        }
     }
 }

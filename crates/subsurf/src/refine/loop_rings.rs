@@ -19,6 +19,7 @@
 //! faces (1 or 2 on a manifold level) has `3k` faces and `2 + 2k` edges; an interior child edge
 //! has two faces, a child of an edge as many as that edge.
 
+use super::loop_level::child_triangles;
 use super::level::{child_edge_sharpness, edge_point_tags, iota, vertex_child_tags};
 use super::par;
 use crate::rules::crease;
@@ -92,9 +93,7 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     let fv = &p.face_verts[3 * f..3 * f + 3];
                     let fe = &p.face_edges[3 * f..3 * f + 3];
                     let e = [ep(fe[0]), ep(fe[1]), ep(fe[2])];
-                    cfv[12 * i..12 * i + 12].copy_from_slice(&[
-                        fv[0], e[0], e[2], e[0], fv[1], e[1], e[2], e[1], fv[2], e[1], e[2], e[0],
-                    ]);
+                    cfv[12 * i..12 * i + 12].copy_from_slice(&child_triangles(fv, e));
                     // pe[k] = [child of edge k at corner k, child at corner k + 1].
                     let pe: [[u32; 2]; 3] = std::array::from_fn(|k| {
                         let ev = p.edge_verts[fe[k] as usize];

@@ -220,7 +220,7 @@ impl Refiner {
     pub fn with_options(base: Topology, level: usize, options: RefineOptions) -> Result<Refiner> {
         check_size(&base, level)?;
         if base.options.scheme == Scheme::Loop {
-            return Self::new_loop(base, level);
+            return Ok(Self::new_loop(base, level, options));
         }
         let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
@@ -276,8 +276,10 @@ impl Refiner {
     /// Level `k` with its full topology: borrowed, or rebuilt from level `k - 1` where the
     /// refiner keeps it lean.
     pub(crate) fn full_level(&self, k: usize) -> std::borrow::Cow<'_, Topology> {
-        if self.is_full(k) || self.levels[0].options.scheme == Scheme::Loop {
+        if self.is_full(k) {
             std::borrow::Cow::Borrowed(&self.levels[k])
+        } else if self.levels[0].options.scheme == Scheme::Loop {
+            std::borrow::Cow::Owned(loop_level::refine_tri(&self.levels[k - 1]))
         } else {
             std::borrow::Cow::Owned(refine_topology(&self.levels[k - 1]))
         }
