@@ -1,0 +1,43 @@
+//! Crease edits only (for profiling `PatchTable::apply_sharpness`): every crease of a mesh
+//! moved from `A` to 3.5 and back `RUNS` times after one untimed first edit.
+//!
+//! `cargo run --release -p subsurf --example crease_edit_only [-- FILE A RUNS]` (default
+//! `testdata/shapes/catmark_car.obj`, `A` = `own` (the mesh's values), 10 runs).
+
+use subsurf::limit::{PatchOptions, PatchTable, SharpnessEdit};
+use subsurf::Topology;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().collect();
+    let path = args
+        .get(1)
+        .map(String::as_str)
+        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let from: Option<f32> = args.get(2).and_then(|s| s.parse().ok());
+    let runs: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(10);
+    let mesh = subsurf::io::read_path(path)?;
+    let topo = Topology::new(&mesh)?;
+    let mut table = PatchTable::build(&topo, &PatchOptions::default())?;
+    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> {
+        mesh.creases
+            .iter()
+            .map(|c| SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness: s.unwrap_or(c.sharpness),
+            })
+            .collect()
+    };
+    table.apply_sharpness(&edits(from))?;
+    let mut outcomes = Vec::new();
+    for _ in 0..runs {
+        for s in [Some(3.5), from] {
+            let o = table.apply_sharpness(&edits(s))?;
+            if !outcomes.contains(&o) {
+                outcomes.push(o);
+            }
+        }
+    }
+    println!("{outcomes:?}");
+    Ok(())
+}
