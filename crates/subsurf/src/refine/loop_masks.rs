@@ -109,7 +109,11 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
     let edge_row = |e: usize| {
         let nfaces = (p.edge_face_offsets[e + 1] - p.edge_face_offsets[e]) as usize;
         let s = p.edge_sharpness[e];
-        let child_rule = if s > 0.0 { c.rule(nv + e) } else { rule::SMOOTH };
+        let child_rule = if s > 0.0 {
+            c.rule(nv + e)
+        } else {
+            rule::SMOOTH
+        };
         let m = edge_mask(s, child_rule, nfaces);
         let o0 = opposite(e, 0);
         let o1 = if nfaces == 2 { opposite(e, 1) } else { o0 };
@@ -258,9 +262,10 @@ pub(super) fn loop_vertex_mask<'s>(
     s.pe.extend(pe.iter().map(|&e| p.edge_sharpness[e as usize]));
     // The per-thread scratch, not fresh vectors: this runs once per vertex of every level.
     s.ce.clear();
-    s.ce.extend((0..pe.len()).map(|i| {
-        c.edge(2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize)
-    }));
+    s.ce.extend(
+        (0..pe.len())
+            .map(|i| c.edge(2 * pe[i] as usize + child_end_at_vertex(p, pe, i, v) as usize)),
+    );
     vertex_mask(
         nfaces,
         [pr, c.rule(v)],

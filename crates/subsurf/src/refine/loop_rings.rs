@@ -19,8 +19,8 @@
 //! faces (1 or 2 on a manifold level) has `3k` faces and `2 + 2k` edges; an interior child edge
 //! has two faces, a child of an edge as many as that edge.
 
-use super::loop_level::child_triangles;
 use super::level::{child_edge_sharpness, edge_point_tags, iota, vertex_child_tags};
+use super::loop_level::child_triangles;
 use super::par;
 use crate::rules::crease;
 use crate::topology::tags::{self, rule};
