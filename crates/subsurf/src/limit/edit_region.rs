@@ -99,30 +99,35 @@ impl Values {
         }
     }
 
-    /// Per edge: changed; per vertex: changed itself or by one of its edges. `None` when
-    /// nothing changed.
-    fn changes(&self, t: &Topology) -> Option<(Vec<bool>, Vec<bool>)> {
-        let edges: Vec<bool> = (0..t.num_edges())
-            .map(|e| {
-                self.edge_sharpness[e].to_bits() != t.edge_sharpness[e].to_bits()
-                    || self.edge_tags[e] != t.edge_tags[e]
-            })
-            .collect();
-        let mut verts: Vec<bool> = (0..t.num_vertices())
-            .map(|v| {
-                self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
-                    || self.vert_tags[v] != t.vert_tags[v]
-                    || self.vert_rule[v] != t.vert_rule[v]
-            })
-            .collect();
-        let mut any = verts.iter().any(|&c| c);
-        for e in (0..t.num_edges()).filter(|&e| edges[e]) {
-            any = true;
-            for v in t.edge_verts[e] {
-                verts[v as usize] = true;
+    /// Per vertex: changed itself or by one of its edges. `None` when nothing changed.
+    /// One pass over the arrays, edges first (an edge marks both ends).
+    fn changes(&self, t: &Topology) -> Option<Vec<bool>> {
+        let mut verts = vec![false; t.num_vertices()];
+        let mut any = false;
+        for (e, ((&a, &b), (&ta, &tb))) in self
+            .edge_sharpness
+            .iter()
+            .zip(&t.edge_sharpness)
+            .zip(self.edge_tags.iter().zip(&t.edge_tags))
+            .enumerate()
+        {
+            if a.to_bits() != b.to_bits() || ta != tb {
+                any = true;
+                for v in t.edge_verts[e] {
+                    verts[v as usize] = true;
+                }
             }
         }
-        any.then_some((edges, verts))
+        for (v, c) in verts.iter_mut().enumerate() {
+            if self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
+                || self.vert_tags[v] != t.vert_tags[v]
+                || self.vert_rule[v] != t.vert_rule[v]
+            {
+                *c = true;
+                any = true;
+            }
+        }
+        any.then_some(verts)
     }
 }
 
@@ -156,7 +161,7 @@ impl<R: Real> PatchTable<R> {
         let mut rows: Vec<(usize, Dirty)> = Vec::new();
         let mut patches: Vec<(u32, PatchType, u8, f32)> = Vec::new();
         for d in 0..num_levels {
-            let Some((_, changed)) = old.changes(&st.trace.levels[d]) else {
+            let Some(changed) = old.changes(&st.trace.levels[d]) else {
                 break;
             };
             if !self.redecide(
@@ -178,7 +183,13 @@ impl<R: Real> PatchTable<R> {
             let (level, child) = (&head[d], &mut tail[0]);
             let sub = &mut st.trace.subs[d];
             let sub_old = Values::of(sub);
-            refresh_sub(level, sub, &self.level_inputs[d], &st.trace.sub_edges[d]);
+            refresh_sub(
+                level,
+                sub,
+                &self.level_inputs[d],
+                &st.trace.sub_edges[d],
+                &changed,
+            );
             old = Values::of(child);
             resharpen(sub, child);
             match self.step_rows(sub, &sub_old, child, &old, d) {
@@ -338,10 +349,22 @@ impl<R: Real> PatchTable<R> {
 
 /// The sub-mesh `sub` of `level` (its vertices `verts`, edges `edges` in the level) given
 /// the level's current values, as [`super::sparse`] makes it: elements whose faces are all
-/// kept take the level's values, the border stays an infinitely sharp boundary.
-fn refresh_sub(level: &Topology, sub: &mut Topology, verts: &[u32], edges: &[u32]) {
+/// kept take the level's values, the border stays an infinitely sharp boundary. Only the
+/// elements at `changed` level vertices are visited (a changed edge marks both ends; a
+/// border vertex's tags change only with a changed edge of its own).
+fn refresh_sub(
+    level: &Topology,
+    sub: &mut Topology,
+    verts: &[u32],
+    edges: &[u32],
+    changed: &[bool],
+) {
     for (e, &le) in edges.iter().enumerate() {
         let le = le as usize;
+        let [a, b] = level.edge_verts[le];
+        if !(changed[a as usize] && changed[b as usize]) {
+            continue;
+        }
         if sub.edge_faces(e).len() == level.edge_faces(le).len() {
             sub.edge_sharpness[e] = level.edge_sharpness[le];
             sub.edge_tags[e] = level.edge_tags[le];
@@ -349,6 +372,9 @@ fn refresh_sub(level: &Topology, sub: &mut Topology, verts: &[u32], edges: &[u32
     }
     for (v, &lv) in verts.iter().enumerate() {
         let lv = lv as usize;
+        if !changed[lv] {
+            continue;
+        }
         if sub.vertex_faces(v).len() == level.vertex_faces(lv).len() {
             sub.vert_sharpness[v] = level.vert_sharpness[lv];
             sub.vert_tags[v] = level.vert_tags[lv];
