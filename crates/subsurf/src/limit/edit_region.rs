@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen, restencil};
+use crate::refine::{resharpen_at, restencil};
 use crate::topology::Topology;
 
 /// Not visited by the walk.
@@ -191,7 +191,10 @@ impl<R: Real> PatchTable<R> {
                 &changed,
             );
             old = Values::of(child);
-            resharpen(sub, child);
+            let sub_changed: Vec<u32> = (0..sub.num_vertices() as u32)
+                .filter(|&v| changed[self.level_inputs[d][v as usize] as usize])
+                .collect();
+            resharpen_at(sub, child, &sub_changed);
             match self.step_rows(sub, &sub_old, child, &old, d) {
                 Some(dirty) => rows.push((d, dirty)),
                 None => return Ok(false),

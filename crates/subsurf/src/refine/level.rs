@@ -525,7 +525,6 @@ fn edge_point_ring(
 /// Sharpness and tags of the two children of every parent edge (`es`, `et`: two entries per
 /// parent edge, child `2e + end` touching end `end`), decayed by the crease method.
 pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) {
-    let method = p.options.crease_method;
     let eb = par::bounds(p.num_edges());
     par::ranges(&eb)
         .into_par_iter()
@@ -535,39 +534,43 @@ pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) 
             let base = 2 * r.start;
             let mut around: Vec<f32> = Vec::new();
             for e in r {
-                let s = p.edge_sharpness[e];
-                let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
                 let o = 2 * e - base;
-                if s <= 0.0 || s.is_nan() {
-                    // Smooth: both children smooth (what the rules below give).
-                    es[o..o + 2].fill(0.0);
-                    et_out[o..o + 2].fill(et);
-                    continue;
-                }
                 for end in 0..2 {
-                    let cs = if crease::is_infinite(s) {
-                        SHARPNESS_INFINITE
-                    } else if crease::is_semi_sharp(s) {
-                        if method == CreaseMethod::Uniform {
-                            crease::decrement(s)
-                        } else {
-                            let v = p.edge_verts[e][end] as usize;
-                            around.clear();
-                            around.extend(
-                                p.vertex_edges(v)
-                                    .iter()
-                                    .map(|&x| p.edge_sharpness[x as usize]),
-                            );
-                            crease::subdivide_edge_sharpness_at_vertex(method, s, &around)
-                        }
-                    } else {
-                        0.0
-                    };
-                    es[o + end] = cs;
-                    et_out[o + end] = et | sharp_tag(cs);
+                    (es[o + end], et_out[o + end]) = child_half(p, e, end, &mut around);
                 }
             }
         });
+}
+
+/// Sharpness and tag of child `end` of parent edge `e` (`around`: scratch).
+#[inline]
+pub(super) fn child_half(p: &Topology, e: usize, end: usize, around: &mut Vec<f32>) -> (f32, u8) {
+    let s = p.edge_sharpness[e];
+    let et = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+    if s <= 0.0 || s.is_nan() {
+        // Smooth: both children smooth (what the rules below give).
+        return (0.0, et);
+    }
+    let method = p.options.crease_method;
+    let cs = if crease::is_infinite(s) {
+        SHARPNESS_INFINITE
+    } else if crease::is_semi_sharp(s) {
+        if method == CreaseMethod::Uniform {
+            crease::decrement(s)
+        } else {
+            let v = p.edge_verts[e][end] as usize;
+            around.clear();
+            around.extend(
+                p.vertex_edges(v)
+                    .iter()
+                    .map(|&x| p.edge_sharpness[x as usize]),
+            );
+            crease::subdivide_edge_sharpness_at_vertex(method, s, around)
+        }
+    } else {
+        0.0
+    };
+    (cs, et | sharp_tag(cs))
 }
 
 /// Which child (0 or 1) of `pe[i]`, the `i`-th edge of parent vertex `v`, touches the child

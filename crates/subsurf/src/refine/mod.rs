@@ -51,7 +51,7 @@ pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 use masks::level_stencils_with;
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
-pub(crate) use resharpen::{resharpen, restencil};
+pub(crate) use resharpen::{resharpen_at, restencil};
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 

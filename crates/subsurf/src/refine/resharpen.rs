@@ -6,7 +6,7 @@
 //! Used by crease edits of a patch table ([`crate::limit::PatchTable::set_sharpness`]).
 
 use super::last_level::ChildSharpness;
-use super::level::{child_edge_sharpness, child_end_at_vertex, edge_point_tags, vertex_child_tags};
+use super::level::{child_end_at_vertex, child_half, edge_point_tags, vertex_child_tags};
 use super::masks::{LevelRows, LevelStencils, Scratch};
 use super::stencil::StencilTable;
 use crate::real::Real;
@@ -18,32 +18,59 @@ const SHARP_BITS: u16 =
     tags::V_SEMI_SHARP | tags::V_INF_SHARP | tags::V_SEMI_SHARP_EDGES | tags::V_INF_SHARP_EDGES;
 
 /// Recomputes the sharpness, tags and rules of `c`, the refinement of `p` by
-/// [`super::refine_topology`], after new sharpness was given to `p` (same topology).
-pub(crate) fn resharpen(p: &Topology, c: &mut Topology) {
-    let (nv, nf, nc) = (p.num_vertices(), p.num_faces(), p.num_corners());
-    child_edge_sharpness(p, &mut c.edge_sharpness[nc..], &mut c.edge_tags[nc..]);
-    for v in 0..nv {
-        let s = crate::rules::crease::decrement(p.vert_sharpness[v]);
-        c.vert_sharpness[v] = s;
-        let pe = p.vertex_edges(v);
-        let (mut inf, mut semi) = (0usize, 0usize);
-        for (i, &e) in pe.iter().enumerate() {
-            let ce = nc + 2 * e as usize + child_end_at_vertex(p, pe, i, v) as usize;
-            let et = c.edge_tags[ce];
-            inf += (et & tags::E_INF_SHARP != 0) as usize;
-            semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+/// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
+/// took new sharpness (same topology): the children of the edges at those vertices, their children and their edges'
+/// edge points (the other child elements read no changed value). Visits the changed
+/// vertices' edges only.
+pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
+    let nc = p.num_corners();
+    let mut edges: Vec<u32> = changed
+        .iter()
+        .flat_map(|&v| p.vertex_edges(v as usize).iter().copied())
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let mut around = Vec::new();
+    for &e in &edges {
+        for end in 0..2 {
+            let i = nc + 2 * e as usize + end;
+            (c.edge_sharpness[i], c.edge_tags[i]) = child_half(p, e as usize, end, &mut around);
         }
-        let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
-        c.vert_tags[v] = t | (c.vert_tags[v] & tags::V_INCIDENT_HOLE);
-        c.vert_rule[v] = rl;
     }
-    for e in 0..p.num_edges() {
-        let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
-        let (t, rl) = edge_point_tags(p.edge_tags[e], t0, t1);
-        let i = nv + nf + e;
-        c.vert_tags[i] = (c.vert_tags[i] & !SHARP_BITS) | t;
-        c.vert_rule[i] = rl;
+    for &v in changed {
+        child_vertex(p, c, v as usize);
     }
+    for &e in &edges {
+        edge_point(p, c, e as usize);
+    }
+}
+
+/// Sharpness, tags and rule of the child of parent vertex `v`, from its child edges.
+fn child_vertex(p: &Topology, c: &mut Topology, v: usize) {
+    let nc = p.num_corners();
+    let s = crate::rules::crease::decrement(p.vert_sharpness[v]);
+    c.vert_sharpness[v] = s;
+    let pe = p.vertex_edges(v);
+    let (mut inf, mut semi) = (0usize, 0usize);
+    for (i, &e) in pe.iter().enumerate() {
+        let ce = nc + 2 * e as usize + child_end_at_vertex(p, pe, i, v) as usize;
+        let et = c.edge_tags[ce];
+        inf += (et & tags::E_INF_SHARP != 0) as usize;
+        semi += (et & tags::E_SEMI_SHARP != 0) as usize;
+    }
+    let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
+    c.vert_tags[v] = t | (c.vert_tags[v] & tags::V_INCIDENT_HOLE);
+    c.vert_rule[v] = rl;
+}
+
+/// Tags and rule of the edge point of parent edge `e`, from its child edges.
+fn edge_point(p: &Topology, c: &mut Topology, e: usize) {
+    let nc = p.num_corners();
+    let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
+    let (t, rl) = edge_point_tags(p.edge_tags[e], t0, t1);
+    let i = p.num_vertices() + p.num_faces() + e;
+    c.vert_tags[i] = (c.vert_tags[i] & !SHARP_BITS) | t;
+    c.vert_rule[i] = rl;
 }
 
 /// Forms the vertex rows `dirty_vertex` and edge rows `dirty_edge` of the step from `p` to
