@@ -32,16 +32,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = subsurf::io::read_path(path)?;
     let ctx = GpuContext::new()?;
     let options = PatchOptions::default();
-    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> {
-        mesh.creases
-            .iter()
-            .map(|c| SharpnessEdit::Edge {
-                v0: c.v0,
-                v1: c.v1,
-                sharpness: s.unwrap_or(c.sharpness),
-            })
-            .collect()
-    };
+    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> { SharpnessEdit::creases(&mesh.creases, s) };
     let mut table = PatchTable::build(&Topology::new(&mesh)?, &options)?;
     table.set_sharpness(&edits(Some(3.5)))?; // keeps the levels for the next edits
     let mut gpu = GpuLimit::new(&ctx, &table)?;

@@ -16,14 +16,7 @@ fn load(name: &str) -> Mesh {
 
 /// Every crease of `mesh` at `s` (its own values for `None`).
 fn creases(mesh: &Mesh, s: Option<f32>) -> Vec<SharpnessEdit> {
-    mesh.creases
-        .iter()
-        .map(|c| SharpnessEdit::Edge {
-            v0: c.v0,
-            v1: c.v1,
-            sharpness: s.unwrap_or(c.sharpness),
-        })
-        .collect()
+    SharpnessEdit::creases(&mesh.creases, s)
 }
 
 /// Positions and normals at three samples in every ptex face.

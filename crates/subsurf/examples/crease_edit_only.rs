@@ -18,16 +18,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = subsurf::io::read_path(path)?;
     let topo = Topology::new(&mesh)?;
     let mut table = PatchTable::build(&topo, &PatchOptions::default())?;
-    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> {
-        mesh.creases
-            .iter()
-            .map(|c| SharpnessEdit::Edge {
-                v0: c.v0,
-                v1: c.v1,
-                sharpness: s.unwrap_or(c.sharpness),
-            })
-            .collect()
-    };
+    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> { SharpnessEdit::creases(&mesh.creases, s) };
     table.apply_sharpness(&edits(from))?;
     let mut outcomes = Vec::new();
     for _ in 0..runs {

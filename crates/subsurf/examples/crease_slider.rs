@@ -35,16 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let topo = Topology::new(&mesh)?;
     let options = PatchOptions::default();
     let mut table = PatchTable::build(&topo, &options)?;
-    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> {
-        mesh.creases
-            .iter()
-            .map(|c| SharpnessEdit::Edge {
-                v0: c.v0,
-                v1: c.v1,
-                sharpness: s.unwrap_or(c.sharpness),
-            })
-            .collect()
-    };
+    let edits = |s: Option<f32>| -> Vec<SharpnessEdit> { SharpnessEdit::creases(&mesh.creases, s) };
 
     // The slider loop: one edit and one evaluation per step, at the centre of a face on the
     // first crease.

@@ -187,16 +187,7 @@ fn car_creases_there_and_back_on_the_f64_table() {
     let o = PatchOptions::default();
     let original = PatchTable::<f64>::build_real(&topo, &o).unwrap();
     let mut table = original.clone();
-    let to = |s: Option<f32>| -> Vec<SharpnessEdit> {
-        mesh.creases
-            .iter()
-            .map(|c| SharpnessEdit::Edge {
-                v0: c.v0,
-                v1: c.v1,
-                sharpness: s.unwrap_or(c.sharpness),
-            })
-            .collect()
-    };
+    let to = |s: Option<f32>| -> Vec<SharpnessEdit> { SharpnessEdit::creases(&mesh.creases, s) };
     // The first edit keeps the levels, the next ones update the table in place.
     let at = |s: f32| {
         let m = edit_mesh(&mesh, &to(Some(s)));

@@ -19,6 +19,7 @@ use super::budget::Budget;
 use super::sparse::Selection;
 use super::table::PatchTable;
 use crate::error::{Error, MeshError, Result};
+use crate::mesh::Crease;
 use crate::options::BoundaryInterpolation;
 use crate::real::Real;
 use crate::topology::{clamp_sharpness, Topology};
@@ -42,6 +43,21 @@ pub enum SharpnessEdit {
         /// New sharpness.
         sharpness: f32,
     },
+}
+
+impl SharpnessEdit {
+    /// One edge edit per crease of `creases`, each to `sharpness` (its own value for `None`):
+    /// the edit list of a slider that moves every crease of a mesh at once.
+    pub fn creases(creases: &[Crease], sharpness: Option<f32>) -> Vec<SharpnessEdit> {
+        creases
+            .iter()
+            .map(|c| SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness: sharpness.unwrap_or(c.sharpness),
+            })
+            .collect()
+    }
 }
 
 fn bad(edit: usize, reason: String) -> Error {
