@@ -19,9 +19,9 @@ const SHARP_BITS: u16 =
 
 /// Recomputes the sharpness, tags and rules of `c`, the refinement of `p` by
 /// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
-/// took new sharpness (same topology): the children of the edges at those vertices, their children and their edges'
-/// edge points (the other child elements read no changed value). Visits the changed
-/// vertices' edges only.
+/// took new sharpness (same topology): the children of the edges at those vertices, the
+/// vertices' children and those edges' edge points (no other child element reads a changed
+/// value). Visits the changed vertices' edges only.
 pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
     let nc = p.num_corners();
     let mut edges: Vec<u32> = changed
@@ -68,7 +68,7 @@ fn edge_point(p: &Topology, c: &mut Topology, e: usize) {
     let nc = p.num_corners();
     let (t0, t1) = (c.edge_tags[nc + 2 * e], c.edge_tags[nc + 2 * e + 1]);
     let (t, rl) = edge_point_tags(p.edge_tags[e], t0, t1);
-    let i = p.num_vertices() + p.num_faces() + e;
+    let i = p.num_vertices() + super::last_level::face_points(p) + e;
     c.vert_tags[i] = (c.vert_tags[i] & !SHARP_BITS) | t;
     c.vert_rule[i] = rl;
 }
