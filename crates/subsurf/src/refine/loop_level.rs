@@ -49,6 +49,30 @@ pub(super) fn child_triangles(fv: &[u32], e: [u32; 3]) -> [u32; 12] {
     ]
 }
 
+/// The hole flags of a child level of triangles: the four children of parent face `f`
+/// (`4f..4f + 4`, in `child_face_verts`, three per face) are holes where `f` is one. With
+/// `vert_tags`, every vertex of those children is also tagged [`tags::V_INCIDENT_HOLE`].
+/// Shared by every Loop child-topology builder (full, manifold in place, lean face lists).
+pub(crate) fn child_holes(
+    parent_holes: &[bool],
+    child_face_verts: &[u32],
+    mut vert_tags: Option<&mut [u16]>,
+) -> Vec<bool> {
+    let mut holes = super::alloc::zeroed(4 * parent_holes.len(), false);
+    if !parent_holes.iter().any(|&h| h) {
+        return holes;
+    }
+    for (f, _) in parent_holes.iter().enumerate().filter(|(_, &h)| h) {
+        holes[4 * f..4 * f + 4].fill(true);
+        if let Some(t) = vert_tags.as_deref_mut() {
+            for &v in &child_face_verts[12 * f..12 * f + 12] {
+                t[v as usize] |= tags::V_INCIDENT_HOLE;
+            }
+        }
+    }
+    holes
+}
+
 /// Refines the all-triangle level `p` once keeping only the child's face lists, hole flags
 /// and vertex count (a lean last level, [`super::RefineOptions::lean`]): the face vertices are
 /// those of [`refine_tri_topology`]; every other table is left empty.
@@ -68,12 +92,7 @@ pub(crate) fn refine_tri_face_lists(p: &Topology) -> Topology {
                 cfv[i..i + 12].copy_from_slice(&child_triangles(&p.face_verts[3 * f..], e));
             }
         });
-    let mut face_is_hole = vec![false; 4 * nf];
-    for f in 0..nf {
-        if p.face_is_hole[f] {
-            face_is_hole[4 * f..4 * f + 4].fill(true);
-        }
-    }
+    let face_is_hole = child_holes(&p.face_is_hole, &face_verts, None);
     Topology {
         options: p.options,
         num_vertices: nv + p.num_edges(),
@@ -135,17 +154,6 @@ pub(super) fn refine_tri(p: &Topology) -> Topology {
         c.vert_rule[nv + e] = r;
     }
 
-    // Holes: the four children of a hole.
-    for f in 0..p.num_faces() {
-        if p.face_is_hole[f] {
-            for k in 4 * f..4 * f + 4 {
-                c.face_is_hole[k] = true;
-                for i in 3 * k..3 * k + 3 {
-                    let v = c.face_verts[i] as usize;
-                    c.vert_tags[v] |= tags::V_INCIDENT_HOLE;
-                }
-            }
-        }
-    }
+    c.face_is_hole = child_holes(&p.face_is_hole, &c.face_verts, Some(&mut c.vert_tags));
     c
 }

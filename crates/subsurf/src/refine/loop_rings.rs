@@ -292,20 +292,8 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             }
         });
 
-    // Holes: the four children of a hole.
-    let mut face_is_hole = super::alloc::zeroed(cf, false);
-    if p.face_is_hole.iter().any(|&h| h) {
-        for f in 0..nf {
-            if p.face_is_hole[f] {
-                for k in 4 * f..4 * f + 4 {
-                    face_is_hole[k] = true;
-                    for &v in &face_verts[3 * k..3 * k + 3] {
-                        vert_tags[v as usize] |= tags::V_INCIDENT_HOLE;
-                    }
-                }
-            }
-        }
-    }
+    let face_is_hole =
+        super::loop_level::child_holes(&p.face_is_hole, &face_verts, Some(&mut vert_tags));
 
     Topology {
         options: p.options,
