@@ -69,14 +69,13 @@ fn refine_once_with<const N: usize>(
     }
     if base.options.scheme == crate::options::Scheme::Loop {
         // Loop levels are refined through their tables (see `Refiner::new_loop`).
-        let mut r = super::Refiner::new_loop(base, level, options);
+        let (mut r, sharpness) = super::Refiner::new_loop_keeping_sharpness(base, level, options);
         let values = r.refine_positions(data);
-        let tags = match (tagged, r.is_full(level)) {
+        let tags = match (tagged, sharpness) {
             (false, _) => None,
-            (true, true) => Some(level_tags(r.last())?),
-            (true, false) => {
+            (true, None) => Some(level_tags(r.last())?),
+            (true, Some(sharpness)) => {
                 let p = &r.levels[level - 1];
-                let sharpness = ChildSharpnessBuf::new(p);
                 Some(child_level_tags(p, sharpness.view(p), r.last()))
             }
         };

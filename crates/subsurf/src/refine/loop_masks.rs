@@ -312,24 +312,38 @@ impl super::Refiner {
         level: usize,
         options: super::RefineOptions,
     ) -> super::Refiner {
+        Self::new_loop_keeping_sharpness(base, level, options).0
+    }
+
+    /// [`Self::new_loop`], also returning the child sharpness that a lean last level's
+    /// stencils read (derived from the parent; `None` where the last level is full), for
+    /// callers that tag that level too (`refine_once` with tags) and so need not derive it again.
+    pub(super) fn new_loop_keeping_sharpness(
+        base: Topology,
+        level: usize,
+        options: super::RefineOptions,
+    ) -> (super::Refiner, Option<super::last_level::ChildSharpnessBuf>) {
         use super::last_level::ChildSharpnessBuf;
         use super::loop_level::{refine_tri, refine_tri_face_lists};
         let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
         let mut stencils = Vec::with_capacity(level);
         let mut ahead = None;
+        let mut lean_sharpness = None;
         for k in 0..level {
             let parent = &levels[k];
             if !full(k) {
-                let (s, child) = rayon::join(
+                let ((s, sharpness), child) = rayon::join(
                     || {
                         let sharpness = ChildSharpnessBuf::new(parent);
-                        loop_level_stencils_with(parent, sharpness.view(parent))
+                        let s = loop_level_stencils_with(parent, sharpness.view(parent));
+                        (s, sharpness)
                     },
                     || refine_tri_face_lists(parent),
                 );
                 stencils.push(s);
                 levels.push(child);
+                lean_sharpness = Some(sharpness);
                 continue;
             }
             let child = ahead.take().unwrap_or_else(|| refine_tri(parent));
@@ -341,12 +355,13 @@ impl super::Refiner {
             stencils.push(s);
             levels.push(child);
         }
-        super::Refiner {
+        let refiner = super::Refiner {
             levels,
             stencils,
             limit_table: std::sync::OnceLock::new(),
             frame_plans: std::sync::OnceLock::new(),
             options,
-        }
+        };
+        (refiner, lean_sharpness)
     }
 }
