@@ -4,15 +4,14 @@
 //! `cargo run --release -p subsurf --example crease_edit_only [-- FILE A RUNS]` (default
 //! `testdata/shapes/catmark_car.obj`, `A` = `own` (the mesh's values), 10 runs).
 
+mod common;
+
 use subsurf::limit::{PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::Topology;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let from: Option<f32> = args.get(2).and_then(|s| s.parse().ok());
     let runs: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(10);
     let mesh = subsurf::io::read_path(path)?;

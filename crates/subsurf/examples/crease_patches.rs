@@ -9,6 +9,8 @@
 //! `eval_limit_grid_with` (adaptive refinement, patch table, N × N grid per ptex face,
 //! serial), subsurf's is `PatchTable::build` + points, then `tessellate(N)` (parallel).
 
+mod common;
+
 use std::time::Instant;
 
 use osd_ref::{EndCap, OsdMesh, PatchOptions as OsdOptions};
@@ -21,10 +23,7 @@ fn ms(t: Instant) -> f64 {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(9);
     let base = subsurf::io::read_path(path)?;
     println!(

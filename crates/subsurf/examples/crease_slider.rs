@@ -10,6 +10,8 @@
 //! changes (a crease of 3.5 is isolated two levels deeper) and the table is rebuilt; for
 //! `A` = the mesh's own values (6 on the car) it is kept and the table updated in place.
 
+mod common;
+
 use std::time::Instant;
 
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, SharpnessEdit};
@@ -22,10 +24,7 @@ fn median(times: &mut [f64]) -> f64 {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let runs: usize = args
         .get(2)
         .and_then(|s| s.parse().ok())

@@ -10,6 +10,8 @@
 //! subsurf's time includes `Topology::new`, as OpenSubdiv's includes its refiner's creation;
 //! it is measured on all threads and on one (OpenSubdiv's construction is serial).
 
+mod common;
+
 use std::time::Instant;
 
 use osd_ref::{EndCap, OsdMesh, PatchOptions as OsdOptions};
@@ -30,10 +32,7 @@ fn median(times: &mut [f64]) -> f64 {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let runs: usize = args
         .get(2)
         .and_then(|s| s.parse().ok())

@@ -1,14 +1,13 @@
 //! Times each stage of uniform refinement per level: `cargo run --release --example refine_timing -- FILE LEVEL`.
+
+mod common;
 use std::time::Instant;
 use subsurf::refine::{level_stencils, refine_topology};
 use subsurf::Topology;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let level: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     let mesh = subsurf::io::read_path(path)?;
     let t = Instant::now();

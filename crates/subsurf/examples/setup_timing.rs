@@ -3,16 +3,15 @@
 //! `full` (`Refiner::new`), `lean` (`Refiner::with_options(.., RefineOptions::lean())`) or
 //! `once` (`refine_once` of the positions, lean); an optional fourth argument repeats the
 //! setup that many times in the process and prints the median (warm allocator).
+
+mod common;
 use std::time::Instant;
 use subsurf::refine::{refine_once, RefineOptions};
 use subsurf::{Refiner, Topology};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let level: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(4);
     let mode = args.get(3).map(String::as_str).unwrap_or("full");
     let runs: usize = args.get(4).and_then(|s| s.parse().ok()).unwrap_or(1).max(1);

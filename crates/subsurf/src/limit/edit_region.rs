@@ -183,7 +183,7 @@ impl<R: Real> PatchTable<R> {
             let (level, child) = (&head[d], &mut tail[0]);
             let sub = &mut st.trace.subs[d];
             let sub_old = Values::of(sub);
-            refresh_sub(
+            let sub_changed = refresh_sub(
                 level,
                 sub,
                 &self.level_inputs[d],
@@ -191,9 +191,6 @@ impl<R: Real> PatchTable<R> {
                 &changed,
             );
             old = Values::of(child);
-            let sub_changed: Vec<u32> = (0..sub.num_vertices() as u32)
-                .filter(|&v| changed[self.level_inputs[d][v as usize] as usize])
-                .collect();
             resharpen_at(sub, child, &sub_changed);
             match self.step_rows(sub, &sub_old, child, &old, d) {
                 Some(dirty) => rows.push((d, dirty)),
@@ -354,14 +351,15 @@ impl<R: Real> PatchTable<R> {
 /// the level's current values, as [`super::sparse`] makes it: elements whose faces are all
 /// kept take the level's values, the border stays an infinitely sharp boundary. Only the
 /// elements at `changed` level vertices are visited (a changed edge marks both ends; a
-/// border vertex's tags change only with a changed edge of its own).
+/// border vertex's tags change only with a changed edge of its own). Returns those
+/// vertices, numbered in `sub`.
 fn refresh_sub(
     level: &Topology,
     sub: &mut Topology,
     verts: &[u32],
     edges: &[u32],
     changed: &[bool],
-) {
+) -> Vec<u32> {
     for (e, &le) in edges.iter().enumerate() {
         let le = le as usize;
         let [a, b] = level.edge_verts[le];
@@ -373,11 +371,13 @@ fn refresh_sub(
             sub.edge_tags[e] = level.edge_tags[le];
         }
     }
+    let mut sub_changed = Vec::new();
     for (v, &lv) in verts.iter().enumerate() {
         let lv = lv as usize;
         if !changed[lv] {
             continue;
         }
+        sub_changed.push(v as u32);
         if sub.vertex_faces(v).len() == level.vertex_faces(lv).len() {
             sub.vert_sharpness[v] = level.vert_sharpness[lv];
             sub.vert_tags[v] = level.vert_tags[lv];
@@ -386,4 +386,5 @@ fn refresh_sub(
             border_vertex(sub, v);
         }
     }
+    sub_changed
 }
