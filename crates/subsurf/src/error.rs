@@ -179,6 +179,19 @@ pub enum TessError {
         /// The flag or policy asking for it.
         origin: String,
     },
+    /// Curve measures that are not those of the mesh's rate curves.
+    #[error(
+        "{origin}: {found} curve measures for the {expected} rate curves of this mesh \
+         (curves or measures of another mesh?)"
+    )]
+    MeasureMismatch {
+        /// The policy asking for them.
+        origin: String,
+        /// Rate curves of the mesh.
+        expected: usize,
+        /// Measures given.
+        found: usize,
+    },
 }
 
 /// A limit-surface query `(face, u, v)` outside the surface's domain, naming the query (its

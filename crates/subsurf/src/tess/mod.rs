@@ -10,12 +10,16 @@
 //!   OpenSubdiv's `Bfr::Tessellation`), with its transition strips;
 //! - [`mesh`]: the ptex faces' patterns joined through shared edge samples;
 //! - [`rates`]: policies (uniform, maximum edge length, chordal tolerance, screen space,
-//!   explicit rates) turned into per-edge rates.
+//!   explicit rates) turned into per-edge rates;
+//! - [`curves`]: the curves on the limit surface that the policies measure, as a flat list
+//!   of samples any evaluator (the CPU's, a GPU's) can measure.
 
+pub mod curves;
 pub mod mesh;
 pub mod pattern;
 pub mod rates;
 
+pub use curves::{CurveMeasure, RateCurves};
 pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;
 pub use rates::{parse_edge_rates, set_edge_rate, RatePolicy, ScreenCamera};

@@ -9,25 +9,22 @@
 //!   world-to-clip matrix;
 //! - [`RatePolicy::Explicit`]: rates given directly (see [`parse_edge_rates`]).
 //!
-//! Lengths and curvatures are measured on the limit surface itself: each base edge's limit
-//! curve is evaluated at [`CURVE_SAMPLES`]` + 1` points from one of its faces (in parallel,
-//! rayon). A chord of parameter length `h` over a curve with second derivative `p''`
+//! Lengths and curvatures are measured on the limit surface itself, along the rate curves of
+//! [`super::curves`]: each base edge's limit curve and each ptex face's isolines, evaluated
+//! at [`CURVE_SAMPLES`]` + 1` points (on the CPU in parallel, rayon, or on the GPU through
+//! `subsurf-gpu`'s `GpuRates`; both end in [`RatePolicy::rates_from_measures`]). A chord of parameter length `h` over a curve with second derivative `p''`
 //! deviates from it by about `|p''| h² / 8`, so the tolerance policy takes
 //! `R = ⌈√(max |p''| / (8 E'))⌉` with `E'` the tolerance in world units over a safety factor
 //! of 2; the length policies take the fastest stretch of the curve (length per unit
 //! parameter) over the length allowed, `/√2` for diagonals. A face's interior rate is chosen
 //! the same way from its isolines, and raises its edges to at least `1/GRADING` of it.
 
-use rayon::prelude::*;
-
+use super::curves::{CurveMeasure, RateCurves};
+pub use super::curves::CURVE_SAMPLES;
 use super::mesh::{check_samples, graded, EdgeRates, GRADING, MAX_RATE};
 use crate::error::{Result, TessError};
-use crate::limit::patch_map::EMPTY;
-use crate::limit::LimitSurface;
+use crate::limit::{LimitSurface, PatchTable};
 use crate::topology::Topology;
-
-/// Points per base edge (plus one) at which lengths and curvatures are measured.
-pub const CURVE_SAMPLES: usize = 16;
 
 /// A camera for [`RatePolicy::Screen`]: the world-to-clip matrix (column-major, as
 /// `subsurf-render`'s `Camera::view_proj`) and the image size in pixels.
@@ -112,38 +109,84 @@ impl RatePolicy {
         }
     }
 
-    /// The rates of `surface` under this policy (checked first, see [`Self::validate`]).
+    /// What this policy measures its rate curves for; `None` for rates that need no
+    /// measurement (uniform, explicit).
+    pub fn measure(&self) -> Option<CurveMeasure> {
+        match self {
+            RatePolicy::Uniform(_) | RatePolicy::Explicit(_) => None,
+            RatePolicy::MaxEdgeLength(_) => Some(CurveMeasure::Speed),
+            RatePolicy::Tolerance(_) => Some(CurveMeasure::SecondDerivative),
+            RatePolicy::Screen { camera, .. } => Some(CurveMeasure::ScreenSpeed(*camera)),
+        }
+    }
+
+    /// The rates of `surface` under this policy (checked first, see [`Self::validate`]), its
+    /// rate curves measured on the CPU.
     pub fn rates(&self, surface: &LimitSurface, origin: &str) -> Result<EdgeRates> {
-        let t = &surface.table.base;
+        self.validate(&surface.table.base, origin)?;
+        let (curves, measures) = match self.measure() {
+            Some(m) => {
+                let curves = RateCurves::new(&surface.table);
+                let measures = curves.measure(surface, &m);
+                (curves, measures)
+            }
+            None => (RateCurves::default(), Vec::new()),
+        };
+        let diagonal = crate::mesh::bbox_diagonal(&surface.points);
+        self.rates_from_measures(&surface.table, diagonal, &curves, &measures, origin)
+    }
+
+    /// The rates of a surface whose rate curves `curves` ([`RateCurves::new`] of `table`)
+    /// measured `measures` under [`Self::measure`] (on the CPU, [`RateCurves::measure`], or on
+    /// a GPU); `diagonal` is the bounding-box diagonal of its points, which a tolerance is
+    /// relative to. Checked first ([`Self::validate`]); uniform and explicit rates ignore the
+    /// curves. Refuses a measure list of the wrong length, and rates past [`MAX_RATE`] or a
+    /// tessellation past the memory limit, naming `origin`.
+    pub fn rates_from_measures(
+        &self,
+        table: &PatchTable,
+        diagonal: f32,
+        curves: &RateCurves,
+        measures: &[f64],
+        origin: &str,
+    ) -> Result<EdgeRates> {
+        let t = &table.base;
         self.validate(t, origin)?;
-        let out = match self {
-            RatePolicy::Uniform(r) => EdgeRates::uniform(t, *r),
-            RatePolicy::Explicit(r) => r.clone(),
+        let need_of: Box<dyn Fn(f64) -> f64 + Sync> = match self {
+            RatePolicy::Uniform(r) => return Ok(EdgeRates::uniform(t, *r)),
+            RatePolicy::Explicit(r) => return Ok(r.clone()),
             RatePolicy::MaxEdgeLength(l) => {
                 // Parameter-uniform samples: the fastest stretch of a curve sets its rate;
                 // diagonals and transition edges are up to √2 longer than the grid's.
                 let l = f64::from(*l) / std::f64::consts::SQRT_2;
-                curve_rates(surface, origin, |c| (max_speed(c, Some) / l).ceil())?
+                Box::new(move |speed| (speed / l).ceil())
             }
-            RatePolicy::Screen { camera, pixels } => {
+            RatePolicy::Screen { pixels, .. } => {
                 let px = f64::from(*pixels) / std::f64::consts::SQRT_2;
-                let project = |p| camera.project(p).map(|q| [q[0], q[1], 0.0]);
                 // Close-ups past the highest rate are held at it.
-                let mut r = curve_rates(surface, origin, |c| {
-                    (max_speed(c, project) / px).ceil().min(f64::from(MAX_RATE))
-                })?;
-                r.faces.iter_mut().for_each(|f| *f = (*f).min(MAX_RATE));
-                r
+                Box::new(move |speed| (speed / px).ceil().min(f64::from(MAX_RATE)))
             }
             RatePolicy::Tolerance(e) => {
-                let diag = f64::from(crate::mesh::bbox_diagonal(&surface.points));
-                let tol = f64::from(*e) * diag / 2.0; // safety factor 2
-                curve_rates(surface, origin, |c| {
-                    chord_rate(max_second_derivative(c), tol)
-                })?
+                let tol = f64::from(*e) * f64::from(diagonal) / 2.0; // safety factor 2
+                Box::new(move |d2| chord_rate(d2, tol))
             }
         };
-        Ok(out)
+        if curves.num_curves() != measures.len()
+            || curves.num_edges != t.num_edges()
+            || curves.face_curves.len() != t.num_faces() + 1
+        {
+            return Err(TessError::MeasureMismatch {
+                origin: origin.to_string(),
+                expected: curves.num_curves(),
+                found: measures.len(),
+            }
+            .into());
+        }
+        let mut r = curve_rates(table, curves, measures, need_of, origin)?;
+        if matches!(self, RatePolicy::Screen { .. }) {
+            r.faces.iter_mut().for_each(|f| *f = (*f).min(MAX_RATE));
+        }
+        Ok(r)
     }
 }
 
@@ -168,133 +211,41 @@ fn to_rates(t: &Topology, need: &[f64], origin: &str) -> Result<Vec<u32>> {
         .collect()
 }
 
-/// The largest length per unit parameter of the curve's segments, after `map`.
-fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) -> f64 {
-    let mapped: Vec<_> = points.iter().map(|&p| map(p)).collect();
-    let steps = (points.len().max(2) - 1) as f64;
-    mapped
-        .windows(2)
-        .map(|w| match (w[0], w[1]) {
-            (Some(a), Some(b)) => {
-                (0..3)
-                    .map(|k| f64::from(b[k] - a[k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-                    * steps
-            }
-            _ => 0.0,
-        })
-        .fold(0.0, f64::max)
-}
-
-/// The `(ptex, u, v)` of the point at `t` (from the edge's first vertex) along base edge
-/// `e`, seen from its first live face; `None` when all its faces are holes.
-fn edge_point(s: &LimitSurface, e: usize, t: f32) -> Option<(usize, f32, f32)> {
-    let topo = &s.table.base;
-    let (faces, locals) = (topo.edge_faces(e), topo.edge_faces_local(e));
-    let (f, k) = faces
-        .iter()
-        .zip(locals)
-        .map(|(&f, &k)| (f as usize, k as usize))
-        .find(|&(f, _)| !topo.face_is_hole[f])?;
-    let n = topo.face_size(f);
-    // Along the face's edge k, from its corner k.
-    let forward = topo.edge_verts[e][0] == topo.face_vertices(f)[k];
-    let t = if forward { t } else { 1.0 - t };
-    let first = s.table.ptex_offsets[f] as usize;
-    let (ptex, u, v) = if n == 4 {
-        let (u, v) = match k {
-            0 => (t, 0.0),
-            1 => (1.0, t),
-            2 => (1.0 - t, 1.0),
-            _ => (0.0, 1.0 - t),
-        };
-        (first, u, v)
-    } else if t <= 0.5 {
-        (first + k, 2.0 * t, 0.0)
-    } else {
-        (first + (k + 1) % n, 0.0, 2.0 - 2.0 * t)
-    };
-    (s.table.patch_map.roots[ptex] != EMPTY).then_some((ptex, u, v))
-}
-
-/// Every base edge's limit curve at `CURVE_SAMPLES + 1` points (empty for edges of holes).
-fn edge_curves(s: &LimitSurface) -> Vec<Vec<[f32; 3]>> {
-    (0..s.table.base.num_edges())
-        .into_par_iter()
-        .map(|e| {
-            (0..=CURVE_SAMPLES)
-                .filter_map(|i| {
-                    let (f, u, v) = edge_point(s, e, i as f32 / CURVE_SAMPLES as f32)?;
-                    s.eval_position(f, u, v)
-                })
-                .collect()
-        })
-        .collect()
-}
-
-/// Largest second derivative (per unit parameter squared) along evenly spaced samples.
-fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
-    let h = 1.0 / (c.len().max(2) - 1) as f64;
-    c.windows(3)
-        .map(|w| {
-            (0..3)
-                .map(|k| {
-                    (f64::from(w[0][k]) - 2.0 * f64::from(w[1][k]) + f64::from(w[2][k])).powi(2)
-                })
-                .sum::<f64>()
-                .sqrt()
-                / (h * h)
-        })
-        .fold(0.0, f64::max)
-}
-
 /// The rate whose chords of a curve with second derivative `d2` stay within `tol`.
 fn chord_rate(d2: f64, tol: f64) -> f64 {
     (d2 / (8.0 * tol)).sqrt().ceil()
 }
 
-/// Rates from the rate `need` of each curve (a base edge's limit curve, or an isoline of a
-/// face): edges from their curves, faces from their isolines at `u, v = ¼, ½, ¾`, and every
-/// edge at least `1/GRADING` of its faces' interior rate so that the graded interior reaches
-/// it.
+/// Rates from the rate need of each curve (`need_of` its measure): edges from their curves,
+/// faces from their isolines at `u, v = ¼, ½, ¾`, and every edge at least `1/GRADING` of
+/// its faces' interior rate so that the graded interior reaches it.
 fn curve_rates(
-    s: &LimitSurface,
+    table: &PatchTable,
+    curves: &RateCurves,
+    measures: &[f64],
+    need_of: Box<dyn Fn(f64) -> f64 + Sync>,
     origin: &str,
-    need_of: impl Fn(&[[f32; 3]]) -> f64 + Sync,
 ) -> Result<EdgeRates> {
-    let t = &s.table.base;
-    let curves = edge_curves(s);
-    let mut need: Vec<f64> = curves.par_iter().map(|c| need_of(c)).collect();
-    // Interiors: the isolines through the middle of every ptex face, both directions.
+    let t = &table.base;
+    let curve_need = |c: usize| {
+        if curves.live[c] {
+            need_of(measures[c])
+        } else {
+            need_of(0.0)
+        }
+    };
+    let mut need: Vec<f64> = (0..t.num_edges()).map(curve_need).collect();
+    // Interiors: the largest need of a face's isolines, both directions.
     let face_need: Vec<f64> = (0..t.num_faces())
-        .into_par_iter()
         .map(|f| {
             if t.face_is_hole[f] {
                 return 0.0;
             }
-            let (first, last) = (
-                s.table.ptex_offsets[f] as usize,
-                s.table.ptex_offsets[f + 1] as usize,
-            );
-            let mut worst = 0.0f64; // the largest need of the face's isolines
-            let mut line = Vec::with_capacity(CURVE_SAMPLES + 1);
-            for ptex in first..last {
-                for dir in 0..2 {
-                    for &c in &[0.25f32, 0.5, 0.75] {
-                        // One buffer per face, no allocation per line.
-                        line.clear();
-                        line.extend((0..=CURVE_SAMPLES).filter_map(|i| {
-                            let a = i as f32 / CURVE_SAMPLES as f32;
-                            let (u, v) = if dir == 0 { (a, c) } else { (c, a) };
-                            s.eval_position(ptex, u, v)
-                        }));
-                        worst = worst.max(need_of(&line));
-                    }
-                }
-            }
+            let lines = curves.face_curves[f] as usize..curves.face_curves[f + 1] as usize;
+            let worst = lines.map(curve_need).fold(0.0f64, f64::max);
             // A sub-face spans half the face: its rate counts for half as many samples.
-            let scale = if last - first == 1 { 1.0 } else { 0.5 };
+            let ptex = table.ptex_offsets[f + 1] - table.ptex_offsets[f];
+            let scale = if ptex == 1 { 1.0 } else { 0.5 };
             (worst * scale).ceil()
         })
         .collect();
@@ -305,7 +256,7 @@ fn curve_rates(
             need[ed as usize] = need[ed as usize].max(per_edge.ceil());
         }
     }
-    check_samples(estimate(s, &need, &face_need))?;
+    check_samples(estimate(t, &need, &face_need))?;
     let edges = to_rates(t, &need, origin)?;
     let faces = (0..t.num_faces())
         .map(|f| {
@@ -339,8 +290,7 @@ fn curve_rates(
 /// The samples of a tessellation at the real-valued needs (before they are checked against
 /// [`MAX_RATE`]): every edge's, and per ptex face the square of its finest need, so that a
 /// policy asking for too much is refused with the estimate before anything is built.
-fn estimate(s: &LimitSurface, need: &[f64], face_need: &[f64]) -> u64 {
-    let t = &s.table.base;
+fn estimate(t: &Topology, need: &[f64], face_need: &[f64]) -> u64 {
     let mut samples: f64 = need.iter().sum();
     for f in 0..t.num_faces() {
         if t.face_is_hole[f] {

@@ -1,0 +1,245 @@
+//! The rate curves of a limit surface: where the rate policies of [`super::rates`] measure it.
+//!
+//! A policy looks at curves on the limit surface, each sampled at [`CURVE_POINTS`] evenly
+//! spaced parameters: the limit curve of every base edge (seen from its first face that is
+//! not a hole), then, face by face, the isolines through every ptex face of the face at
+//! `u = ¼, ½, ¾` and `v = ¼, ½, ¾` ([`ISOLINES`]). [`RateCurves`] lays those samples out
+//! as one flat list of `(ptex, u, v)` queries, [`CURVE_POINTS`] per curve, so that any
+//! evaluator can measure them: [`RateCurves::measure`] on the CPU, or the GPU's limit
+//! evaluation followed by its `rate_measure` kernel (`subsurf-gpu`). Each curve is reduced to
+//! one number, its [`CurveMeasure`]; [`super::RatePolicy::rates_from_measures`] turns the
+//! numbers into rates.
+
+use rayon::prelude::*;
+
+use super::rates::ScreenCamera;
+use crate::limit::patch_map::EMPTY;
+use crate::limit::{LimitSurface, PatchTable};
+use crate::topology::Topology;
+
+/// Intervals per rate curve (its samples are `i / CURVE_SAMPLES`, `i = 0..=CURVE_SAMPLES`).
+pub const CURVE_SAMPLES: usize = 16;
+
+/// Samples per rate curve.
+pub const CURVE_POINTS: usize = CURVE_SAMPLES + 1;
+
+/// The constant parameter of a ptex face's isolines, in each direction.
+pub const ISOLINES: [f32; 3] = [0.25, 0.5, 0.75];
+
+/// Isolines per ptex face: [`ISOLINES`] along `u` (constant `v`), then along `v`.
+pub const ISOLINES_PER_PTEX: usize = 2 * ISOLINES.len();
+
+/// What a curve's samples are reduced to (the largest over its segments).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CurveMeasure {
+    /// Second derivative per unit parameter squared, from second differences (chordal
+    /// tolerance).
+    SecondDerivative,
+    /// Length per unit parameter, from chords (maximum edge length).
+    Speed,
+    /// Length per unit parameter in pixels under a camera; a chord with an end behind the
+    /// eye counts zero (screen space).
+    ScreenSpeed(ScreenCamera),
+}
+
+/// The sample layout of a surface's rate curves (module documentation).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RateCurves {
+    /// `(ptex face, u, v)` of every sample, [`CURVE_POINTS`] per curve, curve after curve.
+    pub queries: Vec<(u32, f32, f32)>,
+    /// Per curve: whether it lies on the surface. A dead curve (the edge of holes only, or
+    /// a ptex face without patches) measures zero; its queries name ptex face `u32::MAX`.
+    pub live: Vec<bool>,
+    /// Number of base edges: curve `e < num_edges` is base edge `e`'s.
+    pub num_edges: usize,
+    /// Per base face, the first of its isolines (curves `face_curves[f]..face_curves[f + 1]`,
+    /// [`ISOLINES_PER_PTEX`] per ptex face; none for holes); `num_faces + 1` entries.
+    pub face_curves: Vec<u32>,
+}
+
+/// Parameter of sample `i` of a curve.
+fn at(i: usize) -> f32 {
+    i as f32 / CURVE_SAMPLES as f32
+}
+
+/// The query of a dead curve's samples (a ptex face out of range: evaluators write zeros).
+const DEAD: (u32, f32, f32) = (u32::MAX, 0.0, 0.0);
+
+impl RateCurves {
+    /// The rate curves of `table`'s surface.
+    pub fn new<R>(table: &PatchTable<R>) -> RateCurves {
+        // Only the topology, ptex offsets and patch map are read.
+        let t = &table.base;
+        let num_edges = t.num_edges();
+        let mut face_curves = Vec::with_capacity(t.num_faces() + 1);
+        let mut curves = num_edges as u32;
+        face_curves.push(curves);
+        for f in 0..t.num_faces() {
+            if !t.face_is_hole[f] {
+                let ptex = table.ptex_offsets[f + 1] - table.ptex_offsets[f];
+                curves += ptex * ISOLINES_PER_PTEX as u32;
+            }
+            face_curves.push(curves);
+        }
+        let total = curves as usize;
+        let mut queries = vec![DEAD; total * CURVE_POINTS];
+        let mut live = vec![false; total];
+        let (edge_q, face_q) = queries.split_at_mut(num_edges * CURVE_POINTS);
+        let (edge_live, face_live) = live.split_at_mut(num_edges);
+        let (roots, ptex_offsets) = (&table.patch_map.roots[..], &table.ptex_offsets[..]);
+        edge_q
+            .par_chunks_mut(CURVE_POINTS)
+            .zip(edge_live.par_iter_mut())
+            .enumerate()
+            .for_each(|(e, (q, live))| {
+                for (i, q) in q.iter_mut().enumerate() {
+                    match edge_point(t, ptex_offsets, roots, e, at(i)) {
+                        Some((ptex, u, v)) => {
+                            *q = (ptex as u32, u, v);
+                            *live = true;
+                        }
+                        None => *q = DEAD,
+                    }
+                }
+            });
+        let mut rest = (face_q, face_live);
+        for f in 0..t.num_faces() {
+            if t.face_is_hole[f] {
+                continue;
+            }
+            let n = (face_curves[f + 1] - face_curves[f]) as usize;
+            let (q, more_q) = std::mem::take(&mut rest.0).split_at_mut(n * CURVE_POINTS);
+            let (l, more_l) = std::mem::take(&mut rest.1).split_at_mut(n);
+            rest = (more_q, more_l);
+            let first = table.ptex_offsets[f] as usize;
+            for (j, (q, l)) in q.chunks_exact_mut(CURVE_POINTS).zip(l).enumerate() {
+                let ptex = first + j / ISOLINES_PER_PTEX;
+                let line = j % ISOLINES_PER_PTEX;
+                let c = ISOLINES[line % ISOLINES.len()];
+                *l = table.patch_map.roots[ptex] != EMPTY;
+                for (i, q) in q.iter_mut().enumerate() {
+                    let a = at(i);
+                    let (u, v) = if line < ISOLINES.len() { (a, c) } else { (c, a) };
+                    *q = if *l { (ptex as u32, u, v) } else { DEAD };
+                }
+            }
+        }
+        RateCurves {
+            queries,
+            live,
+            num_edges,
+            face_curves,
+        }
+    }
+
+    /// Number of curves.
+    pub fn num_curves(&self) -> usize {
+        self.live.len()
+    }
+
+    /// Every curve measured on the CPU, from `surface`'s positions (in parallel, rayon).
+    pub fn measure(&self, surface: &LimitSurface, m: &CurveMeasure) -> Vec<f64> {
+        self.queries
+            .par_chunks_exact(CURVE_POINTS)
+            .zip(self.live.par_iter())
+            .map_init(
+                || Vec::with_capacity(CURVE_POINTS),
+                |line, (q, &live)| {
+                    if !live {
+                        return 0.0;
+                    }
+                    line.clear();
+                    line.extend(
+                        q.iter()
+                            .filter_map(|&(p, u, v)| surface.eval_position(p as usize, u, v)),
+                    );
+                    measure(line, m)
+                },
+            )
+            .collect()
+    }
+}
+
+/// The `(ptex, u, v)` of the point at `t` (from the edge's first vertex) along base edge
+/// `e`, seen from its first face that is not a hole; `None` when all its faces are holes or
+/// its ptex face has no patches (`roots`: the patch map's).
+fn edge_point(
+    topo: &Topology,
+    ptex_offsets: &[u32],
+    roots: &[u32],
+    e: usize,
+    t: f32,
+) -> Option<(usize, f32, f32)> {
+    let (faces, locals) = (topo.edge_faces(e), topo.edge_faces_local(e));
+    let (f, k) = faces
+        .iter()
+        .zip(locals)
+        .map(|(&f, &k)| (f as usize, k as usize))
+        .find(|&(f, _)| !topo.face_is_hole[f])?;
+    let n = topo.face_size(f);
+    // Along the face's edge k, from its corner k.
+    let forward = topo.edge_verts[e][0] == topo.face_vertices(f)[k];
+    let t = if forward { t } else { 1.0 - t };
+    let first = ptex_offsets[f] as usize;
+    let (ptex, u, v) = if n == 4 {
+        let (u, v) = match k {
+            0 => (t, 0.0),
+            1 => (1.0, t),
+            2 => (1.0 - t, 1.0),
+            _ => (0.0, 1.0 - t),
+        };
+        (first, u, v)
+    } else if t <= 0.5 {
+        (first + k, 2.0 * t, 0.0)
+    } else {
+        (first + (k + 1) % n, 0.0, 2.0 - 2.0 * t)
+    };
+    (roots[ptex] != EMPTY).then_some((ptex, u, v))
+}
+
+/// One curve's measure (the CPU's, in `f64`): the largest over its segments or second
+/// differences; zero for fewer than two (three) points.
+pub fn measure(points: &[[f32; 3]], m: &CurveMeasure) -> f64 {
+    match m {
+        CurveMeasure::SecondDerivative => max_second_derivative(points),
+        CurveMeasure::Speed => max_speed(points, Some),
+        CurveMeasure::ScreenSpeed(camera) => {
+            max_speed(points, |p| camera.project(p).map(|q| [q[0], q[1], 0.0]))
+        }
+    }
+}
+
+/// The largest length per unit parameter of the curve's segments, after `map`.
+fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) -> f64 {
+    let mapped: Vec<_> = points.iter().map(|&p| map(p)).collect();
+    let steps = (points.len().max(2) - 1) as f64;
+    mapped
+        .windows(2)
+        .map(|w| match (w[0], w[1]) {
+            (Some(a), Some(b)) => {
+                (0..3)
+                    .map(|k| f64::from(b[k] - a[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+                    * steps
+            }
+            _ => 0.0,
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Largest second derivative (per unit parameter squared) along evenly spaced samples.
+fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
+    let h = 1.0 / (c.len().max(2) - 1) as f64;
+    c.windows(3)
+        .map(|w| {
+            (0..3)
+                .map(|k| {
+                    (f64::from(w[0][k]) - 2.0 * f64::from(w[1][k]) + f64::from(w[2][k])).powi(2)
+                })
+                .sum::<f64>()
+                .sqrt()
+                / (h * h)
+        })
+        .fold(0.0, f64::max)
+}
