@@ -107,3 +107,23 @@ struct LoopConfig {
     // Patches: a sample whose patch is not below this evaluates to zeros.
     num_patches: u32,
 }
+
+// Per-dispatch parameters of `rate_measure` (one uniform per chunk of rate curves).
+struct RateConfig {
+    // Curves in this chunk.
+    curve_count: u32,
+    // Samples per curve.
+    points_per_curve: u32,
+    // Floats per sample in the samples buffer (position first).
+    sample_stride: u32,
+    // 0: second derivative, 1: speed, 2: speed in pixels under view_proj.
+    kind: u32,
+    // Invocations along x of the dispatch grid.
+    grid_width: u32,
+    // Image width and height in pixels (kind 2).
+    width: f32,
+    height: f32,
+    _pad0: u32,
+    // World-to-clip matrix, column-major (kind 2).
+    view_proj: mat4x4<f32>,
+}

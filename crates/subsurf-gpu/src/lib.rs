@@ -15,7 +15,7 @@
 //! [`GpuLimit`] (the limit surface of a patch table: B-spline, single-crease and Gregory
 //! patches, `limit_eval`) and [`GpuLoopLimit`] (the Loop limit surface: box-spline and
 //! Gregory-triangle patches, `loop_eval`) and [`GpuUvRefiner`] (face-varying refinement of
-//! UVs).
+//! UVs) and [`GpuRates`] (adaptive tessellation rates from the limit surface, `rate_measure`).
 //!
 //! # Example
 //!
@@ -98,6 +98,7 @@ pub mod loop_limit;
 mod loop_twin;
 pub mod prep;
 pub mod prep_chunks;
+pub mod rates;
 pub mod refine;
 pub mod shared;
 pub mod surface;
@@ -112,6 +113,7 @@ pub use limit::{GpuLimit, GpuSamples, GpuTessellation};
 pub use loop_limit::GpuLoopLimit;
 pub use prep::{GpuGrid, GpuPrep, PrepTables};
 pub use prep_chunks::PrepChunks;
+pub use rates::GpuRates;
 pub use refine::GpuRefiner;
 pub use surface::GpuBackend;
 pub use table::StencilTable;
@@ -140,4 +142,6 @@ pub mod shaders {
     pub const LOOP_EVAL: &str = include_str!(concat!(env!("OUT_DIR"), "/loop_eval.wgsl"));
     /// `shaders/refine_level.wgsl`.
     pub const REFINE_LEVEL: &str = include_str!(concat!(env!("OUT_DIR"), "/refine_level.wgsl"));
+    /// `shaders/rate_measure.wgsl`.
+    pub const RATE_MEASURE: &str = include_str!(concat!(env!("OUT_DIR"), "/rate_measure.wgsl"));
 }

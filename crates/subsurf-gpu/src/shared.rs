@@ -119,3 +119,29 @@ pub struct LoopConfig {
 }
 
 const _: () = assert!(std::mem::size_of::<LoopConfig>() == 16);
+
+/// Per-dispatch parameters of `rate_measure` (keep in sync with shaders/common.wgsl).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct RateConfig {
+    /// Curves in this chunk.
+    pub curve_count: u32,
+    /// Samples per curve.
+    pub points_per_curve: u32,
+    /// Floats per sample in the samples buffer (position first).
+    pub sample_stride: u32,
+    /// 0: second derivative, 1: speed, 2: speed in pixels under `view_proj`.
+    pub kind: u32,
+    /// Invocations along x of the dispatch grid.
+    pub grid_width: u32,
+    /// Image width in pixels (kind 2).
+    pub width: f32,
+    /// Image height in pixels (kind 2).
+    pub height: f32,
+    /// Padding to the matrix's 16-byte alignment.
+    pub _pad: u32,
+    /// World-to-clip matrix, column-major (`view_proj[column][row]`; kind 2).
+    pub view_proj: [[f32; 4]; 4],
+}
+
+const _: () = assert!(std::mem::size_of::<RateConfig>() == 96);

@@ -7,5 +7,6 @@ pub mod loop_eval;
 pub mod prep_eval_grid;
 pub mod prep_patch_pass;
 pub mod prep_vertex_pass;
+pub mod rate_measure;
 pub mod refine_level;
 pub mod stencil_apply;
