@@ -119,7 +119,11 @@ impl RateCurves {
                 *l = table.patch_map.roots[ptex] != EMPTY;
                 for (i, q) in q.iter_mut().enumerate() {
                     let a = at(i);
-                    let (u, v) = if line < ISOLINES.len() { (a, c) } else { (c, a) };
+                    let (u, v) = if line < ISOLINES.len() {
+                        (a, c)
+                    } else {
+                        (c, a)
+                    };
                     *q = if *l { (ptex as u32, u, v) } else { DEAD };
                 }
             }
