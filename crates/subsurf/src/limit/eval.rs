@@ -21,7 +21,7 @@ use rayon::prelude::*;
 
 use super::patch_map::clamp01;
 use super::table::PatchTable;
-use crate::patch::patch_weights;
+use crate::patch::{patch_first_weights, patch_position_weights};
 use crate::real::Real;
 
 /// A point of the limit surface.
@@ -79,7 +79,8 @@ impl<R: Real> LimitSurface<R> {
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
         let kind = t.patch_type(p).kind();
-        let w = patch_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
+        let [wp, wu, wv] =
+            patch_first_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
         let cvs = t.patch_cvs(p);
         // Relative to the first control point (see the module documentation).
         let x0 = self.points[cvs[0] as usize];
@@ -88,9 +89,9 @@ impl<R: Real> LimitSurface<R> {
             let x = self.points[cv as usize];
             for c in 0..3 {
                 let d = x[c] - x0[c];
-                r.p[c] += w.p[k] * d;
-                r.du[c] += w.du[k] * d;
-                r.dv[c] += w.dv[k] * d;
+                r.p[c] += wp[k] * d;
+                r.du[c] += wu[k] * d;
+                r.dv[c] += wv[k] * d;
             }
         }
         for c in 0..3 {
@@ -109,14 +110,14 @@ impl<R: Real> LimitSurface<R> {
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
         let kind = t.patch_type(p).kind();
-        let w = patch_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
+        let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
         let cvs = t.patch_cvs(p);
         let x0 = self.points[cvs[0] as usize];
         let mut r = [R::ZERO; 3];
         for (k, &cv) in cvs.iter().enumerate() {
             let x = self.points[cv as usize];
             for c in 0..3 {
-                r[c] += w.p[k] * (x[c] - x0[c]);
+                r[c] += w[k] * (x[c] - x0[c]);
             }
         }
         for c in 0..3 {

@@ -2,11 +2,14 @@
 //! [`PatchParam`], evaluates the right basis and scales the derivatives back to the face's
 //! parameterization (OpenSubdiv's `Far::internal::EvaluatePatchBasis`).
 
-use super::bspline::bspline_patch_weights;
+use super::bspline::{
+    bspline_curve_bounded, bspline_patch_weights, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0,
+    BOUNDARY_V1,
+};
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
 use super::single_crease::single_crease_patch_weights;
-use super::weights::PatchWeights;
+use super::weights::{CurveWeights, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
 
@@ -88,6 +91,79 @@ pub fn patch_weights<T: Real>(
     w
 }
 
+/// The regular B-spline curve weights of a patch at ptex `(u, v)`, when its basis is the
+/// plain B-spline (regular patches, and single-crease ones without a crease edge); `None`
+/// for the other kinds.
+#[inline(always)]
+fn regular_curves<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    u: T,
+    v: T,
+) -> Option<[CurveWeights<T>; 2]> {
+    let bits = param.boundary() & 0xf;
+    let bits = match kind {
+        PatchKind::Regular => bits,
+        PatchKind::SingleCrease if PatchEdge::from_index(bits.trailing_zeros()).is_none() => 0,
+        _ => return None,
+    };
+    let (s, t) = param.normalize(u, v);
+    Some([
+        bspline_curve_bounded(s, bits & BOUNDARY_U0 != 0, bits & BOUNDARY_U1 != 0),
+        bspline_curve_bounded(t, bits & BOUNDARY_V0 != 0, bits & BOUNDARY_V1 != 0),
+    ])
+}
+
+/// The position weights of [`patch_weights`] alone (its `p`, bit for bit): for regular
+/// B-spline patches (and single-crease ones without a crease edge) only the tensor of the two
+/// curves' position weights is formed, none of the derivative weights, which a position query
+/// (the rate curves of adaptive tessellation) does not read.
+pub fn patch_position_weights<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    u: T,
+    v: T,
+) -> [T; 20] {
+    let Some([wu, wv]) = regular_curves(kind, param, u, v) else {
+        return patch_weights(kind, param, sharpness, u, v).p;
+    };
+    let mut p = [T::ZERO; 20];
+    for j in 0..4 {
+        for i in 0..4 {
+            p[4 * j + i] = wu.p[i] * wv.p[j];
+        }
+    }
+    p
+}
+
+/// The position and first-derivative weights of [`patch_weights`] alone (its `p`, `du` and
+/// `dv`, bit for bit), without the second-derivative weights for the regular B-spline kinds
+/// (see [`patch_position_weights`]): what a position-and-normal query reads.
+pub fn patch_first_weights<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    u: T,
+    v: T,
+) -> [[T; 20]; 3] {
+    let Some([wu, wv]) = regular_curves(kind, param, u, v) else {
+        let w = patch_weights(kind, param, sharpness, u, v);
+        return [w.p, w.du, w.dv];
+    };
+    let d = param.deriv_scale::<T>();
+    let mut w = [[T::ZERO; 20]; 3];
+    for j in 0..4 {
+        for i in 0..4 {
+            let k = 4 * j + i;
+            w[0][k] = wu.p[i] * wv.p[j];
+            w[1][k] = wu.d1[i] * wv.p[j] * d;
+            w[2][k] = wu.p[i] * wv.d1[j] * d;
+        }
+    }
+    w
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::param::PatchParamFields;
@@ -137,5 +213,34 @@ mod tests {
         let w = patch_weights(PatchKind::SingleCrease, &p, 3.0f64, 0.9, 0.2);
         let r = patch_weights(PatchKind::Regular, &p, 0.0f64, 0.9, 0.2);
         assert_eq!(w, r);
+    }
+
+    #[test]
+    fn position_and_first_weights_are_those_of_the_full_weights() {
+        let kinds = [
+            PatchKind::Regular,
+            PatchKind::SingleCrease,
+            PatchKind::GregoryBasis(GregoryDerivatives::Exact),
+        ];
+        for kind in kinds {
+            for boundary in 0..16u8 {
+                for (depth, pu, pv) in [(0u8, 0u16, 0u16), (2, 1, 3), (4, 9, 14)] {
+                    let p = param(boundary, depth, pu, pv);
+                    for k in 0..=12 {
+                        let (u, v) = (k as f32 / 12.0, ((7 * k) % 13) as f32 / 12.0);
+                        let (u, v) = p.unnormalize(u, v);
+                        let full = patch_weights(kind, &p, 2.25f32, u, v);
+                        let pos = patch_position_weights(kind, &p, 2.25f32, u, v);
+                        let bits = |w: [f32; 20]| w.map(f32::to_bits);
+                        let what = format!("{kind:?} boundary {boundary} depth {depth}");
+                        assert_eq!(bits(full.p), bits(pos), "{what}");
+                        let [p1, du, dv] = patch_first_weights(kind, &p, 2.25f32, u, v);
+                        assert_eq!(bits(full.p), bits(p1), "{what}");
+                        assert_eq!(bits(full.du), bits(du), "{what}");
+                        assert_eq!(bits(full.dv), bits(dv), "{what}");
+                    }
+                }
+            }
+        }
     }
 }

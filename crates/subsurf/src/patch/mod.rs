@@ -65,7 +65,10 @@ pub mod tri_basis;
 pub mod weights;
 
 pub use crate::real::Real;
-pub use basis::{patch_weights, patch_weights_normalized, AnyPatchWeights, PatchKind};
+pub use basis::{
+    patch_first_weights, patch_position_weights, patch_weights, patch_weights_normalized,
+    AnyPatchWeights, PatchKind,
+};
 pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch};
 pub use box_spline::{box_spline_patch_weights, eval_box_spline_patch};
 pub use bspline::{
