@@ -26,13 +26,22 @@ fn orbit(c: [f32; 3], r: f32, a: f32) -> ScreenCamera {
         v.map(|x| x / l)
     };
     let cross = |a: [f32; 3], b: [f32; 3]| {
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
     };
     let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let f = norm(f);
     let s = norm(cross(f, [0.0, 1.0, 0.0]));
     let u = cross(s, f);
-    let (t, aspect, near, far) = (1.0 / 30f32.to_radians().tan(), 4.0 / 3.0, 0.01 * r, 10.0 * r);
+    let (t, aspect, near, far) = (
+        1.0 / 30f32.to_radians().tan(),
+        4.0 / 3.0,
+        0.01 * r,
+        10.0 * r,
+    );
     let (pa, pb) = ((far + near) / (near - far), 2.0 * far * near / (near - far));
     // Projection times view, column-major.
     let view = |row: [f32; 3], k: usize| if k < 3 { row[k] } else { -dot(row, eye) };
@@ -85,7 +94,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             gpu_ms.push(g);
             cpu_ms.push(c);
         }
-        differ += gpu.edges.iter().zip(&cpu.edges).filter(|(a, b)| a != b).count();
+        differ += gpu
+            .edges
+            .iter()
+            .zip(&cpu.edges)
+            .filter(|(a, b)| a != b)
+            .count();
         edges += cpu.edges.len();
         if i % 6 == 0 {
             println!(
