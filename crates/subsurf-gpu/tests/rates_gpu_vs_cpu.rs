@@ -8,7 +8,7 @@ mod common;
 use common::context_or_skip;
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
 use subsurf::tess::curves::CURVE_POINTS;
-use subsurf::tess::{CurveMeasure, RatePolicy, ScreenCamera};
+use subsurf::tess::{CurveMeasure, EdgeRates, RatePolicy, ScreenCamera};
 use subsurf::{Mesh, Topology};
 use subsurf_gpu::cpu::rate_measure::rate_measure;
 use subsurf_gpu::rates::rate_config;
@@ -230,7 +230,9 @@ fn chunked_measures_equal_one_dispatch() {
         assert_eq!(bits(&a), bits(&b));
     }
     let diagonal = subsurf::mesh::bbox_diagonal(&mesh.positions);
-    for policy in [RatePolicy::Uniform(5)] {
+    let mut explicit = EdgeRates::uniform(&table.base, 3);
+    explicit.edges[7] = 11;
+    for policy in [RatePolicy::Uniform(5), RatePolicy::Explicit(explicit)] {
         let got = whole
             .rates(&ctx, &limit, &table, &policy, diagonal, "--tess")
             .unwrap();
