@@ -135,7 +135,7 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `limit` with per-edge rates (evaluated on the CPU).
+/// `limit` with per-edge rates (chosen on `--backend`, the tessellation evaluated on the CPU).
 fn run_adaptive(
     a: &LimitArgs,
     mesh: Mesh,
@@ -147,7 +147,9 @@ fn run_adaptive(
     let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
     let camera = a.screen.camera(&mesh.positions);
     let (policy, origin) = a.adaptive.policy(camera, &surface.table.base, a.tess)?;
-    let adaptive = subsurf::surface::tessellate_adaptive(&surface, &policy, &origin)?;
+    let backend = surface_backend(a.surface.backend)?;
+    let adaptive =
+        subsurf::surface::tessellate_adaptive(&surface, &policy, &origin, backend.as_ref())?;
     let tess = &adaptive.tessellation;
     let out = tess.to_mesh();
     write_mesh(&a.output, &out, Some(&tess.normals))?;

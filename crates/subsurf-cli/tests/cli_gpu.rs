@@ -1,4 +1,5 @@
-//! `--backend gpu` of `subsurf refine`, `prep`, `limit` and `eval` against `--backend cpu`.
+//! `--backend gpu` of `subsurf refine`, `prep`, `limit` (uniform and adaptive) and `eval` against
+//! `--backend cpu`.
 //!
 //! Without a GPU adapter these tests fail with the driver installation hint, unless
 //! `SUBSURF_SKIP_GPU=1`.
@@ -170,6 +171,24 @@ fn limit_gpu_matches_cpu() {
         &repo("testdata/shapes/catmark_pyramid.obj"),
         &["--tess", "5"],
         "pyramid_limit",
+    );
+}
+
+#[test]
+fn adaptive_limit_rates_on_the_gpu_match_cpu() {
+    // Rates measured by `GpuRates`, the tessellation evaluated on the CPU: the same rates
+    // (no need of these shapes falls within f32 rounding of an integer), so the same mesh.
+    compare_backends(
+        "limit",
+        &repo("testdata/shapes/catmark_pawn.obj"),
+        &["--tolerance", "1e-3"],
+        "pawn_adaptive",
+    );
+    compare_backends(
+        "limit",
+        &repo("testdata/shapes/catmark_pyramid.obj"),
+        &["--max-edge-length", "0.1"],
+        "pyramid_adaptive",
     );
 }
 

@@ -1,17 +1,19 @@
 //! [`GpuBackend`]: the GPU behind `subsurf::surface::build`. The library defines the
 //! [`Backend`] trait with CPU bodies and knows no GPU; this crate overrides each step with its
 //! wgpu kernels (refinement stencils and the limit step, limit-surface patch evaluation on
-//! Catmull-Clark and Loop meshes, the p-rep passes and grid).
+//! Catmull-Clark and Loop meshes, adaptive tessellation rates, the p-rep passes and grid).
 
 use crate::{
-    GpuContext, GpuError, GpuLimit, GpuLoopLimit, GpuPrep, GpuRefiner, GpuUvRefiner, StencilKernel,
+    GpuContext, GpuError, GpuLimit, GpuLoopLimit, GpuPrep, GpuRates, GpuRefiner, GpuUvRefiner,
+    StencilKernel,
 };
 use subsurf::limit::loop_eval::LoopLimit;
 use subsurf::limit::loop_tessellate::TriTessellation;
-use subsurf::limit::{PatchTable, Tessellation};
+use subsurf::limit::{LimitSurface, PatchTable, Tessellation};
 use subsurf::prep::PrepTopology;
 use subsurf::refine::FVarRefinement;
 use subsurf::surface::{Backend, PrepOutput, SurfaceError};
+use subsurf::tess::{EdgeRates, RatePolicy};
 use subsurf::{FaceVarying, Mesh, Refiner, Topology};
 
 /// The GPU as a surface backend (one device, opened once).
@@ -115,6 +117,36 @@ impl Backend for GpuBackend {
             .map_err(gpu_err("evaluating the samples"))?;
         t.download(ctx)
             .map_err(gpu_err("reading the tessellation back"))
+    }
+
+    /// The patch table uploaded and its points refined from the surface's base positions, the
+    /// rate curves evaluated by `limit_eval` and measured by `rate_measure` ([`GpuRates`]);
+    /// the rates formed on the CPU from one measure per curve. Bad policy values and
+    /// oversize tessellations are refused with the library's errors, as on the CPU.
+    fn adaptive_rates(
+        &self,
+        surface: &LimitSurface,
+        policy: &RatePolicy,
+        origin: &str,
+    ) -> Result<EdgeRates, SurfaceError> {
+        if policy.measure().is_none() {
+            return Ok(policy.rates(surface, origin)?);
+        }
+        let table = &surface.table;
+        policy.validate(&table.base, origin)?;
+        let ctx = &self.ctx;
+        let mut gpu = GpuLimit::new(ctx, table).map_err(gpu_err("uploading the patch table"))?;
+        let base = &surface.points[..table.level_offsets[1] as usize];
+        gpu.update(ctx, base)
+            .map_err(gpu_err("refining and computing end-cap points"))?;
+        let rates =
+            GpuRates::new(ctx, &gpu, table).map_err(gpu_err("uploading the rate curves"))?;
+        let diagonal = subsurf::mesh::bbox_diagonal(&surface.points);
+        match rates.rates(ctx, &gpu, table, policy, diagonal, origin) {
+            Ok(r) => Ok(r),
+            Err(GpuError::Library(e)) => Err(e.into()),
+            Err(e) => Err(gpu_err("measuring the rate curves")(e)),
+        }
     }
 
     /// The patches (and their points, gathered by the library) uploaded, every sample of

@@ -1,9 +1,10 @@
 //! The adaptive limit method: per-edge rates from a [`RatePolicy`], the watertight
 //! tessellation of `crate::tess`, one class per triangle from the patch under its centroid.
-//! Rates and evaluation run on the CPU (rayon) whatever the backend.
+//! The rates are chosen on the backend ([`Backend::adaptive_rates`]: the GPU measures the rate
+//! curves with its kernels); the tessellation is evaluated on the CPU (rayon).
 
 use super::limit::patch_class;
-use super::{class, Colors, Surface, SurfaceError};
+use super::{class, Backend, Colors, Surface, SurfaceError};
 use crate::limit::{LimitSurface, PatchOptions, PatchTable};
 use crate::tess::{plan, AdaptiveTessellation, EdgeRates, RatePolicy};
 use crate::{Mesh, Topology};
@@ -29,14 +30,15 @@ impl Adaptive {
     }
 }
 
-/// Rates of `policy` on `surface`, then the tessellation at those rates (`origin` names
-/// where the policy came from in errors: a flag, a file).
+/// Rates of `policy` on `surface` (chosen on `backend`), then the tessellation at those
+/// rates (`origin` names where the policy came from in errors: a flag, a file).
 pub fn tessellate(
     surface: &LimitSurface,
     policy: &RatePolicy,
     origin: &str,
+    backend: &dyn Backend,
 ) -> Result<Adaptive, SurfaceError> {
-    let rates = policy.rates(surface, origin)?;
+    let rates = backend.adaptive_rates(surface, policy, origin)?;
     let mut p = plan(&surface.table, &rates, origin)?;
     let triangle_uv = std::mem::take(&mut p.triangle_uv);
     Ok(Adaptive {
@@ -53,11 +55,12 @@ pub fn adaptive(
     origin: &str,
     options: &PatchOptions,
     colors: Colors,
+    backend: &dyn Backend,
 ) -> Result<Surface, SurfaceError> {
     let topo = Topology::new(mesh)?;
     let table = PatchTable::build(&topo, options)?;
     let surface = LimitSurface::new(table, &mesh.positions);
-    let a = tessellate(&surface, policy, origin)?;
+    let a = tessellate(&surface, policy, origin, backend)?;
     let table = &surface.table;
     let triangle_class = a
         .triangle_uv

@@ -1,6 +1,6 @@
 //! Where the surface's heavy steps run. The library knows no GPU: [`Backend`] names the
 //! steps (apply refinement stencils to positions and UVs, tessellate the Catmull-Clark or the
-//! Loop limit surface, tessellate the p-rep) with
+//! Loop limit surface, choose adaptive tessellation rates, tessellate the p-rep) with
 //! the CPU as their default bodies; `subsurf-gpu` implements the trait with wgpu kernels, so
 //! a front end passes either [`Cpu`] or `subsurf_gpu::GpuBackend` to the same call.
 
@@ -10,6 +10,7 @@ use crate::limit::loop_tessellate::TriTessellation;
 use crate::limit::{LimitSurface, PatchTable, Tessellation};
 use crate::prep::{PrepPatches, Tessellation as PrepTessellation};
 use crate::refine::FVarRefinement;
+use crate::tess::{EdgeRates, RatePolicy};
 use crate::{Error, FaceVarying, Mesh, Refiner, Topology};
 
 /// The p-rep tessellation and which patches carry the bi-5 perturbation.
@@ -75,6 +76,18 @@ pub trait Backend: std::fmt::Debug + Send + Sync {
         samples: usize,
     ) -> Result<Tessellation, SurfaceError> {
         Ok(LimitSurface::new(table.clone(), base).tessellate(samples)?)
+    }
+
+    /// The per-edge rates of `policy` on `surface` ([`RatePolicy::rates`]: its rate curves
+    /// measured on the CPU); a GPU backend measures them with its kernels and forms the rates
+    /// with the same last step ([`RatePolicy::rates_from_measures`]).
+    fn adaptive_rates(
+        &self,
+        surface: &LimitSurface,
+        policy: &RatePolicy,
+        origin: &str,
+    ) -> Result<EdgeRates, SurfaceError> {
+        Ok(policy.rates(surface, origin)?)
     }
 
     /// The watertight tessellation of the Loop limit surface `limit` (built on `base`),

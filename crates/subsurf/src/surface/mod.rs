@@ -247,7 +247,7 @@ pub fn build(
             policy,
             origin,
             options,
-        } => adaptive::adaptive(mesh, policy, origin, options, colors)?,
+        } => adaptive::adaptive(mesh, policy, origin, options, colors, backend)?,
         Method::Prep { samples, perturbed } => {
             prep::prep(mesh, *samples, *perturbed, colors, backend)?
         }
