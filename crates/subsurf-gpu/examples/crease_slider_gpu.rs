@@ -8,15 +8,11 @@
 //! `WGPU_BACKEND=vulkan cargo run --release -p subsurf-gpu --example crease_slider_gpu
 //! [-- FILE N]` (default `testdata/shapes/catmark_car.obj`, 11 steps).
 
+mod common;
 use std::time::Instant;
 use subsurf::limit::{PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::Topology;
 use subsurf_gpu::{GpuContext, GpuLimit};
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
 
 fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
@@ -24,10 +20,7 @@ fn ms(t: Instant) -> f64 {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let steps: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(11);
     let mesh = subsurf::io::read_path(path)?;
     let ctx = GpuContext::new()?;
@@ -72,10 +65,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         println!("  step {step}: creases {s:?}: {outcome:?}, wrote {up:?}");
     }
     let (c, u, e, f) = (
-        median(&mut cpu),
-        median(&mut upload),
-        median(&mut eval),
-        median(&mut fresh),
+        common::median(&mut cpu),
+        common::median(&mut upload),
+        common::median(&mut eval),
+        common::median(&mut fresh),
     );
     println!(
         "medians of {steps} edits: table edit {c:.2} ms + upload edit {u:.2} ms (fresh build + \

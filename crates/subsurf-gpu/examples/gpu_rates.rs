@@ -6,16 +6,12 @@
 //! `WGPU_BACKEND=vulkan cargo run --release -p subsurf-gpu --example gpu_rates [-- FILE FRAMES
 //! PIXELS]` (default `testdata/shapes/catmark_car.obj`, 24 frames, 4 pixels per edge).
 
+mod common;
 use std::time::Instant;
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
 use subsurf::tess::{RatePolicy, ScreenCamera};
 use subsurf::Topology;
 use subsurf_gpu::{GpuContext, GpuLimit, GpuRates};
-
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
-}
 
 /// A perspective camera (60 degrees, 4:3) at angle `a` around the box centre `c`, `r` away.
 fn orbit(c: [f32; 3], r: f32, a: f32) -> ScreenCamera {
@@ -62,10 +58,7 @@ fn orbit(c: [f32; 3], r: f32, a: f32) -> ScreenCamera {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let path = args
-        .get(1)
-        .map(String::as_str)
-        .unwrap_or("testdata/shapes/catmark_car.obj");
+    let path = common::mesh_path(&args);
     let frames: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(24);
     let pixels: f32 = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(4.0);
     let mesh = subsurf::io::read_path(path)?;
@@ -113,8 +106,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "{} rate curves; per frame (median of {frames}): GPU rates {:.2} ms, CPU rates {:.2} ms; \
          edges where they differ: {differ} of {edges}",
         rates.curves().num_curves(),
-        median(&mut gpu_ms),
-        median(&mut cpu_ms),
+        common::median(&mut gpu_ms),
+        common::median(&mut cpu_ms),
     );
     Ok(())
 }

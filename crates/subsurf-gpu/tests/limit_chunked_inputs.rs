@@ -4,30 +4,14 @@
 
 mod common;
 
-use common::{bits, context_or_skip};
+use common::{bits, context_or_skip, load};
 use subsurf::limit::{PatchOptions, PatchTable};
-use subsurf::{Mesh, Topology};
+use subsurf::Topology;
 use subsurf_gpu::cpu::limit_eval::{limit_eval, pack_queries, LimitInputs, LimitTables};
 use subsurf_gpu::limit::eval_cpu;
 use subsurf_gpu::limit_chunks::{plan, PlanLimits};
 use subsurf_gpu::shared::LimitConfig;
 use subsurf_gpu::{ChunkLimits, GpuLimit};
-
-fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../testdata/shapes")
-        .join(format!("{name}.obj"));
-    let mesh = subsurf::io::read_path(&path).unwrap();
-    let table = PatchTable::build(
-        &Topology::new(&mesh).unwrap(),
-        &PatchOptions {
-            isolation_level: isolation,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (mesh, table)
-}
 
 /// Samples of the tessellation plan plus ptex faces out of range (zeros either way), 1024 of
 /// them first so that the first chunks read no point at all.

@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{bits, context_or_skip};
+use common::{bits, context_or_skip, load};
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, Tessellation};
 use subsurf::{Mesh, Topology};
 use subsurf_gpu::limit::{eval_cpu, tessellate_cpu};
@@ -27,20 +27,6 @@ const SHAPES: [(&str, u32); 9] = [
     ("catmark_car", 1),            // a large mixed mesh with creases
     ("catmark_cube_corner0", 0),   // no refinement: level-0 patches and end caps only
 ];
-
-fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
-    let path = shapes_dir().join(format!("{name}.obj"));
-    let mesh = subsurf::io::read_path(&path).unwrap();
-    let table = PatchTable::build(
-        &Topology::new(&mesh).unwrap(),
-        &PatchOptions {
-            isolation_level: isolation,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (mesh, table)
-}
 
 fn bbox_diagonal(p: &[[f32; 3]]) -> f64 {
     subsurf::mesh::bbox_diagonal(p) as f64

@@ -5,30 +5,13 @@
 
 mod common;
 
-use common::context_or_skip;
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use common::{context_or_skip, load};
+use subsurf::limit::LimitSurface;
 use subsurf::tess::curves::CURVE_POINTS;
 use subsurf::tess::{CurveMeasure, EdgeRates, RatePolicy, ScreenCamera};
-use subsurf::{Mesh, Topology};
 use subsurf_gpu::cpu::rate_measure::rate_measure;
 use subsurf_gpu::rates::rate_config;
 use subsurf_gpu::{ChunkLimits, GpuContext, GpuLimit, GpuRates};
-
-fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../testdata/shapes")
-        .join(format!("{name}.obj"));
-    let mesh = subsurf::io::read_path(&path).unwrap();
-    let table = PatchTable::build(
-        &Topology::new(&mesh).unwrap(),
-        &PatchOptions {
-            isolation_level: isolation,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (mesh, table)
-}
 
 /// A perspective camera looking at the mesh's centre from `dist` bounding-box diagonals
 /// away along +z (column-major world-to-clip, as `subsurf-render`'s).

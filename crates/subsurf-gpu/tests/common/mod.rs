@@ -2,7 +2,27 @@
 
 #![allow(dead_code)]
 
+use subsurf::limit::{PatchOptions, PatchTable};
+use subsurf::{Mesh, Topology};
 use subsurf_gpu::GpuContext;
+
+/// A regression shape of `testdata/shapes` (`name` without `.obj`) and its patch table at
+/// `isolation`.
+pub fn load(name: &str, isolation: u32) -> (Mesh, PatchTable) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../testdata/shapes")
+        .join(format!("{name}.obj"));
+    let mesh = subsurf::io::read_path(&path).unwrap();
+    let table = PatchTable::build(
+        &Topology::new(&mesh).unwrap(),
+        &PatchOptions {
+            isolation_level: isolation,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    (mesh, table)
+}
 
 /// Opens a GPU context. Without an adapter: panics with the installation hint, unless
 /// `SUBSURF_SKIP_GPU=1`, in which case it prints a loud SKIPPED line and returns `None`.
