@@ -8,7 +8,7 @@ use super::bspline::{
 };
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
-use super::single_crease::single_crease_patch_weights;
+use super::single_crease::{single_crease_curves, single_crease_patch_weights};
 use super::weights::{CurveWeights, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -91,33 +91,38 @@ pub fn patch_weights<T: Real>(
     w
 }
 
-/// The regular B-spline curve weights of a patch at ptex `(u, v)`, when its basis is the
-/// plain B-spline (regular patches, and single-crease ones without a crease edge); `None`
-/// for the other kinds.
+/// The two curves whose tensor product is the basis of a patch at ptex `(u, v)` (regular
+/// B-spline and single-crease patches); `None` for Gregory patches.
 #[inline(always)]
-fn regular_curves<T: Real>(
+fn tensor_curves<T: Real>(
     kind: PatchKind,
     param: &PatchParam,
+    sharpness: T,
     u: T,
     v: T,
 ) -> Option<[CurveWeights<T>; 2]> {
     let bits = param.boundary() & 0xf;
-    let bits = match kind {
-        PatchKind::Regular => bits,
-        PatchKind::SingleCrease if PatchEdge::from_index(bits.trailing_zeros()).is_none() => 0,
-        _ => return None,
-    };
     let (s, t) = param.normalize(u, v);
-    Some([
-        bspline_curve_bounded(s, bits & BOUNDARY_U0 != 0, bits & BOUNDARY_U1 != 0),
-        bspline_curve_bounded(t, bits & BOUNDARY_V0 != 0, bits & BOUNDARY_V1 != 0),
-    ])
+    match kind {
+        PatchKind::Regular => Some([
+            bspline_curve_bounded(s, bits & BOUNDARY_U0 != 0, bits & BOUNDARY_U1 != 0),
+            bspline_curve_bounded(t, bits & BOUNDARY_V0 != 0, bits & BOUNDARY_V1 != 0),
+        ]),
+        PatchKind::SingleCrease => Some(match PatchEdge::from_index(bits.trailing_zeros()) {
+            Some(edge) => single_crease_curves(s, t, edge, sharpness),
+            None => [
+                bspline_curve_bounded(s, false, false),
+                bspline_curve_bounded(t, false, false),
+            ],
+        }),
+        PatchKind::GregoryBasis(_) => None,
+    }
 }
 
-/// The position weights of [`patch_weights`] alone (its `p`, bit for bit): for regular
-/// B-spline patches (and single-crease ones without a crease edge) only the tensor of the two
-/// curves' position weights is formed, none of the derivative weights, which a position query
-/// (the rate curves of adaptive tessellation) does not read.
+/// The position weights of [`patch_weights`] alone (its `p`, bit for bit): for regular and
+/// single-crease patches only the tensor of the two curves' position weights is formed, none
+/// of the derivative weights, which a position query (the rate curves of adaptive
+/// tessellation) does not read; Gregory patches go through [`patch_weights`].
 pub fn patch_position_weights<T: Real>(
     kind: PatchKind,
     param: &PatchParam,
@@ -125,7 +130,7 @@ pub fn patch_position_weights<T: Real>(
     u: T,
     v: T,
 ) -> [T; 20] {
-    let Some([wu, wv]) = regular_curves(kind, param, u, v) else {
+    let Some([wu, wv]) = tensor_curves(kind, param, sharpness, u, v) else {
         return patch_weights(kind, param, sharpness, u, v).p;
     };
     let mut p = [T::ZERO; 20];
@@ -138,7 +143,7 @@ pub fn patch_position_weights<T: Real>(
 }
 
 /// The position and first-derivative weights of [`patch_weights`] alone (its `p`, `du` and
-/// `dv`, bit for bit), without the second-derivative weights for the regular B-spline kinds
+/// `dv`, bit for bit), without the second-derivative weights for the tensor-product kinds
 /// (see [`patch_position_weights`]): what a position-and-normal query reads.
 pub fn patch_first_weights<T: Real>(
     kind: PatchKind,
@@ -147,7 +152,7 @@ pub fn patch_first_weights<T: Real>(
     u: T,
     v: T,
 ) -> [[T; 20]; 3] {
-    let Some([wu, wv]) = regular_curves(kind, param, u, v) else {
+    let Some([wu, wv]) = tensor_curves(kind, param, sharpness, u, v) else {
         let w = patch_weights(kind, param, sharpness, u, v);
         return [w.p, w.du, w.dv];
     };
@@ -224,17 +229,22 @@ mod tests {
         ];
         for kind in kinds {
             for boundary in 0..16u8 {
-                for (depth, pu, pv) in [(0u8, 0u16, 0u16), (2, 1, 3), (4, 9, 14)] {
+                for (depth, pu, pv, sharp) in [
+                    (0u8, 0u16, 0u16, 2.25f32),
+                    (2, 1, 3, 0.0),
+                    (4, 9, 14, 10.0),
+                    (1, 1, 0, 0.6),
+                ] {
                     let p = param(boundary, depth, pu, pv);
                     for k in 0..=12 {
                         let (u, v) = (k as f32 / 12.0, ((7 * k) % 13) as f32 / 12.0);
                         let (u, v) = p.unnormalize(u, v);
-                        let full = patch_weights(kind, &p, 2.25f32, u, v);
-                        let pos = patch_position_weights(kind, &p, 2.25f32, u, v);
+                        let full = patch_weights(kind, &p, sharp, u, v);
+                        let pos = patch_position_weights(kind, &p, sharp, u, v);
                         let bits = |w: [f32; 20]| w.map(f32::to_bits);
-                        let what = format!("{kind:?} boundary {boundary} depth {depth}");
+                        let what = format!("{kind:?} {boundary} {depth} {sharp} at {u}, {v}");
                         assert_eq!(bits(full.p), bits(pos), "{what}");
-                        let [p1, du, dv] = patch_first_weights(kind, &p, 2.25f32, u, v);
+                        let [p1, du, dv] = patch_first_weights(kind, &p, sharp, u, v);
                         assert_eq!(bits(full.p), bits(p1), "{what}");
                         assert_eq!(bits(full.du), bits(du), "{what}");
                         assert_eq!(bits(full.dv), bits(dv), "{what}");

@@ -77,7 +77,9 @@
 //! | `V1` (`v = 1`, grid row 2) | `v` | `v` |
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
-use super::bspline::{bspline_curve, bspline_curve_bounded, bspline_patch_weights};
+use super::bspline::{
+    bspline_curve, bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1,
+};
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -189,29 +191,36 @@ pub fn single_crease_patch_weights<T: Real>(
     edge: PatchEdge,
     s: T,
 ) -> PatchWeights<T, 16> {
+    let [wu, wv] = single_crease_curves(u, v, edge, s);
+    PatchWeights::tensor(&wu, &wv)
+}
+
+/// The two curves whose tensor product is [`single_crease_patch_weights`] (along `u`, along
+/// `v`), for callers that need only some of the tensor's weights.
+pub fn single_crease_curves<T: Real>(u: T, v: T, edge: PatchEdge, s: T) -> [CurveWeights<T>; 2] {
     // The two limits are the plain and the boundary (phantom point) patch; delegating keeps
     // them bit-identical to those patches in every orientation.
     if s.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
-        return bspline_patch_weights(u, v, 0);
+        return [bspline_curve(u), bspline_curve(v)];
     }
     if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
-        return bspline_patch_weights(u, v, edge.mask());
+        let m = edge.mask();
+        return [
+            bspline_curve_bounded(u, m & BOUNDARY_U0 != 0, m & BOUNDARY_U1 != 0),
+            bspline_curve_bounded(v, m & BOUNDARY_V0 != 0, m & BOUNDARY_V1 != 0),
+        ];
     }
     match edge {
-        PatchEdge::U1 => {
-            PatchWeights::tensor(&crease_curve_td(u, T::ONE - u, s), &bspline_curve(v))
-        }
-        PatchEdge::U0 => PatchWeights::tensor(
-            &crease_curve_td(T::ONE - u, u, s).reversed(),
-            &bspline_curve(v),
-        ),
-        PatchEdge::V1 => {
-            PatchWeights::tensor(&bspline_curve(u), &crease_curve_td(v, T::ONE - v, s))
-        }
-        PatchEdge::V0 => PatchWeights::tensor(
-            &bspline_curve(u),
-            &crease_curve_td(T::ONE - v, v, s).reversed(),
-        ),
+        PatchEdge::U1 => [crease_curve_td(u, T::ONE - u, s), bspline_curve(v)],
+        PatchEdge::U0 => [
+            crease_curve_td(T::ONE - u, u, s).reversed(),
+            bspline_curve(v),
+        ],
+        PatchEdge::V1 => [bspline_curve(u), crease_curve_td(v, T::ONE - v, s)],
+        PatchEdge::V0 => [
+            bspline_curve(u),
+            crease_curve_td(T::ONE - v, v, s).reversed(),
+        ],
     }
 }
 
