@@ -66,3 +66,17 @@ def test_bad_adaptive_arguments_are_value_errors():
         with pytest.raises(ValueError) as e:
             call()
         assert words in str(e.value), str(e.value)
+
+
+@pytest.mark.parametrize("kw,value", [("tolerance", 1e-3), ("max_edge_length", 0.05)])
+def test_gpu_rates_give_the_cpu_mesh(kw, value):
+    # backend="gpu": the rate curves measured by the GPU's kernels, the tessellation evaluated
+    # on the CPU; the pawn's needs fall nowhere near an integer, so the rates and mesh agree.
+    mesh = subsurf.read(SHAPES / "catmark_pawn.obj")
+    cpu = subsurf.tessellate(mesh, "limit", **{kw: value})
+    try:
+        gpu = subsurf.tessellate(mesh, "limit", backend="gpu", **{kw: value})
+    except subsurf.GpuError as e:
+        pytest.skip(f"SKIPPED: no GPU adapter ({e})")
+    for a, b in zip(cpu, gpu):
+        assert np.array_equal(a, b)
