@@ -292,4 +292,30 @@ mod tests {
             }
         }
     }
+
+    /// Measures of another mesh's curves are refused, naming the policy; uniform rates need
+    /// none.
+    #[test]
+    fn measures_of_other_curves_are_refused() {
+        let mesh = crate::shapes::cube();
+        let t = crate::Topology::new(&mesh).unwrap();
+        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let surface = LimitSurface::new(table, &mesh.positions);
+        let curves = RateCurves::new(&surface.table);
+        let policy = super::super::RatePolicy::Tolerance(1e-3);
+        let short = vec![1.0; curves.num_curves() - 1];
+        let err = policy
+            .rates_from_measures(&surface.table, 1.0, &curves, &short, "--tolerance")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("--tolerance:") && err.contains("curve measures"),
+            "{err}"
+        );
+        let uniform = super::super::RatePolicy::Uniform(3);
+        let r = uniform
+            .rates_from_measures(&surface.table, 1.0, &RateCurves::default(), &[], "--tess")
+            .unwrap();
+        assert_eq!(r, uniform.rates(&surface, "--tess").unwrap());
+    }
 }

@@ -12,8 +12,9 @@
 //! Lengths and curvatures are measured on the limit surface itself, along the rate curves of
 //! [`super::curves`]: each base edge's limit curve and each ptex face's isolines, evaluated
 //! at [`CURVE_SAMPLES`]` + 1` points (on the CPU in parallel, rayon, or on the GPU through
-//! `subsurf-gpu`'s `GpuRates`; both end in [`RatePolicy::rates_from_measures`]). A chord of parameter length `h` over a curve with second derivative `p''`
-//! deviates from it by about `|p''| h² / 8`, so the tolerance policy takes
+//! `subsurf-gpu`'s `GpuRates`; both end in [`RatePolicy::rates_from_measures`]). A chord of
+//! parameter length `h` over a curve with second derivative `p''` deviates from it by about
+//! `|p''| h² / 8`, so the tolerance policy takes
 //! `R = ⌈√(max |p''| / (8 E'))⌉` with `E'` the tolerance in world units over a safety factor
 //! of 2; the length policies take the fastest stretch of the curve (length per unit
 //! parameter) over the length allowed, `/√2` for diagonals. A face's interior rate is chosen
