@@ -7,7 +7,7 @@ use std::collections::HashMap;
 
 use limit_common::{load_shape, shape_names};
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
-use subsurf::tess::{plan, EdgeRates};
+use subsurf::tess::{plan, plan_without_uv, EdgeRates};
 use subsurf::Topology;
 
 /// A small deterministic generator (xorshift64*).
@@ -61,6 +61,18 @@ fn random_rates_are_watertight_on_every_shape() {
                 faces: Vec::new(),
             };
             let p = plan(&table, &rates, "test").unwrap();
+            // Without the triangles' (u, v): the same plan otherwise.
+            let q = plan_without_uv(&table, &rates, "test").unwrap();
+            assert!(q.triangle_uv.is_empty() && p.triangle_uv.len() == p.triangles.len());
+            assert_eq!(
+                (&q.queries, &q.triangles),
+                (&p.queries, &p.triangles),
+                "{name}"
+            );
+            assert_eq!(
+                (&q.edge_rates, &q.ptex_rates),
+                (&p.edge_rates, &p.ptex_rates)
+            );
             if !t.degenerate_faces().is_empty() {
                 // Faces repeating a vertex (the quad poles) collapse; only the plan is checked.
                 degenerate_shapes.push(name.clone());

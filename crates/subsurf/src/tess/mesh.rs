@@ -103,7 +103,8 @@ pub struct AdaptivePlan {
     /// Counter-clockwise triangles of vertex indices (those of faces that repeat a vertex and
     /// would repeat a sample are left out).
     pub triangles: Vec<[u32; 3]>,
-    /// Per triangle: its ptex face and its corners' `(u, v)` there.
+    /// Per triangle: its ptex face and its corners' `(u, v)` there (empty from
+    /// [`plan_without_uv`]).
     pub triangle_uv: Vec<(u32, [[f32; 2]; 3])>,
 }
 
@@ -233,6 +234,25 @@ impl Keys<'_> {
 /// module documentation). Refuses rates out of range (naming `origin`) and a tessellation
 /// that would not fit in memory, before building anything.
 pub fn plan(table: &PatchTable, rates: &EdgeRates, origin: &str) -> Result<AdaptivePlan> {
+    plan_with(table, rates, origin, true)
+}
+
+/// [`plan`] without its `triangle_uv` (what drawing the tessellation does not read; the rest
+/// is the same).
+pub fn plan_without_uv(
+    table: &PatchTable,
+    rates: &EdgeRates,
+    origin: &str,
+) -> Result<AdaptivePlan> {
+    plan_with(table, rates, origin, false)
+}
+
+fn plan_with(
+    table: &PatchTable,
+    rates: &EdgeRates,
+    origin: &str,
+    with_uv: bool,
+) -> Result<AdaptivePlan> {
     let t = &table.base;
     rates.validate(t, origin)?;
     let edge = even_where_needed(t, &rates.edges);
@@ -339,7 +359,9 @@ pub fn plan(table: &PatchTable, rates: &EdgeRates, origin: &str) -> Result<Adapt
                 continue; // on a face that repeats a vertex: no area
             }
             triangles.push(out);
-            triangle_uv.push((ptex as u32, tri.map(|i| p.coords[i as usize])));
+            if with_uv {
+                triangle_uv.push((ptex as u32, tri.map(|i| p.coords[i as usize])));
+            }
         }
     }
     Ok(AdaptivePlan {
@@ -415,7 +437,7 @@ impl LimitSurface {
         rates: &EdgeRates,
         origin: &str,
     ) -> Result<AdaptiveTessellation> {
-        let plan = plan(&self.table, rates, origin)?;
+        let plan = plan_without_uv(&self.table, rates, origin)?;
         Ok(self.eval_plan(plan))
     }
 

@@ -20,6 +20,6 @@ pub mod pattern;
 pub mod rates;
 
 pub use curves::{CurveMeasure, RateCurves};
-pub use mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
+pub use mesh::{plan, plan_without_uv, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;
 pub use rates::{parse_edge_rates, set_edge_rate, RatePolicy, ScreenCamera};
