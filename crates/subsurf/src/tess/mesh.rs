@@ -340,9 +340,10 @@ fn plan_with(
     // The first face to use a key evaluates it.
     const NONE: u32 = u32::MAX;
     let mut remap = vec![NONE; next];
-    let mut queries = Vec::new();
-    let mut triangles = Vec::new();
-    let mut triangle_uv = Vec::new();
+    let num_triangles: usize = patterns.iter().flatten().map(|p| p.triangles.len()).sum();
+    let mut queries = Vec::with_capacity(next);
+    let mut triangles = Vec::with_capacity(num_triangles);
+    let mut triangle_uv = Vec::with_capacity(if with_uv { num_triangles } else { 0 });
     for (ptex, p) in patterns.iter().enumerate() {
         let Some(p) = p else { continue };
         let lk = &local_keys[ptex];
