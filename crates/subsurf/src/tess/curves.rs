@@ -103,32 +103,31 @@ impl RateCurves {
                     }
                 }
             });
-        let mut rest = (face_q, face_live);
-        for f in 0..t.num_faces() {
-            if t.face_is_hole[f] {
-                continue;
-            }
-            let n = (face_curves[f + 1] - face_curves[f]) as usize;
-            let (q, more_q) = std::mem::take(&mut rest.0).split_at_mut(n * CURVE_POINTS);
-            let (l, more_l) = std::mem::take(&mut rest.1).split_at_mut(n);
-            rest = (more_q, more_l);
-            let first = table.ptex_offsets[f] as usize;
-            for (j, (q, l)) in q.chunks_exact_mut(CURVE_POINTS).zip(l).enumerate() {
-                let ptex = first + j / ISOLINES_PER_PTEX;
-                let line = j % ISOLINES_PER_PTEX;
-                let c = ISOLINES[line % ISOLINES.len()];
-                *l = table.patch_map.roots[ptex] != EMPTY;
-                for (i, q) in q.iter_mut().enumerate() {
-                    let a = at(i);
-                    let (u, v) = if line < ISOLINES.len() {
-                        (a, c)
-                    } else {
-                        (c, a)
-                    };
-                    *q = if *l { (ptex as u32, u, v) } else { DEAD };
+        // The ptex faces of faces that are not holes, in curve order: six curves each.
+        let live_ptex: Vec<u32> = (0..t.num_faces())
+            .filter(|&f| !t.face_is_hole[f])
+            .flat_map(|f| table.ptex_offsets[f]..table.ptex_offsets[f + 1])
+            .collect();
+        face_q
+            .par_chunks_mut(ISOLINES_PER_PTEX * CURVE_POINTS)
+            .zip(face_live.par_chunks_mut(ISOLINES_PER_PTEX))
+            .zip(live_ptex.par_iter())
+            .for_each(|((q, l), &ptex)| {
+                let ptex_live = roots[ptex as usize] != EMPTY;
+                for (line, (q, l)) in q.chunks_exact_mut(CURVE_POINTS).zip(l).enumerate() {
+                    let c = ISOLINES[line % ISOLINES.len()];
+                    *l = ptex_live;
+                    for (i, q) in q.iter_mut().enumerate() {
+                        let a = at(i);
+                        let (u, v) = if line < ISOLINES.len() {
+                            (a, c)
+                        } else {
+                            (c, a)
+                        };
+                        *q = if ptex_live { (ptex, u, v) } else { DEAD };
+                    }
                 }
-            }
-        }
+            });
         RateCurves {
             queries,
             live,
