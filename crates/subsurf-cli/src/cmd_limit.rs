@@ -24,7 +24,9 @@ pub struct SurfaceArgs {
     #[command(flatten)]
     pub scheme: SchemeArgs,
     /// Where the surface is evaluated: the GPU runs refinement, end-cap points and patch
-    /// evaluation as wgpu kernels (same samples, f32 rounding of the device).
+    /// evaluation as wgpu kernels (same samples, f32 rounding of the device); with adaptive
+    /// rates (`--tolerance`, `--max-edge-length`, `--pixels`) it measures the rate curves and
+    /// the CPU evaluates the tessellation.
     #[arg(long, value_enum, default_value_t = Backend::Cpu)]
     pub backend: Backend,
     /// Double precision: refinement masks, end-cap points and evaluation in f64 (CPU only;
