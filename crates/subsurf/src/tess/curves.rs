@@ -215,39 +215,40 @@ pub fn measure(points: &[[f32; 3]], m: &CurveMeasure) -> f64 {
     }
 }
 
-/// The largest length per unit parameter of the curve's segments, after `map`.
+/// The largest length per unit parameter of the curve's segments, after `map` (a segment with
+/// an end mapped to `None` counts zero). The square roots are taken once, of the largest
+/// squared length: `sqrt` is correctly rounded and monotonic, so the result is the largest of
+/// the segments' rounded lengths, bit for bit.
 fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) -> f64 {
-    let mapped: Vec<_> = points.iter().map(|&p| map(p)).collect();
     let steps = (points.len().max(2) - 1) as f64;
-    mapped
-        .windows(2)
-        .map(|w| match (w[0], w[1]) {
-            (Some(a), Some(b)) => {
-                (0..3)
-                    .map(|k| f64::from(b[k] - a[k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-                    * steps
-            }
-            _ => 0.0,
-        })
-        .fold(0.0, f64::max)
+    let mut prev: Option<[f32; 3]> = None;
+    let mut best = 0.0f64;
+    for &p in points {
+        let m = map(p);
+        if let (Some(a), Some(b)) = (prev, m) {
+            let sq = (0..3).map(|k| f64::from(b[k] - a[k]).powi(2)).sum::<f64>();
+            best = best.max(sq);
+        }
+        prev = m;
+    }
+    best.sqrt() * steps
 }
 
-/// Largest second derivative (per unit parameter squared) along evenly spaced samples.
+/// Largest second derivative (per unit parameter squared) along evenly spaced samples, from
+/// second differences (the square root taken once, as in [`max_speed`]).
 fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
     let h = 1.0 / (c.len().max(2) - 1) as f64;
-    c.windows(3)
+    let best = c
+        .windows(3)
         .map(|w| {
             (0..3)
                 .map(|k| {
                     (f64::from(w[0][k]) - 2.0 * f64::from(w[1][k]) + f64::from(w[2][k])).powi(2)
                 })
                 .sum::<f64>()
-                .sqrt()
-                / (h * h)
         })
-        .fold(0.0, f64::max)
+        .fold(0.0, f64::max);
+    best.sqrt() / (h * h)
 }
 
 #[cfg(test)]
