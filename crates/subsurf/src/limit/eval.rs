@@ -144,12 +144,6 @@ pub(crate) struct PatchCache<R> {
     n: usize,
 }
 
-impl<R: Real> Default for PatchCache<R> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
 impl<R: Real> PatchCache<R> {
     /// An empty cache.
     pub(crate) fn new() -> Self {

@@ -2,13 +2,14 @@
 //! [`PatchParam`], evaluates the right basis and scales the derivatives back to the face's
 //! parameterization (OpenSubdiv's `Far::internal::EvaluatePatchBasis`).
 
-use super::bspline::{
-    bspline_curve_bounded, bspline_patch_weights, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0,
-    BOUNDARY_V1,
-};
+use super::bspline::bspline_curves;
+#[cfg(test)]
+use super::bspline::bspline_patch_weights;
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
-use super::single_crease::{single_crease_curves, single_crease_patch_weights};
+use super::single_crease::single_crease_curves;
+#[cfg(test)]
+use super::single_crease::single_crease_patch_weights;
 use super::weights::{CurveWeights, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -62,16 +63,9 @@ pub fn patch_weights_normalized<T: Real>(
     s: T,
     t: T,
 ) -> AnyPatchWeights<T> {
-    match kind {
-        PatchKind::Regular => widen(bspline_patch_weights(s, t, param.boundary() & 0xf)),
-        PatchKind::SingleCrease => {
-            let bits = param.boundary() & 0xf;
-            match PatchEdge::from_index(bits.trailing_zeros()) {
-                Some(edge) => widen(single_crease_patch_weights(s, t, edge, sharpness)),
-                None => widen(bspline_patch_weights(s, t, 0)),
-            }
-        }
-        PatchKind::GregoryBasis(d) => gregory_patch_weights(s, t, d),
+    match basis(kind, param, sharpness, s, t) {
+        Basis::Tensor([wu, wv]) => widen(PatchWeights::tensor(&wu, &wv)),
+        Basis::Gregory(d) => gregory_patch_weights(s, t, d),
     }
 }
 
@@ -91,31 +85,28 @@ pub fn patch_weights<T: Real>(
     w
 }
 
-/// The two curves whose tensor product is the basis of a patch at ptex `(u, v)` (regular
-/// B-spline and single-crease patches); `None` for Gregory patches.
+/// The basis of a patch at its own parameters `(s, t)`.
+enum Basis<T> {
+    /// A tensor product (regular and single-crease patches): the curves along `s` and `t`.
+    Tensor([CurveWeights<T>; 2]),
+    /// A Gregory patch, evaluated whole.
+    Gregory(GregoryDerivatives),
+}
+
+/// The one place that picks a patch's basis: [`patch_weights_normalized`] and the partial
+/// weights below all go through it.
 #[inline(always)]
-fn tensor_curves<T: Real>(
-    kind: PatchKind,
-    param: &PatchParam,
-    sharpness: T,
-    u: T,
-    v: T,
-) -> Option<[CurveWeights<T>; 2]> {
+fn basis<T: Real>(kind: PatchKind, param: &PatchParam, sharpness: T, s: T, t: T) -> Basis<T> {
     let bits = param.boundary() & 0xf;
-    let (s, t) = param.normalize(u, v);
     match kind {
-        PatchKind::Regular => Some([
-            bspline_curve_bounded(s, bits & BOUNDARY_U0 != 0, bits & BOUNDARY_U1 != 0),
-            bspline_curve_bounded(t, bits & BOUNDARY_V0 != 0, bits & BOUNDARY_V1 != 0),
-        ]),
-        PatchKind::SingleCrease => Some(match PatchEdge::from_index(bits.trailing_zeros()) {
-            Some(edge) => single_crease_curves(s, t, edge, sharpness),
-            None => [
-                bspline_curve_bounded(s, false, false),
-                bspline_curve_bounded(t, false, false),
-            ],
-        }),
-        PatchKind::GregoryBasis(_) => None,
+        PatchKind::Regular => Basis::Tensor(bspline_curves(s, t, bits)),
+        PatchKind::SingleCrease => {
+            Basis::Tensor(match PatchEdge::from_index(bits.trailing_zeros()) {
+                Some(edge) => single_crease_curves(s, t, edge, sharpness),
+                None => bspline_curves(s, t, 0),
+            })
+        }
+        PatchKind::GregoryBasis(d) => Basis::Gregory(d),
     }
 }
 
@@ -130,7 +121,8 @@ pub fn patch_position_weights<T: Real>(
     u: T,
     v: T,
 ) -> [T; 20] {
-    let Some([wu, wv]) = tensor_curves(kind, param, sharpness, u, v) else {
+    let (s, t) = param.normalize(u, v);
+    let Basis::Tensor([wu, wv]) = basis(kind, param, sharpness, s, t) else {
         return patch_weights(kind, param, sharpness, u, v).p;
     };
     let mut p = [T::ZERO; 20];
@@ -152,7 +144,8 @@ pub fn patch_first_weights<T: Real>(
     u: T,
     v: T,
 ) -> [[T; 20]; 3] {
-    let Some([wu, wv]) = tensor_curves(kind, param, sharpness, u, v) else {
+    let (s, t) = param.normalize(u, v);
+    let Basis::Tensor([wu, wv]) = basis(kind, param, sharpness, s, t) else {
         let w = patch_weights(kind, param, sharpness, u, v);
         return [w.p, w.du, w.dv];
     };

@@ -123,9 +123,18 @@ pub fn bspline_curve_bounded<T: Real>(t: T, low: bool, high: bool) -> CurveWeigh
 /// Weights of the 16 points of a regular bicubic B-spline patch at `(u, v)` with the given
 /// boundary mask (0 for an interior patch). Points beyond a boundary edge get weight 0.
 pub fn bspline_patch_weights<T: Real>(u: T, v: T, boundary: u8) -> PatchWeights<T, 16> {
-    let wu = bspline_curve_bounded(u, boundary & BOUNDARY_U0 != 0, boundary & BOUNDARY_U1 != 0);
-    let wv = bspline_curve_bounded(v, boundary & BOUNDARY_V0 != 0, boundary & BOUNDARY_V1 != 0);
+    let [wu, wv] = bspline_curves(u, v, boundary);
     PatchWeights::tensor(&wu, &wv)
+}
+
+/// The two curves (along `u`, along `v`) whose tensor product is
+/// [`bspline_patch_weights`]`(u, v, boundary)`: each folded where `boundary` marks its ends.
+#[inline(always)]
+pub fn bspline_curves<T: Real>(u: T, v: T, boundary: u8) -> [CurveWeights<T>; 2] {
+    [
+        bspline_curve_bounded(u, boundary & BOUNDARY_U0 != 0, boundary & BOUNDARY_U1 != 0),
+        bspline_curve_bounded(v, boundary & BOUNDARY_V0 != 0, boundary & BOUNDARY_V1 != 0),
+    ]
 }
 
 /// Evaluates a regular bicubic B-spline patch (see [`bspline_patch_weights`]).

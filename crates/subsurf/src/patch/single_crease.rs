@@ -77,9 +77,7 @@
 //! | `V1` (`v = 1`, grid row 2) | `v` | `v` |
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
-use super::bspline::{
-    bspline_curve, bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1,
-};
+use super::bspline::{bspline_curve, bspline_curve_bounded, bspline_curves};
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -201,14 +199,10 @@ pub fn single_crease_curves<T: Real>(u: T, v: T, edge: PatchEdge, s: T) -> [Curv
     // The two limits are the plain and the boundary (phantom point) patch; delegating keeps
     // them bit-identical to those patches in every orientation.
     if s.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
-        return [bspline_curve(u), bspline_curve(v)];
+        return bspline_curves(u, v, 0);
     }
     if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
-        let m = edge.mask();
-        return [
-            bspline_curve_bounded(u, m & BOUNDARY_U0 != 0, m & BOUNDARY_U1 != 0),
-            bspline_curve_bounded(v, m & BOUNDARY_V0 != 0, m & BOUNDARY_V1 != 0),
-        ];
+        return bspline_curves(u, v, edge.mask());
     }
     match edge {
         PatchEdge::U1 => [crease_curve_td(u, T::ONE - u, s), bspline_curve(v)],

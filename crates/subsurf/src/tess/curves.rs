@@ -93,13 +93,14 @@ impl RateCurves {
             .zip(edge_live.par_iter_mut())
             .enumerate()
             .for_each(|(e, (q, live))| {
+                // The face the edge is seen from, found once for its samples.
+                let Some(side) = EdgeSide::of(t, ptex_offsets, e) else {
+                    return; // its queries stay dead
+                };
                 for (i, q) in q.iter_mut().enumerate() {
-                    match edge_point(t, ptex_offsets, roots, e, at(i)) {
-                        Some((ptex, u, v)) => {
-                            *q = (ptex as u32, u, v);
-                            *live = true;
-                        }
-                        None => *q = DEAD,
+                    if let Some((ptex, u, v)) = side.point(at(i), roots) {
+                        *q = (ptex as u32, u, v);
+                        *live = true;
                     }
                 }
             });
@@ -166,41 +167,57 @@ impl RateCurves {
     }
 }
 
-/// The `(ptex, u, v)` of the point at `t` (from the edge's first vertex) along base edge
-/// `e`, seen from its first face that is not a hole; `None` when all its faces are holes or
-/// its ptex face has no patches (`roots`: the patch map's).
-fn edge_point(
-    topo: &Topology,
-    ptex_offsets: &[u32],
-    roots: &[u32],
-    e: usize,
-    t: f32,
-) -> Option<(usize, f32, f32)> {
-    let (faces, locals) = (topo.edge_faces(e), topo.edge_faces_local(e));
-    let (f, k) = faces
-        .iter()
-        .zip(locals)
-        .map(|(&f, &k)| (f as usize, k as usize))
-        .find(|&(f, _)| !topo.face_is_hole[f])?;
-    let n = topo.face_size(f);
-    // Along the face's edge k, from its corner k.
-    let forward = topo.edge_verts[e][0] == topo.face_vertices(f)[k];
-    let t = if forward { t } else { 1.0 - t };
-    let first = ptex_offsets[f] as usize;
-    let (ptex, u, v) = if n == 4 {
-        let (u, v) = match k {
-            0 => (t, 0.0),
-            1 => (1.0, t),
-            2 => (1.0 - t, 1.0),
-            _ => (0.0, 1.0 - t),
+/// A base edge as seen from its first face that is not a hole: the face's ptex faces and
+/// the edge's place in it.
+struct EdgeSide {
+    /// The face's first ptex face.
+    first: usize,
+    /// The face's size.
+    n: usize,
+    /// The edge's local index in the face.
+    k: usize,
+    /// Whether the edge runs from the face's corner `k` (else towards it).
+    forward: bool,
+}
+
+impl EdgeSide {
+    /// Edge `e`'s side; `None` when all its faces are holes.
+    fn of(topo: &Topology, ptex_offsets: &[u32], e: usize) -> Option<EdgeSide> {
+        let (faces, locals) = (topo.edge_faces(e), topo.edge_faces_local(e));
+        let (f, k) = faces
+            .iter()
+            .zip(locals)
+            .map(|(&f, &k)| (f as usize, k as usize))
+            .find(|&(f, _)| !topo.face_is_hole[f])?;
+        Some(EdgeSide {
+            first: ptex_offsets[f] as usize,
+            n: topo.face_size(f),
+            k,
+            forward: topo.edge_verts[e][0] == topo.face_vertices(f)[k],
+        })
+    }
+
+    /// The `(ptex, u, v)` of the point at `t` along the edge, from its first vertex; `None`
+    /// when that ptex face has no patches (`roots`: the patch map's).
+    fn point(&self, t: f32, roots: &[u32]) -> Option<(usize, f32, f32)> {
+        let (first, n, k) = (self.first, self.n, self.k);
+        // Along the face's edge k, from its corner k.
+        let t = if self.forward { t } else { 1.0 - t };
+        let (ptex, u, v) = if n == 4 {
+            let (u, v) = match k {
+                0 => (t, 0.0),
+                1 => (1.0, t),
+                2 => (1.0 - t, 1.0),
+                _ => (0.0, 1.0 - t),
+            };
+            (first, u, v)
+        } else if t <= 0.5 {
+            (first + k, 2.0 * t, 0.0)
+        } else {
+            (first + (k + 1) % n, 0.0, 2.0 - 2.0 * t)
         };
-        (first, u, v)
-    } else if t <= 0.5 {
-        (first + k, 2.0 * t, 0.0)
-    } else {
-        (first + (k + 1) % n, 0.0, 2.0 - 2.0 * t)
-    };
-    (roots[ptex] != EMPTY).then_some((ptex, u, v))
+        (roots[ptex] != EMPTY).then_some((ptex, u, v))
+    }
 }
 
 /// One curve's measure (the CPU's, in `f64`): the largest over its segments or second
