@@ -68,8 +68,8 @@ use crate::buffers::{read_back, storage_buffer_init, VertexBuffer, STORAGE_USAGE
 use crate::context::GpuContext;
 use crate::cpu::limit_eval::{pack_queries, LimitTables, QUERY_WORDS, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
-use crate::kernels::grid_2d;
 use crate::kernels::stencil::{ChunkLimits, StencilKernel};
+use crate::kernels::{aligned_chunks, encode_pass, grid_2d};
 use crate::limit_chunks;
 pub use crate::limit_twin::{eval_cpu, tessellate_cpu, unpack_points};
 use crate::refine::{auto_pipeline, uniform_init, GpuRefiner};
@@ -540,24 +540,14 @@ impl GpuLimit {
     /// offset alignment (in words, so aligned for any stride), bindings and grids within the
     /// limits.
     fn sample_chunks(&self, count: usize, stride: usize) -> Result<Vec<(usize, usize)>> {
-        let max_words = (self.limits.max_binding_bytes / WORD) as usize;
-        let max_dispatch =
-            u64::from(self.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
-        let mut per = (max_words / stride.max(QUERY_WORDS)).min(max_dispatch as usize);
-        if count > per {
-            per -= per % self.row_align;
-        }
-        if per == 0 {
-            return Err(GpuError::TooLarge {
-                what: "one aligned chunk of limit samples",
-                needed: (self.row_align * stride) as u64 * WORD,
-                limit: self.limits.max_binding_bytes,
-            });
-        }
-        Ok((0..count)
-            .step_by(per)
-            .map(|s| (s, (s + per).min(count)))
-            .collect())
+        aligned_chunks(
+            count,
+            stride.max(QUERY_WORDS),
+            &self.limits,
+            WORKGROUP_SIZE,
+            self.row_align,
+            "one aligned chunk of limit samples",
+        )
     }
 
     /// The samples of the `N × N` watertight tessellation ([`PatchTable::tessellation_plan`])
@@ -611,17 +601,8 @@ impl GpuLimit {
             if let Some((gather, scratch)) = &samples.gather {
                 gather.encode(ctx, &mut encoder, &self.points, &mut scratch.alias())?;
             }
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("limit_eval"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                for (bind_group, (gx, gy)) in &samples.chunks {
-                    pass.set_bind_group(0, bind_group, &[]);
-                    pass.dispatch_workgroups(*gx, *gy, 1);
-                }
-            }
+            let chunks = samples.chunks.iter().map(|(g, grid)| (g, *grid));
+            encode_pass(&mut encoder, "limit_eval", &self.pipeline, chunks);
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })

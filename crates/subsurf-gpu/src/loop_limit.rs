@@ -22,7 +22,7 @@ use crate::context::GpuContext;
 use crate::cpu::loop_eval::{pack_queries, LoopTables, QUERY_WORDS, WORKGROUP_SIZE};
 use crate::error::{GpuError, Result};
 use crate::kernels::stencil::ChunkLimits;
-use crate::kernels::{grid_2d, part, whole};
+use crate::kernels::{aligned_chunks, encode_pass, grid_2d, part, whole};
 use crate::limit::GpuSamples;
 pub use crate::loop_twin::{assemble, loop_eval_cpu, loop_tessellate_cpu, plan_queries};
 use crate::refine::{auto_pipeline, uniform_init};
@@ -154,24 +154,14 @@ impl GpuLoopLimit {
     /// offset alignment (in words, so aligned for any stride), bindings and grids within the
     /// limits.
     fn sample_chunks(&self, count: usize, stride: usize) -> Result<Vec<(usize, usize)>> {
-        let max_words = (self.limits.max_binding_bytes / WORD) as usize;
-        let max_dispatch =
-            u64::from(self.limits.max_workgroups_per_dimension).pow(2) * u64::from(WORKGROUP_SIZE);
-        let mut per = (max_words / stride.max(QUERY_WORDS)).min(max_dispatch as usize);
-        if count > per {
-            per -= per % self.row_align;
-        }
-        if per == 0 {
-            return Err(GpuError::TooLarge {
-                what: "one aligned chunk of Loop limit samples",
-                needed: (self.row_align * stride) as u64 * WORD,
-                limit: self.limits.max_binding_bytes,
-            });
-        }
-        Ok((0..count)
-            .step_by(per)
-            .map(|s| (s, (s + per).min(count)))
-            .collect())
+        aligned_chunks(
+            count,
+            stride.max(QUERY_WORDS),
+            &self.limits,
+            WORKGROUP_SIZE,
+            self.row_align,
+            "one aligned chunk of Loop limit samples",
+        )
     }
 
     /// Submits the evaluation of `samples` (the result stays on the GPU until downloaded).
@@ -182,17 +172,8 @@ impl GpuLoopLimit {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("loop_eval"),
                 });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("loop_eval"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                for (bind_group, (gx, gy)) in samples.chunks() {
-                    pass.set_bind_group(0, bind_group, &[]);
-                    pass.dispatch_workgroups(*gx, *gy, 1);
-                }
-            }
+            let chunks = samples.chunks().iter().map(|(g, grid)| (g, *grid));
+            encode_pass(&mut encoder, "loop_eval", &self.pipeline, chunks);
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })

@@ -16,9 +16,9 @@
 
 use crate::buffers::{read_back, storage_buffer_init};
 use crate::context::GpuContext;
-use crate::error::{GpuError, Result};
-use crate::kernels::grid_2d;
+use crate::error::Result;
 use crate::kernels::stencil::ChunkLimits;
+use crate::kernels::{aligned_chunks, encode_pass, grid_2d, part, whole};
 use crate::limit::{GpuLimit, GpuSamples};
 use crate::refine::{auto_pipeline, uniform_init};
 use crate::shaders;
@@ -41,15 +41,6 @@ pub struct GpuRates {
     pipeline: wgpu::ComputePipeline,
     /// Per chunk of curves: its uniform, bind group, workgroup grid and configuration.
     chunks: Vec<(wgpu::Buffer, wgpu::BindGroup, (u32, u32), RateConfig)>,
-}
-
-/// `words` words of `buffer` from word `offset`.
-fn bind(buffer: &wgpu::Buffer, offset: u64, words: u64) -> wgpu::BindingResource<'_> {
-    wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-        buffer,
-        offset: offset * WORD,
-        size: wgpu::BufferSize::new(words * WORD),
-    })
 }
 
 /// The configuration's encoding of a measure: kind, image size, matrix.
@@ -105,53 +96,44 @@ impl GpuRates {
             ))
         })?;
         let layout = pipeline.get_bind_group_layout(0);
-        let adapter = ChunkLimits::from_context(ctx);
-        let max_binding = limits.max_binding_bytes.min(adapter.max_binding_bytes);
-        let max_wg = limits
-            .max_workgroups_per_dimension
-            .clamp(1, adapter.max_workgroups_per_dimension);
+        let limits = limits.clamped_to(ChunkLimits::from_context(ctx));
         let align =
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         let stride = samples.stride;
-        // Curves per chunk: the samples of a chunk fit one binding; starts aligned.
-        let words_per_curve = (CURVE_POINTS * stride) as u64;
-        let mut per = (max_binding / WORD / words_per_curve) as usize;
-        per = per.min((u64::from(max_wg).pow(2) * u64::from(WORKGROUP_SIZE)) as usize);
-        if n > per {
-            per -= per % align;
-        }
-        if per == 0 {
-            return Err(GpuError::TooLarge {
-                what: "one aligned chunk of rate curves",
-                needed: align as u64 * words_per_curve * WORD,
-                limit: max_binding,
-            });
-        }
+        // The samples of a chunk of curves fit one binding; starts aligned.
+        let words_per_curve = CURVE_POINTS * stride;
         let mut chunks = Vec::new();
-        for start in (0..n).step_by(per) {
-            let count = per.min(n - start);
-            let (gx, gy) = grid_2d(count as u32, WORKGROUP_SIZE, max_wg);
+        for (start, end) in aligned_chunks(
+            n,
+            words_per_curve,
+            &limits,
+            WORKGROUP_SIZE,
+            align,
+            "one aligned chunk of rate curves",
+        )? {
+            let count = end - start;
+            let (gx, gy) = grid_2d(
+                count as u32,
+                WORKGROUP_SIZE,
+                limits.max_workgroups_per_dimension,
+            );
             let mut cfg = rate_config(count, stride, &CurveMeasure::Speed);
             cfg.grid_width = gx * WORKGROUP_SIZE;
             let uniform = uniform_init(ctx, bytemuck::bytes_of(&cfg))?;
-            let first = (start * CURVE_POINTS * stride) as u64;
+            let bytes = |words: usize| words as u64 * WORD;
             let group = ctx.scoped(|| {
                 Ok(ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some("rate_measure"),
                     layout: &layout,
                     entries: &[
-                        wgpu::BindGroupEntry {
-                            binding: 0,
-                            resource: uniform.as_entire_binding(),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 1,
-                            resource: bind(&samples.output, first, count as u64 * words_per_curve),
-                        },
-                        wgpu::BindGroupEntry {
-                            binding: 2,
-                            resource: bind(&measures, start as u64, count as u64),
-                        },
+                        whole(0, &uniform),
+                        part(
+                            1,
+                            &samples.output,
+                            bytes(start * words_per_curve),
+                            bytes(count * words_per_curve),
+                        ),
+                        part(2, &measures, bytes(start), bytes(count)),
                     ],
                 }))
             })?;
@@ -207,17 +189,8 @@ impl GpuRates {
                 .create_command_encoder(&wgpu::CommandEncoderDescriptor {
                     label: Some("rate_measure"),
                 });
-            {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("rate_measure"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&self.pipeline);
-                for (_, group, (gx, gy), _) in &self.chunks {
-                    pass.set_bind_group(0, group, &[]);
-                    pass.dispatch_workgroups(*gx, *gy, 1);
-                }
-            }
+            let chunks = self.chunks.iter().map(|(_, g, grid, _)| (g, *grid));
+            encode_pass(&mut encoder, "rate_measure", &self.pipeline, chunks);
             ctx.queue.submit([encoder.finish()]);
             Ok(())
         })?;

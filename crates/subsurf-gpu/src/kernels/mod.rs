@@ -5,6 +5,9 @@
 pub(crate) mod chunked_pass;
 pub mod stencil;
 
+use crate::error::{GpuError, Result};
+use stencil::ChunkLimits;
+
 /// Binding `binding` to the whole of `buffer`.
 pub(crate) fn whole(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
     wgpu::BindGroupEntry {
@@ -28,6 +31,58 @@ pub(crate) fn part(
             offset,
             size: wgpu::BufferSize::new(size.max(4)),
         }),
+    }
+}
+
+/// The item ranges `[start, end)` of `count` items dispatched in chunks: each chunk binds
+/// `words_per_item` words per item within `limits.max_binding_bytes` and dispatches at most
+/// `limits.max_workgroups_per_dimension²` workgroups of `workgroup_size`; when there is more
+/// than one chunk, starts are multiples of `align` items (so that binding offsets are
+/// aligned). [`GpuError::TooLarge`] naming `what` when not even `align` items fit.
+pub(crate) fn aligned_chunks(
+    count: usize,
+    words_per_item: usize,
+    limits: &ChunkLimits,
+    workgroup_size: u32,
+    align: usize,
+    what: &'static str,
+) -> Result<Vec<(usize, usize)>> {
+    let max_words = (limits.max_binding_bytes / 4) as usize;
+    let max_dispatch =
+        u64::from(limits.max_workgroups_per_dimension).pow(2) * u64::from(workgroup_size);
+    let mut per = (max_words / words_per_item.max(1)).min(max_dispatch as usize);
+    if count > per {
+        per -= per % align.max(1);
+    }
+    if per == 0 {
+        return Err(GpuError::TooLarge {
+            what,
+            needed: (align * words_per_item) as u64 * 4,
+            limit: limits.max_binding_bytes,
+        });
+    }
+    Ok((0..count)
+        .step_by(per)
+        .map(|s| (s, (s + per).min(count)))
+        .collect())
+}
+
+/// Records one compute pass of `pipeline` over `chunks` (bind group, workgroup grid) into
+/// `encoder`.
+pub(crate) fn encode_pass<'a>(
+    encoder: &mut wgpu::CommandEncoder,
+    label: &str,
+    pipeline: &wgpu::ComputePipeline,
+    chunks: impl IntoIterator<Item = (&'a wgpu::BindGroup, (u32, u32))>,
+) {
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+        label: Some(label),
+        timestamp_writes: None,
+    });
+    pass.set_pipeline(pipeline);
+    for (bind_group, (gx, gy)) in chunks {
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(gx, gy, 1);
     }
 }
 

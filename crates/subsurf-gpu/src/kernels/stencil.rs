@@ -51,7 +51,7 @@ impl ChunkLimits {
         }
     }
 
-    fn clamped_to(self, adapter: ChunkLimits) -> Self {
+    pub(crate) fn clamped_to(self, adapter: ChunkLimits) -> Self {
         Self {
             max_binding_bytes: self.max_binding_bytes.min(adapter.max_binding_bytes),
             max_workgroups_per_dimension: self
