@@ -361,6 +361,21 @@ impl GpuLimit {
         Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
     }
 
+    /// Writes the whole point array computed elsewhere ([`subsurf::limit::LimitSurface`]'s
+    /// `points`, [`PatchTable::points`]) instead of refining it on the GPU: for a caller that
+    /// already holds it. Sample sets keep their bindings; call [`Self::eval`] to re-evaluate
+    /// them.
+    pub fn set_points(&self, ctx: &GpuContext, points: &[[f32; 3]]) -> Result<()> {
+        if points.len() != self.num_points() {
+            return Err(GpuError::BufferMismatch(format!(
+                "{} points for a point array of {}",
+                points.len(),
+                self.num_points()
+            )));
+        }
+        self.points.write(ctx, points.as_flattened())
+    }
+
     /// Writes new base positions and rebuilds the point array on the GPU: refinement, copies
     /// of each level into place, end-cap local points, all recorded into one submission.
     /// Sample sets keep their bindings; call [`Self::eval`] to re-evaluate them.

@@ -119,8 +119,8 @@ impl Backend for GpuBackend {
             .map_err(gpu_err("reading the tessellation back"))
     }
 
-    /// The patch table uploaded and its points refined from the surface's base positions, the
-    /// rate curves evaluated by `limit_eval` and measured by `rate_measure` ([`GpuRates`]);
+    /// The patch table and the surface's points uploaded, the rate curves evaluated by
+    /// `limit_eval` and measured by `rate_measure` ([`GpuRates`]);
     /// the rates formed on the CPU from one measure per curve. Bad policy values and
     /// oversize tessellations are refused with the library's errors, as on the CPU.
     fn adaptive_rates(
@@ -135,10 +135,10 @@ impl Backend for GpuBackend {
         let table = &surface.table;
         policy.validate(&table.base, origin)?;
         let ctx = &self.ctx;
-        let mut gpu = GpuLimit::new(ctx, table).map_err(gpu_err("uploading the patch table"))?;
-        let base = &surface.points[..table.level_offsets[1] as usize];
-        gpu.update(ctx, base)
-            .map_err(gpu_err("refining and computing end-cap points"))?;
+        let gpu = GpuLimit::new(ctx, table).map_err(gpu_err("uploading the patch table"))?;
+        // The surface's points are already refined: uploaded, not refined again.
+        gpu.set_points(ctx, &surface.points)
+            .map_err(gpu_err("uploading the points"))?;
         let rates =
             GpuRates::new(ctx, &gpu, table).map_err(gpu_err("uploading the rate curves"))?;
         let diagonal = subsurf::mesh::bbox_diagonal(&surface.points);

@@ -212,6 +212,12 @@ fn chunked_measures_equal_one_dispatch() {
         let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&a), bits(&b));
     }
+    // Points refined on the CPU uploaded as they are (what `GpuBackend::adaptive_rates`
+    // does): read back bit for bit; a point array of another length is refused.
+    let set = GpuLimit::new(&ctx, &table).unwrap();
+    set.set_points(&ctx, &surface.points).unwrap();
+    assert_eq!(set.download_points(&ctx).unwrap(), surface.points);
+    assert!(set.set_points(&ctx, &surface.points[1..]).is_err());
     let diagonal = subsurf::mesh::bbox_diagonal(&mesh.positions);
     let mut explicit = EdgeRates::uniform(&table.base, 3);
     explicit.edges[7] = 11;
