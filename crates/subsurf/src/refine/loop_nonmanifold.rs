@@ -72,8 +72,9 @@ fn child_faces_and_edges(p: &Topology) -> (Vec<u32>, Vec<u32>, Vec<[u32; 2]>) {
 }
 
 /// The child of the all-triangle level `p` with every relation derived from `p`'s (see the
-/// module documentation). Sharpness is zero, tags are empty and rules smooth: the caller
-/// assigns them.
+/// module documentation). Vertex sharpness is zero, vertex tags are empty and rules smooth;
+/// the edge sharpness, edge tags and hole flags are left empty (`refine_tri` forms them
+/// whole): the caller assigns them.
 pub(super) fn child_relations(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
         p.num_vertices(),
@@ -174,10 +175,10 @@ pub(super) fn child_relations(p: &Topology) -> Topology {
         vert_face_local,
         vert_edge_offsets,
         vert_edges,
-        edge_sharpness: vec![0.0; ce],
+        edge_sharpness: Vec::new(),
         vert_sharpness: vec![0.0; cv],
-        face_is_hole: vec![false; cf],
-        edge_tags: vec![0; ce],
+        face_is_hole: Vec::new(),
+        edge_tags: Vec::new(),
         vert_tags: vec![0; cv],
         vert_rule: vec![rule::SMOOTH; cv],
     }
