@@ -43,18 +43,13 @@ pub struct GpuRates {
     chunks: Vec<(wgpu::Buffer, wgpu::BindGroup, (u32, u32), RateConfig)>,
 }
 
-/// The configuration's encoding of a measure: kind, image size, matrix.
-fn kind_of(m: &CurveMeasure) -> (u32, f32, f32, [[f32; 4]; 4]) {
-    match m {
+/// The `rate_measure` configuration of `curve_count` curves under `m` (grid width left 0).
+pub fn rate_config(curve_count: usize, sample_stride: usize, m: &CurveMeasure) -> RateConfig {
+    let (kind, width, height, view_proj) = match m {
         CurveMeasure::SecondDerivative => (0, 0.0, 0.0, [[0.0; 4]; 4]),
         CurveMeasure::Speed => (1, 0.0, 0.0, [[0.0; 4]; 4]),
         CurveMeasure::ScreenSpeed(c) => (2, c.width as f32, c.height as f32, c.view_proj),
-    }
-}
-
-/// The `rate_measure` configuration of `curve_count` curves under `m` (grid width left 0).
-pub fn rate_config(curve_count: usize, sample_stride: usize, m: &CurveMeasure) -> RateConfig {
-    let (kind, width, height, view_proj) = kind_of(m);
+    };
     RateConfig {
         curve_count: curve_count as u32,
         points_per_curve: CURVE_POINTS as u32,
@@ -174,13 +169,9 @@ impl GpuRates {
         limit.eval(ctx, &self.samples)?;
         ctx.scoped(|| {
             for (uniform, _, _, cfg) in &self.chunks {
-                let (kind, width, height, view_proj) = kind_of(m);
                 let cfg = RateConfig {
-                    kind,
-                    width,
-                    height,
-                    view_proj,
-                    ..*cfg
+                    grid_width: cfg.grid_width,
+                    ..rate_config(cfg.curve_count as usize, cfg.sample_stride as usize, m)
                 };
                 ctx.queue.write_buffer(uniform, 0, bytemuck::bytes_of(&cfg));
             }
