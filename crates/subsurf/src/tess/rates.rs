@@ -153,24 +153,23 @@ impl RatePolicy {
     ) -> Result<EdgeRates> {
         let t = &table.base;
         self.validate(t, origin)?;
-        let need_of: Box<dyn Fn(f64) -> f64 + Sync> = match self {
+        // A curve's need from its measure and the policy's scale.
+        let (need_of, scale): (fn(f64, f64) -> f64, f64) = match self {
             RatePolicy::Uniform(r) => return Ok(EdgeRates::uniform(t, *r)),
             RatePolicy::Explicit(r) => return Ok(r.clone()),
-            RatePolicy::MaxEdgeLength(l) => {
-                // Parameter-uniform samples: the fastest stretch of a curve sets its rate;
-                // diagonals and transition edges are up to √2 longer than the grid's.
-                let l = f64::from(*l) / std::f64::consts::SQRT_2;
-                Box::new(move |speed| (speed / l).ceil())
-            }
-            RatePolicy::Screen { pixels, .. } => {
-                let px = f64::from(*pixels) / std::f64::consts::SQRT_2;
-                // Close-ups past the highest rate are held at it.
-                Box::new(move |speed| (speed / px).ceil().min(f64::from(MAX_RATE)))
-            }
-            RatePolicy::Tolerance(e) => {
-                let tol = f64::from(*e) * f64::from(diagonal) / 2.0; // safety factor 2
-                Box::new(move |d2| chord_rate(d2, tol))
-            }
+            // Parameter-uniform samples: the fastest stretch of a curve sets its rate;
+            // diagonals and transition edges are up to √2 longer than the grid's.
+            RatePolicy::MaxEdgeLength(l) => (
+                |speed, l| (speed / l).ceil(),
+                f64::from(*l) / std::f64::consts::SQRT_2,
+            ),
+            // Close-ups past the highest rate are held at it.
+            RatePolicy::Screen { pixels, .. } => (
+                |speed, px| (speed / px).ceil().min(f64::from(MAX_RATE)),
+                f64::from(*pixels) / std::f64::consts::SQRT_2,
+            ),
+            // Safety factor 2.
+            RatePolicy::Tolerance(e) => (chord_rate, f64::from(*e) * f64::from(diagonal) / 2.0),
         };
         if curves.num_curves() != measures.len()
             || curves.num_edges != t.num_edges()
@@ -183,7 +182,13 @@ impl RatePolicy {
             }
             .into());
         }
-        let mut r = curve_rates(table, curves, measures, need_of, origin)?;
+        // Each curve's need (dead curves measure zero).
+        let needs: Vec<f64> = measures
+            .iter()
+            .zip(&curves.live)
+            .map(|(&m, &live)| need_of(if live { m } else { 0.0 }, scale))
+            .collect();
+        let mut r = curve_rates(table, curves, &needs, origin)?;
         if matches!(self, RatePolicy::Screen { .. }) {
             r.faces.iter_mut().for_each(|f| *f = (*f).min(MAX_RATE));
         }
@@ -217,25 +222,17 @@ fn chord_rate(d2: f64, tol: f64) -> f64 {
     (d2 / (8.0 * tol)).sqrt().ceil()
 }
 
-/// Rates from the rate need of each curve (`need_of` its measure): edges from their curves,
-/// faces from their isolines at `u, v = ¼, ½, ¾`, and every edge at least `1/GRADING` of
-/// its faces' interior rate so that the graded interior reaches it.
+/// Rates from the rate need of each curve: edges from their curves, faces from their isolines
+/// at `u, v = ¼, ½, ¾`, and every edge at least `1/GRADING` of its faces' interior rate so
+/// that the graded interior reaches it.
 fn curve_rates(
     table: &PatchTable,
     curves: &RateCurves,
-    measures: &[f64],
-    need_of: Box<dyn Fn(f64) -> f64 + Sync>,
+    needs: &[f64],
     origin: &str,
 ) -> Result<EdgeRates> {
     let t = &table.base;
-    let curve_need = |c: usize| {
-        if curves.live[c] {
-            need_of(measures[c])
-        } else {
-            need_of(0.0)
-        }
-    };
-    let mut need: Vec<f64> = (0..t.num_edges()).map(curve_need).collect();
+    let mut need: Vec<f64> = needs[..t.num_edges()].to_vec();
     // Interiors: the largest need of a face's isolines, both directions.
     let face_need: Vec<f64> = (0..t.num_faces())
         .map(|f| {
@@ -243,7 +240,7 @@ fn curve_rates(
                 return 0.0;
             }
             let lines = curves.face_curves[f] as usize..curves.face_curves[f + 1] as usize;
-            let worst = lines.map(curve_need).fold(0.0f64, f64::max);
+            let worst = needs[lines].iter().fold(0.0f64, |a, &b| a.max(b));
             // A sub-face spans half the face: its rate counts for half as many samples.
             let ptex = table.ptex_offsets[f + 1] - table.ptex_offsets[f];
             let scale = if ptex == 1 { 1.0 } else { 0.5 };
