@@ -44,12 +44,16 @@ impl SurfaceArgs {
             "--f64 evaluates on the CPU: it cannot be combined with --backend gpu"
         );
         let topo = Topology::new(&mesh)?;
-        let options = PatchOptions {
+        Ok((mesh, PatchTable::build_real(&topo, &self.patch_options())?))
+    }
+
+    /// The patch-table options of the flags.
+    pub fn patch_options(&self) -> PatchOptions {
+        PatchOptions {
             isolation_level: self.isolation,
             single_crease: !self.no_single_crease,
             ..Default::default()
-        };
-        Ok((mesh, PatchTable::build_real(&topo, &options)?))
+        }
     }
 
     /// Uploads the patch table to the GPU and computes its points from `mesh`'s positions.
@@ -100,8 +104,7 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
             !a.surface.f64,
             "--f64 works with a uniform --tess only (adaptive rates evaluate in f32)"
         );
-        let (mesh, table) = a.surface.table_for(mesh)?;
-        return run_adaptive(a, mesh, table);
+        return run_adaptive(a, mesh);
     }
     let (tess, c, patches, ptex) = if a.surface.f64 {
         let (mesh, table) = a.surface.table_for::<f64>(mesh)?;
@@ -138,17 +141,21 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
 }
 
 /// `limit` with per-edge rates (chosen on `--backend`, the tessellation evaluated on the CPU).
-fn run_adaptive(
-    a: &LimitArgs,
-    mesh: Mesh,
-    table: subsurf::limit::PatchTable,
-) -> anyhow::Result<()> {
+/// Under `--tolerance` the isolation is chosen per region (`surface::adaptive_surface`).
+fn run_adaptive(a: &LimitArgs, mesh: Mesh) -> anyhow::Result<()> {
     if a.quads {
         anyhow::bail!("--quads needs a uniform --tess (adaptive tessellations are triangles)");
     }
-    let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
+    let topo = Topology::new(&mesh)?;
     let camera = a.screen.camera(&mesh.positions);
-    let (policy, origin) = a.adaptive.policy(camera, &surface.table.base, a.tess)?;
+    let (policy, origin) = a.adaptive.policy(camera, &topo, a.tess)?;
+    let (surface, policy) = subsurf::surface::adaptive_surface(
+        &topo,
+        &mesh.positions,
+        &policy,
+        &origin,
+        &a.surface.patch_options(),
+    )?;
     let backend = surface_backend(a.surface.backend)?;
     let adaptive =
         subsurf::surface::tessellate_adaptive(&surface, &policy, &origin, backend.as_ref())?;

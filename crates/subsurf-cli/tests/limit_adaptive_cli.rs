@@ -5,7 +5,7 @@ mod common;
 
 use common::{bin, repo, run_ok, tmp};
 
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::limit::PatchOptions;
 use subsurf::tess::RatePolicy;
 use subsurf::Topology;
 
@@ -24,12 +24,17 @@ fn adaptive_flags_match_the_library_and_refuse_bad_values() {
     let written = subsurf::io::read_path(&out_path).unwrap();
     let mesh = subsurf::io::read_path(&shape).unwrap();
     let t = Topology::new(&mesh).unwrap();
-    let s = LimitSurface::new(
-        PatchTable::build(&t, &PatchOptions::default()).unwrap(),
+    let (s, chords) = subsurf::surface::adaptive_surface(
+        &t,
         &mesh.positions,
-    );
-    let rates = RatePolicy::Tolerance(2e-3).rates(&s, "").unwrap();
-    let want = s.tessellate_rates(&rates, "").unwrap();
+        &RatePolicy::Tolerance(2e-3),
+        "--tolerance",
+        &PatchOptions::default(),
+    )
+    .unwrap();
+    let want = subsurf::surface::tessellate_adaptive(&s, &chords, "", &subsurf::surface::Cpu)
+        .unwrap()
+        .tessellation;
     assert_eq!(written.num_faces(), want.triangles.len());
     assert_eq!(written.positions.len(), want.positions.len());
 

@@ -163,6 +163,13 @@ impl<R: Real> PatchTable<R> {
         {
             return Ok(EditOutcome::Unchanged);
         }
+        if let Some(levels) = self.face_levels.take() {
+            // Per-region levels: a fresh build with the same levels (no kept levels).
+            let rebuilt = PatchTable::build_face_levels(&t, &self.options, &levels);
+            self.face_levels = Some(levels);
+            *self = rebuilt?;
+            return Ok(EditOutcome::Rebuilt);
+        }
         if self.edit_state.is_some() && self.set_sharpness_incremental(t.clone())? {
             return Ok(EditOutcome::Updated);
         }
@@ -172,6 +179,7 @@ impl<R: Real> PatchTable<R> {
             Selection::Sparse,
             Budget::of_available_memory(),
             true,
+            None,
         )?;
         Ok(EditOutcome::Rebuilt)
     }

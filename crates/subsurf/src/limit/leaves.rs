@@ -155,7 +155,11 @@ fn chunk_patches<W: Real>(
         if t.face_vertices(f).iter().any(|&c| !lv.sound[c as usize]) {
             return Err(not_exact("a corner", d, f));
         }
-        let (kind, boundary, regular, sharpness) = leaf_kind(t, tags, f, d, o);
+        let local = LeafOptions {
+            max_level: lv.level_of(f, o.max_level),
+            ..*o
+        };
+        let (kind, boundary, regular, sharpness) = leaf_kind(t, tags, f, d, &local);
         let leaf = if regular {
             let pts = regular_points_checked(lv, d, f)?;
             let first = out.cvs.len() as u32;

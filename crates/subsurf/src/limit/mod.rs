@@ -23,6 +23,7 @@
 //! - [`patch_map`]: the quadtree per ptex face ([`tri_patch_map`]: of triangles);
 //! - [`points`]: the patch points from base values (stencil rows relative to their first input);
 //! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
+//! - [`tolerance`]: the isolation level chosen per region for a tolerance;
 //! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]);
 //!   [`edit_region`]: the incremental update where the isolation structure is kept.
 //!
@@ -100,6 +101,7 @@ pub mod span;
 pub mod sparse;
 pub mod table;
 pub mod tessellate;
+pub mod tolerance;
 pub mod tri_patch_map;
 
 pub use edit::{EditOutcome, SharpnessEdit};
@@ -107,5 +109,6 @@ pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
 pub use tessellate::{Tessellation, TessellationPlan};
+pub use tolerance::{build_for_tolerance, choose_isolation, IsolationChoice};
 #[cfg(test)]
 mod sparse_tests;

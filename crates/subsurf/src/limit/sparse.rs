@@ -98,6 +98,17 @@ pub struct Level {
     pub refine: Vec<bool>,
     /// Per face: its first child face in the next level, or [`NONE`].
     pub child: Vec<u32>,
+    /// Per face the walk reaches: the isolation level of its base face, when the levels are
+    /// chosen per base face ([`build_traced`]'s `face_levels`); empty otherwise.
+    pub levels: Vec<u8>,
+}
+
+impl Level {
+    /// The isolation level that applies to walked face `f` (`default` unless chosen per base
+    /// face).
+    pub fn level_of(&self, f: usize, default: usize) -> usize {
+        self.levels.get(f).map_or(default, |&l| l as usize)
+    }
 }
 
 /// The sizes of the levels, and the stencils from each to the next (a level itself is
@@ -127,6 +138,7 @@ impl Level {
             edge_ok: vec![true; ne],
             refine: vec![false; nf],
             child: vec![NONE; nf],
+            levels: Vec::new(),
             topo,
         }
     }
@@ -166,19 +178,35 @@ pub fn build<W: Real, T: Send>(
     budget: &mut Budget,
     leaves: &LeafFn<'_, T>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
-    build_traced(base, max_level, mask, selection, budget, leaves, None)
+    build_traced(base, max_level, None, mask, selection, budget, leaves, None)
 }
 
-/// [`build`], keeping the levels in `trace` when one is given.
+/// [`build`], keeping the levels in `trace` when one is given. With `face_levels` (one per
+/// base face, each at most `max_level`), the faces descending from base face `f` are refined
+/// to level `face_levels[f]` at most instead of `max_level`: the isolation is chosen per
+/// region. Faces of different regions may then meet at leaves two or more levels apart; each
+/// patch is still exact (its points are checked, as everywhere), and the surface is as
+/// continuous as the end caps make it.
+#[allow(clippy::too_many_arguments)]
 pub fn build_traced<W: Real, T: Send>(
     base: &Topology,
     max_level: usize,
+    face_levels: Option<&[u8]>,
     mask: &FeatureMask,
     selection: Selection,
     budget: &mut Budget,
     leaves: &LeafFn<'_, T>,
     mut trace: Option<&mut Trace>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
+    if let Some(l) = face_levels {
+        if l.len() != base.num_faces() || l.iter().any(|&x| x as usize > max_level) {
+            return Err(Error::Internal(format!(
+                "{} isolation levels for {} base faces, levels up to {max_level}",
+                l.len(),
+                base.num_faces()
+            )));
+        }
+    }
     let mut h = Hierarchy {
         num_vertices: vec![base.num_vertices()],
         stencils: Vec::new(),
@@ -187,6 +215,12 @@ pub fn build_traced<W: Real, T: Send>(
     let mut level = Level::new(base.clone(), true);
     let mut out = Vec::new();
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
+    // The base face each visited face descends from (per-region levels only).
+    let mut roots: Vec<u32> = if face_levels.is_some() {
+        visited.clone()
+    } else {
+        Vec::new()
+    };
     let mut total_vertices = base.num_vertices() as u64;
     let mut offset = 0u32;
     let mut prev_sub: Option<Topology> = None;
@@ -194,6 +228,16 @@ pub fn build_traced<W: Real, T: Send>(
         let cur = &mut level;
         if d > 0 {
             tag_corners(cur, &visited);
+        }
+        // Per-region levels: each visited face's base face and its level.
+        let mut root_at = Vec::new();
+        if let Some(levels) = face_levels {
+            cur.levels = vec![0; cur.topo.num_faces()];
+            root_at = vec![NONE; cur.topo.num_faces()];
+            for (&f, &r) in visited.iter().zip(&roots) {
+                cur.levels[f as usize] = levels[r as usize];
+                root_at[f as usize] = r;
+            }
         }
         let (mut chosen, mut leaf_faces) = (Vec::new(), Vec::with_capacity(visited.len()));
         for &f in &visited {
@@ -207,7 +251,7 @@ pub fn build_traced<W: Real, T: Send>(
                     "sparse refinement: corner {v} of face {f} at level {d} is not exact"
                 )));
             }
-            if d < max_level && face_has_features(t, &cur.tags, f, d, mask) {
+            if d < cur.level_of(f, max_level) && face_has_features(t, &cur.tags, f, d, mask) {
                 cur.refine[f] = true;
                 chosen.push(f as u32);
             } else {
@@ -288,6 +332,16 @@ pub fn build_traced<W: Real, T: Send>(
                 first..first + cur.topo.face_size(f as usize) as u32
             })
             .collect();
+        if face_levels.is_some() {
+            // A child's base face is its parent's.
+            roots = chosen
+                .iter()
+                .flat_map(|&f| {
+                    let r = root_at[f as usize];
+                    std::iter::repeat_n(r, cur.topo.face_size(f as usize))
+                })
+                .collect();
+        }
         h.inputs.push(step.verts);
         h.num_vertices.push(next.topo.num_vertices());
         let done_sub = prev_sub.replace(step.sub);

@@ -164,6 +164,10 @@ pub struct PatchTable<R = f32> {
     /// The levels kept for incremental crease edits ([`super::edit_region`]), made by the
     /// first [`PatchTable::set_sharpness`]; `None` after a plain build.
     pub(crate) edit_state: Option<std::sync::Arc<super::edit_region::EditState>>,
+    /// Per base face, the isolation level of its region when the levels were chosen per
+    /// region ([`PatchTable::build_face_levels`], [`super::tolerance`]); `None` when
+    /// `options.isolation_level` applies everywhere.
+    pub face_levels: Option<Vec<u8>>,
 }
 
 /// Patch counts by type.
@@ -351,7 +355,7 @@ impl PatchTable {
         selection: Selection,
         budget: Budget,
     ) -> Result<PatchTable> {
-        PatchTable::build_within_real(base, options, selection, budget, false)
+        PatchTable::build_within_real(base, options, selection, budget, false, None)
     }
 }
 
@@ -366,6 +370,44 @@ impl<R: Real> PatchTable<R> {
             Selection::Sparse,
             Budget::of_available_memory(),
             false,
+            None,
+        )
+    }
+
+    /// [`PatchTable::build_real`] with the isolation level chosen per region: the faces
+    /// descending from base face `f` are isolated to level `face_levels[f]` (each raised to
+    /// `options.isolation_level` and, on a mesh with non-quad faces, to 1), up to
+    /// [`MAX_ISOLATION_LEVEL`]. Where every level is `options.isolation_level`, the table is
+    /// [`PatchTable::build_real`]'s, bit for bit. A level list of the wrong length or a level
+    /// past the maximum is refused with [`Error::Unsupported`].
+    pub fn build_face_levels(
+        base: &Topology,
+        options: &PatchOptions,
+        face_levels: &[u8],
+    ) -> Result<PatchTable<R>> {
+        if face_levels.len() != base.num_faces() {
+            return Err(Error::Unsupported(format!(
+                "{} isolation levels given for {} base faces",
+                face_levels.len(),
+                base.num_faces()
+            )));
+        }
+        if let Some((f, &l)) = face_levels
+            .iter()
+            .enumerate()
+            .find(|(_, &l)| u32::from(l) > MAX_ISOLATION_LEVEL)
+        {
+            return Err(Error::Unsupported(format!(
+                "isolation level {l} of base face {f} exceeds the maximum {MAX_ISOLATION_LEVEL}"
+            )));
+        }
+        Self::build_within_real(
+            base,
+            options,
+            Selection::Sparse,
+            Budget::of_available_memory(),
+            false,
+            Some(face_levels),
         )
     }
 
@@ -376,6 +418,7 @@ impl<R: Real> PatchTable<R> {
         selection: Selection,
         mut budget: Budget,
         traced: bool,
+        face_levels: Option<&[u8]>,
     ) -> Result<PatchTable<R>> {
         if base.options.scheme != Scheme::Catmark {
             return Err(Error::Unsupported(
@@ -392,6 +435,20 @@ impl<R: Real> PatchTable<R> {
         if !base.is_all_quads() {
             level = level.max(1);
         }
+        // Per-region levels, each at least the table's; the same table as without them where
+        // none is higher.
+        let face_levels: Option<Vec<u8>> = face_levels
+            .map(|l| l.iter().map(|&x| x.max(level as u8)).collect::<Vec<u8>>())
+            .filter(|l| l.iter().any(|&x| x as usize > level));
+        if let Some(l) = &face_levels {
+            level = l.iter().copied().max().unwrap_or(0) as usize;
+            // A traced table (crease edits) keeps one level everywhere.
+            if traced {
+                return Err(Error::Internal(
+                    "per-region isolation levels cannot be traced for edits".into(),
+                ));
+            }
+        }
         let leaf_options = LeafOptions {
             single_crease: options.single_crease,
             cap: options.cap_crease_sharpness,
@@ -401,6 +458,7 @@ impl<R: Real> PatchTable<R> {
         let (h, patches) = sparse::build_traced(
             base,
             level,
+            face_levels.as_deref(),
             &FeatureMask::new(options.single_crease),
             selection,
             &mut budget,
@@ -505,6 +563,7 @@ impl<R: Real> PatchTable<R> {
             ptex_offsets,
             patch_map: PatchMap { roots, nodes },
             edit_state,
+            face_levels,
         })
     }
 }

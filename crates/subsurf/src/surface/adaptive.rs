@@ -5,8 +5,9 @@
 
 use super::limit::patch_class;
 use super::{class, Backend, Colors, Surface, SurfaceError};
-use crate::limit::{LimitSurface, PatchOptions, PatchTable};
-use crate::tess::{plan, AdaptiveTessellation, EdgeRates, RatePolicy};
+use crate::limit::tolerance::split_tolerance;
+use crate::limit::{build_for_tolerance, LimitSurface, PatchOptions, PatchTable};
+use crate::tess::{plan, plan_within_tolerance, AdaptiveTessellation, EdgeRates, RatePolicy};
 use crate::{Mesh, Topology};
 
 /// An adaptive tessellation with what it was made from.
@@ -30,7 +31,8 @@ impl Adaptive {
     }
 }
 
-/// Rates of `policy` on `surface` (chosen on `backend`), then the tessellation at those
+/// Rates of `policy` on `surface` (chosen on `backend`; a tolerance then checked at the end
+/// caps' corners, [`plan_within_tolerance`]), then the tessellation at those
 /// rates (`origin` names where the policy came from in errors: a flag, a file).
 pub fn tessellate(
     surface: &LimitSurface,
@@ -39,13 +41,47 @@ pub fn tessellate(
     backend: &dyn Backend,
 ) -> Result<Adaptive, SurfaceError> {
     let rates = backend.adaptive_rates(surface, policy, origin)?;
-    let mut p = plan(&surface.table, &rates, origin)?;
+    let (rates, mut p) = match *policy {
+        RatePolicy::Tolerance(e) => plan_within_tolerance(surface, rates, e, origin)?,
+        _ => {
+            let p = plan(&surface.table, &rates, origin)?;
+            (rates, p)
+        }
+    };
     let triangle_uv = std::mem::take(&mut p.triangle_uv);
     Ok(Adaptive {
         tessellation: surface.eval_plan(p),
         rates,
         triangle_uv,
     })
+}
+
+/// The limit surface to tessellate under `policy`, and the policy of its chords.
+///
+/// Under [`RatePolicy::Tolerance`]`(e)` the tolerance bounds the whole approximation: the
+/// isolation is chosen per region so that the end caps are within `e/4` of the limit surface
+/// ([`crate::limit::tolerance`]), and the chords get the other `3e/4`
+/// ([`crate::limit::tolerance::split_tolerance`]). Every other policy takes the table of
+/// `options` as it is. A tolerance that is not a positive finite number is refused first, as
+/// the rates refuse it.
+pub fn adaptive_surface(
+    topo: &Topology,
+    positions: &[[f32; 3]],
+    policy: &RatePolicy,
+    origin: &str,
+    options: &PatchOptions,
+) -> Result<(LimitSurface, RatePolicy), SurfaceError> {
+    if let RatePolicy::Tolerance(e) = *policy {
+        policy.validate(topo, origin)?;
+        let (caps, chords) = split_tolerance(e);
+        let (table, _) = build_for_tolerance(topo, options, positions, caps)?;
+        return Ok((
+            LimitSurface::new(table, positions),
+            RatePolicy::Tolerance(chords),
+        ));
+    }
+    let table = PatchTable::build(topo, options)?;
+    Ok((LimitSurface::new(table, positions), policy.clone()))
 }
 
 /// The adaptive limit surface of `mesh` under `policy`.
@@ -58,9 +94,8 @@ pub fn adaptive(
     backend: &dyn Backend,
 ) -> Result<Surface, SurfaceError> {
     let topo = Topology::new(mesh)?;
-    let table = PatchTable::build(&topo, options)?;
-    let surface = LimitSurface::new(table, &mesh.positions);
-    let a = tessellate(&surface, policy, origin, backend)?;
+    let (surface, policy) = adaptive_surface(&topo, &mesh.positions, policy, origin, options)?;
+    let a = tessellate(&surface, &policy, origin, backend)?;
     let table = &surface.table;
     let triangle_class = a
         .triangle_uv

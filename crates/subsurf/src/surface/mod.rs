@@ -29,7 +29,7 @@ mod refine_mesh;
 mod refined;
 mod triangulate;
 
-pub use adaptive::{tessellate as tessellate_adaptive, Adaptive};
+pub use adaptive::{adaptive_surface, tessellate as tessellate_adaptive, Adaptive};
 pub use backend::{Backend, Cpu, PrepOutput};
 pub use loop_limit::MAX_LOOP_SAMPLES;
 pub use refine_mesh::refine_mesh;

@@ -1,0 +1,163 @@
+//! A tolerance checked where its rate curves cannot see: at the corners of the end caps.
+//!
+//! The tolerance policy measures second differences along 17 samples of each rate curve
+//! ([`super::curves`]). Around an extraordinary vertex the limit surface bends fastest at the
+//! vertex itself (Catmull-Clark's curvature there is unbounded at high valence), within a
+//! region smaller than the samples' spacing once the isolation is deep enough to follow it
+//! ([`crate::limit::tolerance`]): on the pawn's pole, chords of rates chosen for `7.5e-4`
+//! were `1.03e-3` off at the pole. So the triangles that touch a ptex-face corner lying in an
+//! end cap are measured after planning (their edge midpoints and centroid against the
+//! surface), and the rates of every base face where one misses are raised by the square root
+//! of the excess (chord error falling as the square of the spacing) and planned again, until
+//! none misses or the rates reach [`MAX_RATE`].
+
+use super::mesh::{plan, AdaptivePlan, EdgeRates, MAX_RATE};
+use crate::error::Result;
+use crate::limit::{LimitSurface, PatchType};
+use rayon::prelude::*;
+
+/// At most this many plans.
+const ROUNDS: usize = 6;
+
+/// Per ptex face: bit `k` set when its corner `k` (`(0,0)`, `(1,0)`, `(1,1)`, `(0,1)`) lies in
+/// an end cap.
+fn end_cap_corners(surface: &LimitSurface) -> Vec<u8> {
+    let t = &surface.table;
+    (0..t.num_ptex_faces())
+        .map(|ptex| {
+            [(0.0f32, 0.0f32), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+                .iter()
+                .enumerate()
+                .filter(|(_, &(u, v))| {
+                    t.patch_map
+                        .find(ptex, u, v)
+                        .is_some_and(|p| t.patch_type(p as usize) == PatchType::Gregory)
+                })
+                .fold(0u8, |m, (k, _)| m | 1 << k)
+        })
+        .collect()
+}
+
+fn corner_bit(c: [f32; 2]) -> u8 {
+    match (c[0], c[1]) {
+        (0.0, 0.0) => 1,
+        (1.0, 0.0) => 2,
+        (1.0, 1.0) => 4,
+        (0.0, 1.0) => 8,
+        _ => 0,
+    }
+}
+
+/// Per base face, the largest distance (world units) between the flat triangles of `p` at
+/// its end-cap corners and the surface: their edge midpoints and centroids.
+fn corner_errors(surface: &LimitSurface, p: &AdaptivePlan, corners: &[u8]) -> Vec<f64> {
+    let t = &surface.table;
+    let nf = t.base.num_faces();
+    let mut face_of_ptex = vec![0u32; t.num_ptex_faces()];
+    for f in 0..nf {
+        for x in t.ptex_offsets[f]..t.ptex_offsets[f + 1] {
+            face_of_ptex[x as usize] = f as u32;
+        }
+    }
+    let found: Vec<(u32, f64)> = p
+        .triangle_uv
+        .par_iter()
+        .filter(|(ptex, c)| {
+            c.iter()
+                .any(|&x| corner_bit(x) & corners[*ptex as usize] != 0)
+        })
+        .filter_map(|&(ptex, c)| {
+            let at = |u: f32, v: f32| surface.eval_position(ptex as usize, u, v);
+            let x = [
+                at(c[0][0], c[0][1])?,
+                at(c[1][0], c[1][1])?,
+                at(c[2][0], c[2][1])?,
+            ];
+            let dist = |a: [f32; 3], b: [f32; 3]| -> f64 {
+                (0..3)
+                    .map(|k| f64::from(a[k] - b[k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            let mut w = 0.0f64;
+            for k in 0..3 {
+                let (i, j) = (k, (k + 1) % 3);
+                let m = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1]))?;
+                w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
+            }
+            let g = at(
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            )?;
+            w = w.max(dist(
+                [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0),
+                g,
+            ));
+            Some((face_of_ptex[ptex as usize], w))
+        })
+        .collect();
+    let mut out = vec![0.0f64; nf];
+    for (f, w) in found {
+        out[f as usize] = out[f as usize].max(w);
+    }
+    out
+}
+
+/// The plan of `rates` on `surface`, with the rates of base faces whose triangles at end-cap
+/// corners miss `tolerance` (a fraction of the points' bounding-box diagonal) raised until
+/// they meet it (module documentation); returns the rates used and their plan (with
+/// `triangle_uv`). Refuses what [`plan`] refuses, naming `origin`.
+pub fn plan_within_tolerance(
+    surface: &LimitSurface,
+    mut rates: EdgeRates,
+    tolerance: f32,
+    origin: &str,
+) -> Result<(EdgeRates, AdaptivePlan)> {
+    let t = &surface.table.base;
+    let bound = f64::from(tolerance) * f64::from(crate::mesh::bbox_diagonal(&surface.points));
+    let corners = end_cap_corners(surface);
+    let mut p = plan(&surface.table, &rates, origin)?;
+    if corners.iter().all(|&c| c == 0) {
+        return Ok((rates, p));
+    }
+    for _ in 1..ROUNDS {
+        let errors = corner_errors(surface, &p, &corners);
+        if rates.faces.is_empty() {
+            rates.faces = vec![0; t.num_faces()];
+        }
+        let mut raised = false;
+        let old = rates.edges.clone();
+        for (f, &w) in errors.iter().enumerate() {
+            if w.is_nan() || w <= bound {
+                continue;
+            }
+            let k = (w / bound).sqrt().max(1.25) * 1.05;
+            let up = |r: u32| ((f64::from(r) * k).ceil() as u32).min(MAX_RATE);
+            let finest = t
+                .face_edges(f)
+                .iter()
+                .map(|&e| old[e as usize])
+                .max()
+                .unwrap_or(1);
+            let inner = if rates.faces[f] > 0 {
+                rates.faces[f]
+            } else {
+                finest
+            };
+            for &e in t.face_edges(f) {
+                let e = e as usize;
+                let r = up(old[e]).max(rates.edges[e]);
+                raised |= r != rates.edges[e];
+                rates.edges[e] = r;
+            }
+            let r = up(inner);
+            raised |= r != rates.faces[f];
+            rates.faces[f] = r;
+        }
+        if !raised {
+            break;
+        }
+        p = plan(&surface.table, &rates, origin)?;
+    }
+    Ok((rates, p))
+}

@@ -1,0 +1,297 @@
+//! Isolation chosen per region (`PatchTable::build_face_levels`, `limit::tolerance`): each
+//! region's patches are those of a table isolated to its level everywhere; a tolerance keeps
+//! every end cap within its share of the true limit surface (an isolation-10 reference) and
+//! the whole tessellation within the tolerance; bad levels and budgets are refused.
+
+mod limit_common;
+
+use limit_common::{bbox_diagonal, load_shape};
+use subsurf::limit::tolerance::split_tolerance;
+use subsurf::limit::{
+    build_for_tolerance, choose_isolation, LimitSurface, PatchOptions, PatchTable, PatchType,
+    SharpnessEdit,
+};
+use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
+use subsurf::tess::{plan, AdaptiveTessellation, RatePolicy};
+use subsurf::{Error, Mesh, Topology};
+
+/// A small deterministic generator (64-bit LCG, high bits).
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self, n: usize) -> usize {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 33) as usize) % n
+    }
+}
+
+fn options(l: u32) -> PatchOptions {
+    PatchOptions {
+        isolation_level: l,
+        ..Default::default()
+    }
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+fn surface(mesh: &Mesh, table: PatchTable<f64>) -> LimitSurface<f64> {
+    LimitSurface::new(table, &mesh.positions)
+}
+
+/// The patches of each ptex face as `(type, param)`, in table order.
+fn patches_of(t: &PatchTable<f64>) -> Vec<Vec<(PatchType, subsurf::patch::PatchParam)>> {
+    let mut out = vec![Vec::new(); t.num_ptex_faces()];
+    for p in 0..t.num_patches() {
+        out[t.params[p].face_id() as usize].push((t.patch_type(p), t.params[p]));
+    }
+    out
+}
+
+/// With random levels per base face, every base face has the patches (types and parameters,
+/// in order) of the table isolated to its level everywhere, and the same limit surface there.
+#[test]
+fn each_region_is_the_table_of_its_level() {
+    let mut rng = Lcg(7);
+    for name in [
+        "catmark_pawn",
+        "catmark_gregory_test4",
+        "catmark_xord_boundary",
+        "catmark_smoothtris0",
+        "catmark_cube_creases1",
+        "catmark_hole_test1",
+        "catmark_nonman_verts",
+        "catmark_chaikin1",
+    ] {
+        let mesh = load_shape(name);
+        let t = Topology::new(&mesh).unwrap();
+        let levels: Vec<u8> = (0..t.num_faces()).map(|_| 2 + rng.next(4) as u8).collect();
+        let mixed = PatchTable::<f64>::build_face_levels(&t, &options(2), &levels).unwrap();
+        assert_eq!(mixed.face_levels.as_deref(), Some(&levels[..]), "{name}");
+        let uniform: Vec<PatchTable<f64>> = (2..6)
+            .map(|l| PatchTable::build_real(&t, &options(l)).unwrap())
+            .collect();
+        let (pm, pu) = (
+            patches_of(&mixed),
+            uniform.iter().map(patches_of).collect::<Vec<_>>(),
+        );
+        let sm = surface(&mesh, mixed.clone());
+        let su: Vec<_> = uniform.into_iter().map(|u| surface(&mesh, u)).collect();
+        let diag = f64::from(bbox_diagonal(&mesh.positions));
+        let mut worst = 0.0f64;
+        for f in 0..t.num_faces() {
+            let l = levels[f] as usize - 2;
+            for ptex in mixed.ptex_offsets[f]..mixed.ptex_offsets[f + 1] {
+                let ptex = ptex as usize;
+                assert_eq!(pm[ptex], pu[l][ptex], "{name}: ptex face {ptex}");
+                for i in 0..=6 {
+                    for j in 0..=6 {
+                        let (u, v) = (i as f64 / 6.0, j as f64 / 6.0);
+                        if let (Some(a), Some(b)) = (
+                            sm.eval_position(ptex, u, v),
+                            su[l].eval_position(ptex, u, v),
+                        ) {
+                            worst = worst.max(dist(a, b));
+                        }
+                    }
+                }
+            }
+        }
+        assert!(worst <= 1e-12 * diag, "{name}: {worst:e}");
+    }
+}
+
+/// Levels no higher than the table's give the plain table; levels past the maximum, or a list
+/// of the wrong length, are refused naming the face or the count.
+#[test]
+fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
+    let mesh = load_shape("catmark_pawn");
+    let t = Topology::new(&mesh).unwrap();
+    let plain = PatchTable::<f64>::build_real(&t, &options(4)).unwrap();
+    let low =
+        PatchTable::<f64>::build_face_levels(&t, &options(4), &vec![2; t.num_faces()]).unwrap();
+    assert!(low.face_levels.is_none());
+    assert_eq!(low.kinds, plain.kinds);
+    assert_eq!(low.params, plain.params);
+    assert_eq!(low.cvs, plain.cvs);
+    assert_eq!(low.patch_map, plain.patch_map);
+
+    let mut levels = vec![4u8; t.num_faces()];
+    levels[17] = 11;
+    let e = PatchTable::<f64>::build_face_levels(&t, &options(4), &levels).unwrap_err();
+    assert!(
+        matches!(&e, Error::Unsupported(m) if m.contains("level 11 of base face 17")),
+        "{e}"
+    );
+    let e = PatchTable::<f64>::build_face_levels(&t, &options(4), &levels[1..]).unwrap_err();
+    assert!(
+        matches!(&e, Error::Unsupported(m) if m.contains(&format!("{} base faces", t.num_faces()))),
+        "{e}"
+    );
+    for bad in [0.0f32, -1.0, f32::NAN, f32::INFINITY] {
+        let e = choose_isolation::<f32>(&t, &options(4), &mesh.positions, bad).unwrap_err();
+        assert!(
+            matches!(&e, Error::Unsupported(m) if m.contains("positive finite")),
+            "{e}"
+        );
+    }
+}
+
+/// The largest distance between `s`'s end caps and the reference `r`, over a 9 x 9 grid of
+/// each, as a fraction of `diag`.
+fn end_cap_deviation(s: &LimitSurface<f64>, r: &LimitSurface<f64>, diag: f64) -> f64 {
+    let t = &s.table;
+    let mut worst = 0.0f64;
+    for p in (0..t.num_patches()).filter(|&p| t.patch_type(p) == PatchType::Gregory) {
+        let pp = t.params[p];
+        let ptex = pp.face_id() as usize;
+        for i in 0..=8 {
+            for j in 0..=8 {
+                let (u, v) = pp.unnormalize(i as f64 / 8.0, j as f64 / 8.0);
+                let a = s.eval_position(ptex, u, v).unwrap();
+                let b = r.eval_position(ptex, u, v).unwrap();
+                worst = worst.max(dist(a, b) / diag);
+            }
+        }
+    }
+    worst
+}
+
+/// `build_for_tolerance`: every end cap within the budget of the isolation-10 surface, where
+/// the default isolation 4 misses it; only the faces that need it are isolated deeper.
+#[test]
+fn end_caps_within_the_budget_of_the_true_limit() {
+    for (name, budget) in [
+        ("catmark_pawn", 2.5e-4f32),
+        ("catmark_gregory_test4", 2.5e-4),
+        ("catmark_xord_boundary", 1e-3),
+        ("catmark_car", 2.5e-4),
+    ] {
+        let mesh = load_shape(name);
+        let t = Topology::new(&mesh).unwrap();
+        let diag = f64::from(bbox_diagonal(&mesh.positions));
+        let reference = surface(&mesh, PatchTable::build_real(&t, &options(10)).unwrap());
+        let plain = surface(&mesh, PatchTable::build_real(&t, &options(4)).unwrap());
+        let before = end_cap_deviation(&plain, &reference, diag);
+        let (table, choice) =
+            build_for_tolerance::<f64>(&t, &options(4), &mesh.positions, budget).unwrap();
+        let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
+        let after = end_cap_deviation(&surface(&mesh, table), &reference, diag);
+        eprintln!(
+            "{name}: budget {budget:e}: end caps {before:.2e} at isolation 4 -> {after:.2e}, \
+             {deeper} of {} faces deeper (levels up to {})",
+            t.num_faces(),
+            choice.face_levels.iter().max().unwrap()
+        );
+        assert!(before > f64::from(budget), "{name}: {before:e}");
+        assert!(after <= f64::from(budget), "{name}: {after:e} > {budget:e}");
+        assert!(deeper > 0, "{name}: {deeper}");
+        if t.num_faces() > 100 {
+            assert!(deeper < t.num_faces() / 2, "{name}: {deeper}");
+        }
+        assert!(choice.face_levels.iter().all(|&l| l >= 4));
+    }
+}
+
+/// `--tolerance E` through the surface API: every output edge's midpoint and every triangle's
+/// centroid within `E ×` the diagonal of the true limit surface (isolation 10) at the same
+/// parameters; the chords alone, on the isolation-4 table, are not.
+#[test]
+fn tolerance_bounds_the_whole_approximation() {
+    let (name, e) = ("catmark_pawn", 1e-3f32);
+    let mesh = load_shape(name);
+    let t = Topology::new(&mesh).unwrap();
+    let diag = f64::from(bbox_diagonal(&mesh.positions));
+    let reference = surface(&mesh, PatchTable::build_real(&t, &options(10)).unwrap());
+    // The worst edge midpoint or centroid of a tessellation (positions, triangles, per
+    // triangle its ptex face and corners' (u, v)) against `reference`.
+    let worst = |out: &AdaptiveTessellation,
+                 uv: &[(u32, [[f32; 2]; 3])],
+                 reference: &dyn Fn(u32, f64, f64) -> [f64; 3]|
+     -> f64 {
+        let at = |ptex: u32, u: f32, v: f32| reference(ptex, f64::from(u), f64::from(v));
+        let p = |i: u32| out.positions[i as usize].map(f64::from);
+        let mut w = 0.0f64;
+        for (tri, (ptex, c)) in out.triangles.iter().zip(uv) {
+            for k in 0..3 {
+                let (i, j) = (k, (k + 1) % 3);
+                let m = at(*ptex, 0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1]));
+                let x = [0, 1, 2].map(|q| 0.5 * (p(tri[i])[q] + p(tri[j])[q]));
+                w = w.max(dist(x, m));
+            }
+            let g = at(
+                *ptex,
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            );
+            let x = [0, 1, 2].map(|q| (p(tri[0])[q] + p(tri[1])[q] + p(tri[2])[q]) / 3.0);
+            w = w.max(dist(x, g));
+        }
+        w / diag
+    };
+    let policy = RatePolicy::Tolerance(e);
+    let (s, chords) =
+        adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &options(4)).unwrap();
+    assert_eq!(chords, RatePolicy::Tolerance(split_tolerance(e).1));
+    assert!(s.table.face_levels.is_some());
+    let truth = |p: u32, u: f64, v: f64| reference.eval_position(p as usize, u, v).unwrap();
+    let a = tessellate_adaptive(&s, &chords, "tolerance", &Cpu).unwrap();
+    let whole = worst(&a.tessellation, &a.triangle_uv, &truth);
+    // Before: the isolation-4 table, the whole tolerance given to the chords, no corner check.
+    let plain = LimitSurface::new(PatchTable::build(&t, &options(4)).unwrap(), &mesh.positions);
+    let mut p = plan(&plain.table, &policy.rates(&plain, "").unwrap(), "").unwrap();
+    let uv = std::mem::take(&mut p.triangle_uv);
+    let before = worst(&plain.eval_plan(p), &uv, &truth);
+    eprintln!(
+        "{name} E={e}: {whole:.2e} with per-region isolation ({} triangles), {before:.2e} before",
+        a.tessellation.triangles.len()
+    );
+    assert!(whole <= f64::from(e), "{whole:e}");
+    assert!(before > f64::from(e), "{before:e}");
+    let e = adaptive_surface(
+        &t,
+        &mesh.positions,
+        &RatePolicy::Tolerance(-1.0),
+        "--tolerance",
+        &options(4),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("--tolerance"), "{e}");
+}
+
+/// A crease edit of a table with per-region levels equals a fresh build of the edited mesh at
+/// the same levels.
+#[test]
+fn edits_keep_the_levels() {
+    let mesh = load_shape("catmark_cube_creases1");
+    let t = Topology::new(&mesh).unwrap();
+    let levels: Vec<u8> = (0..t.num_faces()).map(|f| 3 + (f % 3) as u8).collect();
+    let mut table = PatchTable::<f64>::build_face_levels(&t, &options(3), &levels).unwrap();
+    let c = &mesh.creases[0];
+    let edit = [SharpnessEdit::Edge {
+        v0: c.v0,
+        v1: c.v1,
+        sharpness: c.sharpness + 1.5,
+    }];
+    assert!(table.set_sharpness(&edit).unwrap());
+    let mut edited = mesh.clone();
+    edited.creases[0].sharpness += 1.5;
+    let fresh = PatchTable::<f64>::build_face_levels(
+        &Topology::new(&edited).unwrap(),
+        &options(3),
+        &levels,
+    )
+    .unwrap();
+    assert_eq!(table.face_levels, fresh.face_levels);
+    assert_eq!(table.kinds, fresh.kinds);
+    assert_eq!(table.params, fresh.params);
+    assert_eq!(table.cvs, fresh.cvs);
+    assert_eq!(table.patch_map, fresh.patch_map);
+    let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(bits(&table.sharpness), bits(&fresh.sharpness));
+    assert_eq!(table.level_offsets, fresh.level_offsets);
+}
