@@ -192,6 +192,26 @@ pub enum TessError {
         /// Measures given.
         found: usize,
     },
+    /// A tolerance the end caps cannot meet at the deepest isolation level.
+    #[error(
+        "{origin}: tolerance {tolerance:e} is out of reach: the end caps of base face {face} \
+         stay about {estimate:.1e} of the diagonal off the limit surface at isolation {level} \
+         (the deepest), and the tolerance needs them within {budget:e}"
+    )]
+    ToleranceUnreachable {
+        /// The policy asking for it.
+        origin: String,
+        /// The tolerance asked for.
+        tolerance: f32,
+        /// The end caps' share of it.
+        budget: f32,
+        /// The first base face out of reach.
+        face: usize,
+        /// Its end caps' estimated distance at `level`, a fraction of the diagonal.
+        estimate: f32,
+        /// The deepest isolation level.
+        level: u32,
+    },
 }
 
 /// A limit-surface query `(face, u, v)` outside the surface's domain, naming the query (its

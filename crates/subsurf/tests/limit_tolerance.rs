@@ -13,7 +13,7 @@ use subsurf::limit::{
 };
 use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
 use subsurf::tess::{plan, AdaptiveTessellation, RatePolicy};
-use subsurf::{Error, Mesh, Topology};
+use subsurf::{Error, Mesh, TessError, Topology};
 
 /// A small deterministic generator (64-bit LCG, high bits).
 struct Lcg(u64);
@@ -261,6 +261,34 @@ fn tolerance_bounds_the_whole_approximation() {
     )
     .unwrap_err();
     assert!(e.to_string().contains("--tolerance"), "{e}");
+    // The pawn's pole keeps its end caps about 1.4e-4 off at isolation 10: 1e-4 is out of
+    // reach, and said so.
+    let e = adaptive_surface(
+        &t,
+        &mesh.positions,
+        &RatePolicy::Tolerance(1e-4),
+        "--tolerance",
+        &options(4),
+    )
+    .unwrap_err();
+    match &e {
+        subsurf::surface::SurfaceError::Library(Error::Tess(TessError::ToleranceUnreachable {
+            face,
+            level,
+            estimate,
+            ..
+        })) => {
+            assert_eq!(*level, 10);
+            assert!(*estimate > 2.5e-5);
+            assert!((576..=587).contains(face), "{face}");
+        }
+        _ => panic!("{e}"),
+    }
+    assert!(
+        e.to_string()
+            .starts_with("--tolerance: tolerance 1e-4 is out of reach"),
+        "{e}"
+    );
 }
 
 /// A crease edit of a table with per-region levels equals a fresh build of the edited mesh at

@@ -63,7 +63,9 @@ pub fn tessellate(
 /// ([`crate::limit::tolerance`]), and the chords get the other `3e/4`
 /// ([`crate::limit::tolerance::split_tolerance`]). Every other policy takes the table of
 /// `options` as it is. A tolerance that is not a positive finite number is refused first, as
-/// the rates refuse it.
+/// the rates refuse it; one whose end caps stay off by more than their share at the deepest
+/// isolation ([`crate::limit::MAX_ISOLATION_LEVEL`]) is refused with
+/// [`crate::TessError::ToleranceUnreachable`], naming the base face and the estimate.
 pub fn adaptive_surface(
     topo: &Topology,
     positions: &[[f32; 3]],
@@ -74,7 +76,20 @@ pub fn adaptive_surface(
     if let RatePolicy::Tolerance(e) = *policy {
         policy.validate(topo, origin)?;
         let (caps, chords) = split_tolerance(e);
-        let (table, _) = build_for_tolerance(topo, options, positions, caps)?;
+        let (table, choice) = build_for_tolerance(topo, options, positions, caps)?;
+        if let Some((face, &estimate)) =
+            choice.deviation.iter().enumerate().find(|(_, &d)| d > caps)
+        {
+            return Err(crate::Error::from(crate::TessError::ToleranceUnreachable {
+                origin: origin.to_string(),
+                tolerance: e,
+                budget: caps,
+                face,
+                estimate,
+                level: u32::from(choice.face_levels[face]),
+            })
+            .into());
+        }
         return Ok((
             LimitSurface::new(table, positions),
             RatePolicy::Tolerance(chords),
