@@ -80,3 +80,18 @@ def test_gpu_rates_give_the_cpu_mesh(kw, value):
         pytest.skip(f"SKIPPED: no GPU adapter ({e})")
     for a, b in zip(cpu, gpu):
         assert np.array_equal(a, b)
+
+
+def test_tolerance_chooses_the_isolation_and_refuses_the_unreachable(cli, tmp_path):
+    """On the pawn (a pole of high valence) a tolerance isolates the pole deeper, the same
+    way from Python as from the command line; one its end caps cannot meet at the deepest
+    level is a ValueError naming the face."""
+    src = SHAPES / "catmark_pawn.obj"
+    pawn = subsurf.read(src)
+    ref = _cli_mesh(cli, tmp_path, src, "--tolerance", 1e-3)
+    p, _, t = subsurf.tessellate(pawn, tolerance=1e-3)
+    assert np.array_equal(ref.points, p)
+    assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
+    with pytest.raises(ValueError) as e:
+        subsurf.tessellate(pawn, tolerance=1e-4)
+    assert "out of reach" in str(e.value) and "base face 5" in str(e.value), str(e.value)
