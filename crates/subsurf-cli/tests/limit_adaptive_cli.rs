@@ -76,4 +76,26 @@ fn adaptive_flags_match_the_library_and_refuse_bad_values() {
         );
         assert!(!bad_out.exists(), "{args:?}: output written");
     }
+
+    // The pawn's pole cannot take end caps within 1e-4 / 4 at isolation 10: refused, naming
+    // the face and the estimate, nothing written.
+    let bad_out = tmp("pawn_unreachable.obj");
+    let _ = std::fs::remove_file(&bad_out);
+    let out = bin()
+        .arg("limit")
+        .arg(repo("testdata/shapes/catmark_pawn.obj"))
+        .args(["--tolerance", "1e-4", "-o"])
+        .arg(&bad_out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success()
+            && err.contains(
+                "--tolerance: tolerance 1e-4 is out of reach: the end caps of base face 5"
+            )
+            && err.contains("at isolation 10"),
+        "{err}"
+    );
+    assert!(!bad_out.exists());
 }
