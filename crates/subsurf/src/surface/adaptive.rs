@@ -7,7 +7,7 @@ use super::limit::patch_class;
 use super::{class, Backend, Colors, Surface, SurfaceError};
 use crate::limit::tolerance::split_tolerance;
 use crate::limit::{build_for_tolerance, LimitSurface, PatchOptions, PatchTable};
-use crate::tess::{plan, plan_within_tolerance, AdaptiveTessellation, EdgeRates, RatePolicy};
+use crate::tess::{plan, tessellate_within_tolerance, AdaptiveTessellation, EdgeRates, RatePolicy};
 use crate::{Mesh, Topology};
 
 /// An adaptive tessellation with what it was made from.
@@ -32,7 +32,7 @@ impl Adaptive {
 }
 
 /// Rates of `policy` on `surface` (chosen on `backend`; a tolerance then checked at the end
-/// caps' corners, [`plan_within_tolerance`]), then the tessellation at those
+/// caps' corners, [`tessellate_within_tolerance`]), then the tessellation at those
 /// rates (`origin` names where the policy came from in errors: a flag, a file).
 pub fn tessellate(
     surface: &LimitSurface,
@@ -41,13 +41,16 @@ pub fn tessellate(
     backend: &dyn Backend,
 ) -> Result<Adaptive, SurfaceError> {
     let rates = backend.adaptive_rates(surface, policy, origin)?;
-    let (rates, mut p) = match *policy {
-        RatePolicy::Tolerance(e) => plan_within_tolerance(surface, rates, e, origin)?,
-        _ => {
-            let p = plan(&surface.table, &rates, origin)?;
-            (rates, p)
-        }
-    };
+    if let RatePolicy::Tolerance(e) = *policy {
+        let (rates, tessellation, triangle_uv) =
+            tessellate_within_tolerance(surface, rates, e, origin)?;
+        return Ok(Adaptive {
+            tessellation,
+            rates,
+            triangle_uv,
+        });
+    }
+    let mut p = plan(&surface.table, &rates, origin)?;
     let triangle_uv = std::mem::take(&mut p.triangle_uv);
     Ok(Adaptive {
         tessellation: surface.eval_plan(p),

@@ -5,13 +5,15 @@
 //! vertex itself (Catmull-Clark's curvature there is unbounded at high valence), within a
 //! region smaller than the samples' spacing once the isolation is deep enough to follow it
 //! ([`crate::limit::tolerance`]): on the pawn's pole, chords of rates chosen for `7.5e-4`
-//! were `1.03e-3` off at the pole. So the triangles that touch a ptex-face corner lying in an
-//! end cap are measured after planning (their edge midpoints and centroid against the
-//! surface), and the rates of every base face where one misses are raised by the square root
-//! of the excess (chord error falling as the square of the spacing) and planned again, until
-//! none misses or the rates reach [`MAX_RATE`].
+//! were `1.03e-3` off at the pole. (At the default isolation 4 an end cap spans 1/16 of its
+//! face, one sample spacing of the rate curves, which see its bending.) So in base faces
+//! isolated deeper than the table's least level, the triangles that touch a ptex-face corner
+//! lying in an end cap are measured after the tessellation (the midpoints of their edges at that corner and their centroid against the surface), and the
+//! rates of every base face where one misses are raised by the square root of the excess
+//! (chord error falling as the square of the spacing) and tessellated again, until none
+//! misses or the rates reach [`MAX_RATE`].
 
-use super::mesh::{plan, AdaptivePlan, EdgeRates, MAX_RATE};
+use super::mesh::{plan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
 use crate::limit::{LimitSurface, PatchType};
 use rayon::prelude::*;
@@ -20,12 +22,18 @@ use rayon::prelude::*;
 const ROUNDS: usize = 6;
 
 /// Per ptex face: bit `k` set when its corner `k` (`(0,0)`, `(1,0)`, `(1,1)`, `(0,1)`) lies in
-/// an end cap.
+/// an end cap of a base face isolated deeper than the table's least level (where the surface
+/// bends within less than the rate curves' sample spacing, module documentation).
 fn end_cap_corners(surface: &LimitSurface) -> Vec<u8> {
     let t = &surface.table;
-    (0..t.num_ptex_faces())
-        .map(|ptex| {
-            [(0.0f32, 0.0f32), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+    let Some(levels) = &t.face_levels else {
+        return Vec::new();
+    };
+    let least = levels.iter().copied().min().unwrap_or(0);
+    let mut out = vec![0u8; t.num_ptex_faces()];
+    for (f, _) in levels.iter().enumerate().filter(|(_, &l)| l > least) {
+        for ptex in t.ptex_offsets[f] as usize..t.ptex_offsets[f + 1] as usize {
+            out[ptex] = [(0.0f32, 0.0f32), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
                 .iter()
                 .enumerate()
                 .filter(|(_, &(u, v))| {
@@ -33,9 +41,10 @@ fn end_cap_corners(surface: &LimitSurface) -> Vec<u8> {
                         .find(ptex, u, v)
                         .is_some_and(|p| t.patch_type(p as usize) == PatchType::Gregory)
                 })
-                .fold(0u8, |m, (k, _)| m | 1 << k)
-        })
-        .collect()
+                .fold(0u8, |m, (k, _)| m | 1 << k);
+        }
+    }
+    out
 }
 
 fn corner_bit(c: [f32; 2]) -> u8 {
@@ -48,40 +57,47 @@ fn corner_bit(c: [f32; 2]) -> u8 {
     }
 }
 
-/// Per base face, the largest distance (world units) between the flat triangles of `p` at
-/// its end-cap corners and the surface: their edge midpoints and centroids.
-fn corner_errors(surface: &LimitSurface, p: &AdaptivePlan, corners: &[u8]) -> Vec<f64> {
-    let t = &surface.table;
-    let nf = t.base.num_faces();
-    let mut face_of_ptex = vec![0u32; t.num_ptex_faces()];
-    for f in 0..nf {
-        for x in t.ptex_offsets[f]..t.ptex_offsets[f + 1] {
-            face_of_ptex[x as usize] = f as u32;
-        }
-    }
-    let found: Vec<(u32, f64)> = p
-        .triangle_uv
+/// Per base face, the largest distance (world units) between the flat triangles of `out`
+/// (per triangle its ptex face and corners' `(u, v)` in `uv`) at its end-cap corners and the
+/// surface: their edge midpoints and centroids. Only the faces flagged in `only` (all when
+/// empty) are measured.
+fn corner_errors(
+    surface: &LimitSurface,
+    out: &AdaptiveTessellation,
+    uv: &[TriangleUv],
+    corners: &[u8],
+    face_of_ptex: &[u32],
+    only: &[bool],
+) -> Vec<f64> {
+    let nf = surface.table.base.num_faces();
+    let found: Vec<(u32, f64)> = out
+        .triangles
         .par_iter()
-        .filter(|(ptex, c)| {
-            c.iter()
-                .any(|&x| corner_bit(x) & corners[*ptex as usize] != 0)
+        .zip(uv)
+        .filter(|(_, (ptex, c))| {
+            let ptex = *ptex as usize;
+            corners.get(ptex).is_some_and(|&m| m != 0)
+                && (only.is_empty() || only[face_of_ptex[ptex] as usize])
+                && c.iter().any(|&x| corner_bit(x) & corners[ptex] != 0)
         })
-        .filter_map(|&(ptex, c)| {
+        .filter_map(|(tri, &(ptex, c))| {
             let at = |u: f32, v: f32| surface.eval_position(ptex as usize, u, v);
-            let x = [
-                at(c[0][0], c[0][1])?,
-                at(c[1][0], c[1][1])?,
-                at(c[2][0], c[2][1])?,
-            ];
+            let x = tri.map(|i| out.positions[i as usize]);
             let dist = |a: [f32; 3], b: [f32; 3]| -> f64 {
                 (0..3)
                     .map(|k| f64::from(a[k] - b[k]).powi(2))
                     .sum::<f64>()
                     .sqrt()
             };
+            // The two edges at the end-cap corner and the centroid: the far edge is the
+            // flattest.
+            let at_corner = |i: usize| corner_bit(c[i]) & corners[ptex as usize] != 0;
             let mut w = 0.0f64;
             for k in 0..3 {
                 let (i, j) = (k, (k + 1) % 3);
+                if !(at_corner(i) || at_corner(j)) {
+                    continue;
+                }
                 let m = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1]))?;
                 w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
             }
@@ -103,30 +119,46 @@ fn corner_errors(surface: &LimitSurface, p: &AdaptivePlan, corners: &[u8]) -> Ve
     out
 }
 
-/// The plan of `rates` on `surface`, with the rates of base faces whose triangles at end-cap
-/// corners miss `tolerance` (a fraction of the points' bounding-box diagonal) raised until
-/// they meet it (module documentation); returns the rates used and their plan (with
-/// `triangle_uv`). Refuses what [`plan`] refuses, naming `origin`.
-pub fn plan_within_tolerance(
+/// A tessellation of `surface` at `rates`, with the rates of base faces whose triangles at
+/// end-cap corners miss `tolerance` (a fraction of the points' bounding-box diagonal) raised
+/// until they meet it (module documentation): the rates used, the tessellation and, per
+/// triangle, its ptex face and corners' `(u, v)`. Refuses what [`plan`] refuses, naming
+/// `origin`.
+pub fn tessellate_within_tolerance(
     surface: &LimitSurface,
     mut rates: EdgeRates,
     tolerance: f32,
     origin: &str,
-) -> Result<(EdgeRates, AdaptivePlan)> {
-    let t = &surface.table.base;
+) -> Result<Tessellated> {
+    let table = &surface.table;
+    let t = &table.base;
     let bound = f64::from(tolerance) * f64::from(crate::mesh::bbox_diagonal(&surface.points));
     let corners = end_cap_corners(surface);
-    let mut p = plan(&surface.table, &rates, origin)?;
+    let run = |rates: &EdgeRates| -> Result<(AdaptiveTessellation, Vec<TriangleUv>)> {
+        let mut p = plan(table, rates, origin)?;
+        let uv = std::mem::take(&mut p.triangle_uv);
+        Ok((surface.eval_plan(p), uv))
+    };
+    let (mut out, mut uv) = run(&rates)?;
     if corners.iter().all(|&c| c == 0) {
-        return Ok((rates, p));
+        return Ok((rates, out, uv));
     }
+    let mut face_of_ptex = vec![0u32; table.num_ptex_faces()];
+    for f in 0..t.num_faces() {
+        for x in table.ptex_offsets[f]..table.ptex_offsets[f + 1] {
+            face_of_ptex[x as usize] = f as u32;
+        }
+    }
+    // After the first round only the faces whose rates were raised are measured again.
+    let mut only: Vec<bool> = Vec::new();
     for _ in 1..ROUNDS {
-        let errors = corner_errors(surface, &p, &corners);
+        let errors = corner_errors(surface, &out, &uv, &corners, &face_of_ptex, &only);
         if rates.faces.is_empty() {
             rates.faces = vec![0; t.num_faces()];
         }
-        let mut raised = false;
         let old = rates.edges.clone();
+        only = vec![false; t.num_faces()];
+        let mut raised = false;
         for (f, &w) in errors.iter().enumerate() {
             if w.is_nan() || w <= bound {
                 continue;
@@ -144,20 +176,27 @@ pub fn plan_within_tolerance(
             } else {
                 finest
             };
+            let mut changed = false;
             for &e in t.face_edges(f) {
                 let e = e as usize;
                 let r = up(old[e]).max(rates.edges[e]);
-                raised |= r != rates.edges[e];
+                changed |= r != rates.edges[e];
                 rates.edges[e] = r;
             }
             let r = up(inner);
-            raised |= r != rates.faces[f];
+            changed |= r != rates.faces[f];
             rates.faces[f] = r;
+            only[f] = changed;
+            raised |= changed;
         }
         if !raised {
             break;
         }
-        p = plan(&surface.table, &rates, origin)?;
+        (out, uv) = run(&rates)?;
     }
-    Ok((rates, p))
+    Ok((rates, out, uv))
 }
+
+/// What [`tessellate_within_tolerance`] gives: the rates used, the tessellation, and per
+/// triangle its ptex face and corners' `(u, v)`.
+pub type Tessellated = (EdgeRates, AdaptiveTessellation, Vec<(u32, [[f32; 2]; 3])>);

@@ -22,7 +22,7 @@ pub mod mesh;
 pub mod pattern;
 pub mod rates;
 
-pub use corners::plan_within_tolerance;
+pub use corners::tessellate_within_tolerance;
 pub use curves::{CurveMeasure, RateCurves};
 pub use mesh::{plan, plan_without_uv, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;
