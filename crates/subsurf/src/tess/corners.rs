@@ -199,4 +199,7 @@ pub fn tessellate_within_tolerance(
 
 /// What [`tessellate_within_tolerance`] gives: the rates used, the tessellation, and per
 /// triangle its ptex face and corners' `(u, v)`.
-pub type Tessellated = (EdgeRates, AdaptiveTessellation, Vec<(u32, [[f32; 2]; 3])>);
+pub type Tessellated = (EdgeRates, AdaptiveTessellation, Vec<TriangleUv>);
+
+/// A triangle's ptex face and its corners' `(u, v)` there.
+pub type TriangleUv = (u32, [[f32; 2]; 3]);
