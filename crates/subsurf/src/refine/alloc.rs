@@ -6,26 +6,20 @@
 //! advised with `madvise(MADV_HUGEPAGE)` when the system's policy is `madvise` (a common
 //! default, `/sys/kernel/mm/transparent_hugepage/enabled`), and into any region under
 //! `always`. A huge page needs a whole, aligned 2 MiB window of one mapping with nothing in it
-//! touched yet; the allocator places a large table in a mapping of its own, which the kernel
-//! merges with its neighbours of the same advice, so windows across the tables of one level
-//! (allocated together, filled after) qualify too.
+//! touched yet. A window across two tables never qualifies (the allocator writes a block's
+//! header just before its data), so only the whole windows inside one table are advised.
 //!
-//! [`zeroed`] and [`filled`] allocate a table and advise the pages it spans before anything
-//! writes them; elsewhere than Linux, or for tables under [`ADVISE_MIN`] bytes, they are
+//! [`zeroed`] and [`filled`] allocate a table and advise those windows before anything writes
+//! them; elsewhere than Linux, or for tables under [`ADVISE_MIN`] bytes, they are
 //! `vec![x; len]`. A zero table costs no extra pass: a large zeroed allocation is fresh memory
 //! that the allocator does not write, so the builder's first write is its first touch.
 
 /// Size of a transparent huge page on the platforms advised (x86-64 and aarch64 with 4 KiB
 /// base pages).
-#[cfg(test)]
 const HUGE_PAGE: usize = 2 << 20;
 
-/// Base page size assumed when rounding a buffer out to whole pages.
-const SMALL_PAGE: usize = 4096;
-
-/// Smallest table (in bytes) advised: smaller ones come from the allocator's shared heap,
-/// rarely span a whole huge page, and are left alone.
-pub(crate) const ADVISE_MIN: usize = 1 << 18;
+/// Smallest table (in bytes) advised: a smaller one holds no whole huge page.
+pub(crate) const ADVISE_MIN: usize = HUGE_PAGE;
 
 /// A table of `len` copies of `zero`, the pages it spans advised for transparent huge pages
 /// before first touch where large enough. `zero` is a value of all zero bits (`0`, `0.0`,
@@ -33,6 +27,14 @@ pub(crate) const ADVISE_MIN: usize = 1 << 18;
 pub(crate) fn zeroed<T: Clone>(len: usize, zero: T) -> Vec<T> {
     let v = vec![zero; len];
     advise_huge(&v);
+    v
+}
+
+/// An empty table with room for `len` values, advised as [`zeroed`], for a builder that
+/// pushes (or `extend`s) every value in order: nothing is written twice.
+pub(crate) fn empty<T>(len: usize) -> Vec<T> {
+    let mut v = Vec::with_capacity(len);
+    advise_huge(v.spare_capacity_mut());
     v
 }
 
@@ -44,18 +46,28 @@ pub(crate) fn filled<T: Copy>(len: usize, x: T) -> Vec<T> {
     v
 }
 
-/// Advises the pages spanned by `v` (rounded out to whole 4 KiB pages) for transparent huge
-/// pages: Linux only, a no-op elsewhere and for buffers under [`ADVISE_MIN`] bytes. Only pages
-/// not yet touched are affected, so call it before the first write. Returns whether a range
-/// was advised and accepted.
+/// Advises the whole, aligned 2 MiB windows inside `v` for transparent huge pages: Linux
+/// only, a no-op elsewhere, for buffers under [`ADVISE_MIN`] bytes and for those that hold no
+/// such window. Only pages not yet touched are affected, so call it before the first write.
+/// Returns whether a range was advised and accepted.
+///
+/// A window reaching past either end of `v` never becomes a huge page: the allocator writes
+/// its header of the neighbouring block (or of `v`, just before it) into that window before
+/// `v` is handed out, and a huge page needs a window with nothing in it touched. Advising
+/// only the inner windows skips the system call for every table under 2 MiB (most of a
+/// refinement's tables below its last levels), and keeps the kernel from splitting the
+/// allocator's mappings at arbitrary pages (each `madvise` of a part of a mapping cuts it).
 pub(crate) fn advise_huge<T>(v: &[T]) -> bool {
     let bytes = std::mem::size_of_val(v);
     if bytes < ADVISE_MIN {
         return false;
     }
     let start = v.as_ptr() as usize;
-    let first = start / SMALL_PAGE * SMALL_PAGE;
-    let end = (start + bytes).next_multiple_of(SMALL_PAGE);
+    let first = start.next_multiple_of(HUGE_PAGE);
+    let end = (start + bytes) / HUGE_PAGE * HUGE_PAGE;
+    if end <= first {
+        return false;
+    }
     sys::madvise_huge(first, end - first)
 }
 
@@ -64,9 +76,8 @@ pub(crate) fn advise_huge<T>(v: &[T]) -> bool {
 mod sys {
     /// `madvise(addr, len, MADV_HUGEPAGE)`; whether the kernel accepted it.
     pub(super) fn madvise_huge(addr: usize, len: usize) -> bool {
-        // SAFETY: `addr` is page aligned and `addr..addr + len` is the caller's live buffer
-        // rounded out to whole pages, all mapped (a page holding part of a live allocation is
-        // mapped in full). MADV_HUGEPAGE is advice only: it sets how the kernel backs pages of
+        // SAFETY: `addr` is 2 MiB aligned and `addr..addr + len` lies inside the caller's live
+        // buffer, all mapped. MADV_HUGEPAGE is advice only: it sets how the kernel backs pages of
         // the range not yet touched (and may let the kernel merge small pages later), and never
         // frees memory or changes its contents, so no value, ours or a neighbouring
         // allocation's, changes and no Rust reference is invalidated. A kernel without THP

@@ -120,6 +120,7 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
         let o1 = if o1 != o0 { o1 } else { u32::MAX };
         (m, [o0, o1], nfaces == 2 && o1 == u32::MAX)
     };
+    let smooth2 = edge_mask(0.0, rule::SMOOTH, 2);
     let edge = write_rows(
         ne,
         nv,
@@ -138,6 +139,20 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
         },
         |e, _, idx, wts| {
             let ev = p.edge_verts[e];
+            if p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2 {
+                // Smooth, two faces (what `edge_row` gives there, without the general mask).
+                let (o0, o1) = (opposite(e, 0), opposite(e, 1));
+                (idx[0], wts[0]) = (ev[0], smooth2.vertex);
+                (idx[1], wts[1]) = (ev[1], smooth2.vertex);
+                if o0 != o1 {
+                    (idx[2], wts[2]) = (o0, smooth2.opposite);
+                    (idx[3], wts[3]) = (o1, smooth2.opposite);
+                } else {
+                    let w = (smooth2.opposite as f64 + smooth2.opposite as f64) as f32;
+                    (idx[2], wts[2]) = (o0, w);
+                }
+                return;
+            }
             let (m, o, merged) = edge_row(e);
             (idx[0], wts[0]) = (ev[0], m.vertex);
             (idx[1], wts[1]) = (ev[1], m.vertex);

@@ -19,7 +19,7 @@
 //! faces (1 or 2 on a manifold level) has `3k` faces and `2 + 2k` edges; an interior child edge
 //! has two faces, a child of an edge as many as that edge.
 
-use super::level::{child_edge_sharpness, edge_point_tags, iota, vertex_child_tags};
+use super::level::{child_half, edge_point_tags, vertex_child_tags};
 use super::loop_level::child_triangles;
 use super::par;
 use crate::rules::crease;
@@ -73,6 +73,10 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     let mut edge_face_offsets = super::alloc::zeroed(ce + 1, 0u32);
     let mut edge_faces = super::alloc::zeroed(total_ef, 0u32);
     let mut edge_face_local = super::alloc::zeroed(total_ef, 0u16);
+    // Sharpness: interior edges smooth (left zero), children of edges decayed by the crease
+    // method (in the edge pass, as `level::child_edge_sharpness` forms them).
+    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
+    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
     {
         let (ev_f, ev_e) = edge_verts.split_at_mut(nc);
         let (eo_f, eo_e) = edge_face_offsets.split_at_mut(nc);
@@ -134,11 +138,24 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             .zip(par::split(&mut eo_e[..2 * ne], &eb, |e| 2 * e))
             .zip(par::split(ef_e, &eb, |e| 2 * efo(e)))
             .zip(par::split(el_e, &eb, |e| 2 * efo(e)))
-            .for_each(|((((r, cev), ceo), cef), cel)| {
+            .zip(par::split(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
+            .zip(par::split(&mut edge_tags[nc..], &eb, |e| 2 * e))
+            .for_each(|((((((r, cev), ceo), cef), cel), ces), cet)| {
                 let (base, fbase) = (2 * r.start, 2 * efo(r.start));
+                let mut around: Vec<f32> = Vec::new();
                 for e in r {
                     let ev = p.edge_verts[e];
                     let i = 2 * e - base;
+                    let sharp = p.edge_sharpness[e];
+                    if sharp <= 0.0 || sharp.is_nan() {
+                        // Smooth: both children smooth (what `child_half` gives).
+                        let t = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+                        (ces[i], ces[i + 1], cet[i], cet[i + 1]) = (0.0, 0.0, t, t);
+                    } else {
+                        for end in 0..2 {
+                            (ces[i + end], cet[i + end]) = child_half(p, e, end, &mut around);
+                        }
+                    }
                     cev[i] = [ep(e as u32), ev[0]];
                     cev[i + 1] = [ep(e as u32), ev[1]];
                     let (order, k) = faces_in_order(p, e);
@@ -159,30 +176,26 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             });
     }
 
-    // Sharpness: interior edges smooth, children of edges decayed by the crease method.
-    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
-    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
-    child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
-
     // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
     let (pvf, pve) = (
         p.vert_face_offsets[nv] as usize,
         p.vert_edge_offsets[nv] as usize,
     );
-    let vert_face_offsets = iota(cv + 1, |i| {
-        if i <= nv {
-            p.vert_face_offsets[i]
-        } else {
-            (pvf + 3 * efo(i - nv)) as u32
-        }
-    });
-    let vert_edge_offsets = iota(cv + 1, |i| {
-        if i <= nv {
-            p.vert_edge_offsets[i]
-        } else {
-            (pve + 2 * (i - nv) + 2 * efo(i - nv)) as u32
-        }
-    });
+    let mut vert_face_offsets = super::alloc::empty(cv + 1);
+    vert_face_offsets.extend_from_slice(&p.vert_face_offsets[..=nv]);
+    vert_face_offsets.extend(
+        p.edge_face_offsets[1..=ne]
+            .iter()
+            .map(|&o| pvf as u32 + 3 * o),
+    );
+    let mut vert_edge_offsets = super::alloc::empty(cv + 1);
+    vert_edge_offsets.extend_from_slice(&p.vert_edge_offsets[..=nv]);
+    vert_edge_offsets.extend(
+        p.edge_face_offsets[1..=ne]
+            .iter()
+            .zip(1..=ne as u32)
+            .map(|(&o, e)| pve as u32 + 2 * e + 2 * o),
+    );
     let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
     let mut vert_faces = super::alloc::zeroed(total_vf, 0u32);
     let mut vert_face_local = super::alloc::zeroed(total_vf, 0u16);
@@ -298,7 +311,11 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     Topology {
         options: p.options,
         num_vertices: cv,
-        face_offsets: iota(cf + 1, |f| 3 * f as u32),
+        face_offsets: {
+            let mut o = super::alloc::empty(cf + 1);
+            o.extend((0..=cf as u32).map(|f| 3 * f));
+            o
+        },
         face_verts,
         face_edges,
         edge_verts,
