@@ -2,7 +2,7 @@
 //! on the surface `--tolerance` tessellates (`surface::adaptive_surface`):
 //! `cargo run --release -p subsurf --example tess_speed [-- FILE TOLERANCE RUNS]` (default
 //! `testdata/shapes/catmark_car.obj`, `1e-3`, 21 runs). Prints the medians of the rate step,
-//! the tessellation without and with its end-cap corner check, and rates + checked tessellation, in milliseconds, on all threads (`RAYON_NUM_THREADS`
+//! the tessellation (with its end-cap corner check) and both, in milliseconds, on all threads (`RAYON_NUM_THREADS`
 //! sets how many). One run under `valgrind --tool=callgrind` counts instructions.
 
 use std::time::Instant;
@@ -38,33 +38,26 @@ fn main() {
     let RatePolicy::Tolerance(chords) = policy else {
         unreachable!()
     };
-    let (mut rates_ms, mut plan_ms, mut tess_ms, mut total_ms) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let (mut rates_ms, mut tess_ms, mut total_ms) = (Vec::new(), Vec::new(), Vec::new());
     let mut triangles = 0;
     for _ in 0..runs {
         let t0 = Instant::now();
         let r = policy.rates(&s, "--tolerance").unwrap();
         let t1 = Instant::now();
-        let (r2, p) = (r.clone(), subsurf::tess::plan(&s.table, &r, "").unwrap());
-        let out = s.eval_plan(p);
         let t2 = Instant::now();
-        std::hint::black_box(out);
-        let (_, out, _) = tessellate_within_tolerance(&s, r2, chords, "").unwrap();
+        let (_, out, _) = tessellate_within_tolerance(&s, r, chords, "").unwrap();
         let t3 = Instant::now();
         triangles = std::hint::black_box(out).triangles.len();
         rates_ms.push((t1 - t0).as_secs_f64() * 1e3);
-        plan_ms.push((t2 - t1).as_secs_f64() * 1e3);
         tess_ms.push((t3 - t2).as_secs_f64() * 1e3);
         total_ms.push(((t1 - t0) + (t3 - t2)).as_secs_f64() * 1e3);
     }
     println!(
         "{file} tolerance {tol:e}: {triangles} triangles, {} patches; rates {:.2} ms, tessellation \
-         {:.2} ms, tessellation with the end-cap corner check {:.2} ms, rates + checked \
-         tessellation {:.2} ms (medians of {runs}, {} \
+         with the end-cap corner check {:.2} ms, both {:.2} ms (medians of {runs}, {} \
          threads)",
         s.table.num_patches(),
         median(rates_ms),
-        median(plan_ms),
         median(tess_ms),
         median(total_ms),
         rayon::current_num_threads()
