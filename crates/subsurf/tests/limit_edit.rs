@@ -3,23 +3,10 @@
 
 mod limit_common;
 
-use limit_common::{load_shape, shape_names};
+use limit_common::{load_shape, shape_names, Lcg};
 use subsurf::limit::{EditOutcome, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::mesh::{Corner, Crease};
 use subsurf::{Error, Mesh, MeshError, Real, StencilTable, Topology};
-
-/// A small deterministic generator (64-bit LCG, high bits).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self, n: usize) -> usize {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 33) as usize) % n
-    }
-}
 
 fn same_weights<R: Real>(a: &StencilTable<R>, b: &StencilTable<R>) -> bool {
     let bits = |t: &StencilTable<R>| {

@@ -5,7 +5,7 @@
 
 mod limit_common;
 
-use limit_common::{bbox_diagonal, load_shape};
+use limit_common::{bbox_diagonal, load_shape, Lcg};
 use subsurf::limit::tolerance::split_tolerance;
 use subsurf::limit::{
     build_for_tolerance, choose_isolation, LimitSurface, PatchOptions, PatchTable, PatchType,
@@ -14,19 +14,6 @@ use subsurf::limit::{
 use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
 use subsurf::tess::{plan, AdaptiveTessellation, RatePolicy};
 use subsurf::{Error, Mesh, TessError, Topology};
-
-/// A small deterministic generator (64-bit LCG, high bits).
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self, n: usize) -> usize {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 33) as usize) % n
-    }
-}
 
 fn options(l: u32) -> PatchOptions {
     PatchOptions {

@@ -58,6 +58,23 @@ const GRID: usize = 5;
 /// Bounds of the per-level ratio.
 const RATIO: (f64, f64) = (0.5, 0.8);
 
+/// The limit surface of `base` isolated to level `l` everywhere.
+fn surface_at<R: Real>(
+    base: &Topology,
+    options: &PatchOptions,
+    positions: &[[f32; 3]],
+    l: u32,
+) -> Result<LimitSurface<R>> {
+    let o = PatchOptions {
+        isolation_level: l,
+        ..*options
+    };
+    Ok(LimitSurface::new(
+        PatchTable::build_real(base, &o)?,
+        positions,
+    ))
+}
+
 /// Per base face: the largest distance between `a` and `b` at `a`'s end caps in that face.
 fn end_cap_differences<R: Real>(a: &LimitSurface<R>, b: &LimitSurface<R>) -> Vec<f64> {
     let t = &a.table;
@@ -108,16 +125,7 @@ pub fn choose_isolation<R: Real>(
     positions: &[[f32; 3]],
     budget: f32,
 ) -> Result<IsolationChoice> {
-    let surface = |l: u32| -> Result<LimitSurface<R>> {
-        let o = PatchOptions {
-            isolation_level: l,
-            ..*options
-        };
-        Ok(LimitSurface::new(
-            PatchTable::build_real(base, &o)?,
-            positions,
-        ))
-    };
+    let surface = |l: u32| surface_at::<R>(base, options, positions, l);
     choose_from(
         base,
         options,
@@ -206,16 +214,7 @@ pub fn build_for_tolerance<R: Real>(
     positions: &[[f32; 3]],
     budget: f32,
 ) -> Result<(PatchTable<R>, IsolationChoice)> {
-    let surface = |l: u32| -> Result<LimitSurface<R>> {
-        let o = PatchOptions {
-            isolation_level: l,
-            ..*options
-        };
-        Ok(LimitSurface::new(
-            PatchTable::build_real(base, &o)?,
-            positions,
-        ))
-    };
+    let surface = |l: u32| surface_at::<R>(base, options, positions, l);
     let s0 = surface(options.isolation_level)?;
     let choice = choose_from(base, options, positions, budget, &s0, &surface)?;
     let l0 = options.isolation_level.max(u32::from(!base.is_all_quads()));
