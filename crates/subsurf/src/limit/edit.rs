@@ -163,11 +163,9 @@ impl<R: Real> PatchTable<R> {
         {
             return Ok(EditOutcome::Unchanged);
         }
-        if let Some(levels) = self.face_levels.take() {
+        if let Some(levels) = &self.face_levels {
             // Per-region levels: a fresh build with the same levels (no kept levels).
-            let rebuilt = PatchTable::build_face_levels(&t, &self.options, &levels);
-            self.face_levels = Some(levels);
-            *self = rebuilt?;
+            *self = PatchTable::build_face_levels(&t, &self.options, levels)?;
             return Ok(EditOutcome::Rebuilt);
         }
         if self.edit_state.is_some() && self.set_sharpness_incremental(t.clone())? {

@@ -143,11 +143,7 @@ impl<R: Real> PatchTable<R> {
         };
         let mut st = std::sync::Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
         let num_levels = st.trace.levels.len();
-        let max_level = if base.is_all_quads() {
-            self.options.isolation_level as usize
-        } else {
-            (self.options.isolation_level as usize).max(1)
-        };
+        let max_level = self.options.level_for(&base) as usize;
         let leaf_options = LeafOptions {
             single_crease: self.options.single_crease,
             cap: self.options.cap_crease_sharpness,

@@ -98,8 +98,9 @@ pub struct Level {
     pub refine: Vec<bool>,
     /// Per face: its first child face in the next level, or [`NONE`].
     pub child: Vec<u32>,
-    /// Per face the walk reaches: the isolation level of its base face, when the levels are
-    /// chosen per base face ([`build_traced`]'s `face_levels`); empty otherwise.
+    /// Per face the walk reaches: the isolation level of its base face (a child inherits its
+    /// parent's), when the levels are chosen per base face ([`build_traced`]'s
+    /// `face_levels`); empty otherwise.
     pub levels: Vec<u8>,
 }
 
@@ -213,14 +214,11 @@ pub fn build_traced<W: Real, T: Send>(
         inputs: Vec::new(),
     };
     let mut level = Level::new(base.clone(), true);
+    if let Some(l) = face_levels {
+        level.levels = l.to_vec();
+    }
     let mut out = Vec::new();
     let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
-    // The base face each visited face descends from (per-region levels only).
-    let mut roots: Vec<u32> = if face_levels.is_some() {
-        visited.clone()
-    } else {
-        Vec::new()
-    };
     let mut total_vertices = base.num_vertices() as u64;
     let mut offset = 0u32;
     let mut prev_sub: Option<Topology> = None;
@@ -228,16 +226,6 @@ pub fn build_traced<W: Real, T: Send>(
         let cur = &mut level;
         if d > 0 {
             tag_corners(cur, &visited);
-        }
-        // Per-region levels: each visited face's base face and its level.
-        let mut root_at = Vec::new();
-        if let Some(levels) = face_levels {
-            cur.levels = vec![0; cur.topo.num_faces()];
-            root_at = vec![NONE; cur.topo.num_faces()];
-            for (&f, &r) in visited.iter().zip(&roots) {
-                cur.levels[f as usize] = levels[r as usize];
-                root_at[f as usize] = r;
-            }
         }
         let (mut chosen, mut leaf_faces) = (Vec::new(), Vec::with_capacity(visited.len()));
         for &f in &visited {
@@ -318,6 +306,15 @@ pub fn build_traced<W: Real, T: Send>(
             || {
                 let mut next = Level::new(refine_topology(&step.sub), false);
                 step.propagate(&mut next);
+                if face_levels.is_some() {
+                    // A child takes its parent's level (the level of their base face).
+                    next.levels = vec![0; next.topo.num_faces()];
+                    for &f in &chosen {
+                        let first = cur.child[f as usize] as usize;
+                        let n = cur.topo.face_size(f as usize);
+                        next.levels[first..first + n].fill(cur.levels[f as usize]);
+                    }
+                }
                 next
             },
         );
@@ -332,16 +329,6 @@ pub fn build_traced<W: Real, T: Send>(
                 first..first + cur.topo.face_size(f as usize) as u32
             })
             .collect();
-        if face_levels.is_some() {
-            // A child's base face is its parent's.
-            roots = chosen
-                .iter()
-                .flat_map(|&f| {
-                    let r = root_at[f as usize];
-                    std::iter::repeat_n(r, cur.topo.face_size(f as usize))
-                })
-                .collect();
-        }
         h.inputs.push(step.verts);
         h.num_vertices.push(next.topo.num_vertices());
         let done_sub = prev_sub.replace(step.sub);

@@ -82,6 +82,18 @@ pub struct PatchOptions {
     pub cap_crease_sharpness: bool,
 }
 
+impl PatchOptions {
+    /// The isolation level the table of `base` is built to: `isolation_level`, at least 1 on
+    /// a mesh with non-quad faces (whose sub-faces are level-1 faces).
+    pub fn level_for(&self, base: &Topology) -> u32 {
+        if base.is_all_quads() {
+            self.isolation_level
+        } else {
+            self.isolation_level.max(1)
+        }
+    }
+}
+
 impl Default for PatchOptions {
     fn default() -> Self {
         PatchOptions {
@@ -364,13 +376,22 @@ impl<R: Real> PatchTable<R> {
     /// builds the double-precision table (the same patches; `f32` gives the same bits as
     /// [`PatchTable::build`]).
     pub fn build_real(base: &Topology, options: &PatchOptions) -> Result<PatchTable<R>> {
+        Self::build_sparse(base, options, None)
+    }
+
+    /// The sparse construction within the available memory, untraced.
+    fn build_sparse(
+        base: &Topology,
+        options: &PatchOptions,
+        face_levels: Option<&[u8]>,
+    ) -> Result<PatchTable<R>> {
         Self::build_within_real(
             base,
             options,
             Selection::Sparse,
             Budget::of_available_memory(),
             false,
-            None,
+            face_levels,
         )
     }
 
@@ -401,14 +422,7 @@ impl<R: Real> PatchTable<R> {
                 "isolation level {l} of base face {f} exceeds the maximum {MAX_ISOLATION_LEVEL}"
             )));
         }
-        Self::build_within_real(
-            base,
-            options,
-            Selection::Sparse,
-            Budget::of_available_memory(),
-            false,
-            Some(face_levels),
-        )
+        Self::build_sparse(base, options, Some(face_levels))
     }
 
     /// The construction; `traced` keeps its levels for incremental crease edits.
@@ -431,10 +445,7 @@ impl<R: Real> PatchTable<R> {
                 options.isolation_level
             )));
         }
-        let mut level = options.isolation_level as usize;
-        if !base.is_all_quads() {
-            level = level.max(1);
-        }
+        let mut level = options.level_for(base) as usize;
         // Per-region levels, each at least the table's; the same table as without them where
         // none is higher.
         let face_levels: Option<Vec<u8>> = face_levels
@@ -587,6 +598,16 @@ impl<R: Real> PatchTable<R> {
     /// Control point indices of patch `p`.
     pub fn patch_cvs(&self, p: usize) -> &[u32] {
         &self.cvs[self.cv_offsets[p] as usize..self.cv_offsets[p + 1] as usize]
+    }
+
+    /// Per ptex face, the base face it belongs to.
+    pub fn ptex_base_faces(&self) -> Vec<u32> {
+        let mut out = vec![0u32; self.num_ptex_faces()];
+        for f in 0..self.base.num_faces() {
+            let r = self.ptex_offsets[f] as usize..self.ptex_offsets[f + 1] as usize;
+            out[r].fill(f as u32);
+        }
+        out
     }
 
     /// Patch counts by type.

@@ -27,7 +27,7 @@
 
 use super::eval::LimitSurface;
 use super::table::{PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, TessError};
 use crate::real::Real;
 use crate::topology::Topology;
 use rayon::prelude::*;
@@ -35,6 +35,10 @@ use rayon::prelude::*;
 /// The share of a `--tolerance` given to the end caps; the chords of the tessellation take
 /// the rest ([`split_tolerance`]).
 pub const END_CAP_SHARE: f32 = 0.25;
+
+/// The most of a tolerance the end caps may take where the deepest isolation leaves them past
+/// [`END_CAP_SHARE`] ([`table_for_tolerance`]).
+pub const MAX_END_CAP_SHARE: f32 = 0.5;
 
 /// The end caps' and the chords' parts of a total tolerance `e`: `(e/4, 3e/4)`.
 pub fn split_tolerance(e: f32) -> (f32, f32) {
@@ -58,33 +62,11 @@ const GRID: usize = 5;
 /// Bounds of the per-level ratio.
 const RATIO: (f64, f64) = (0.5, 0.8);
 
-/// The limit surface of `base` isolated to level `l` everywhere.
-fn surface_at<R: Real>(
-    base: &Topology,
-    options: &PatchOptions,
-    positions: &[[f32; 3]],
-    l: u32,
-) -> Result<LimitSurface<R>> {
-    let o = PatchOptions {
-        isolation_level: l,
-        ..*options
-    };
-    Ok(LimitSurface::new(
-        PatchTable::build_real(base, &o)?,
-        positions,
-    ))
-}
-
 /// Per base face: the largest distance between `a` and `b` at `a`'s end caps in that face.
 fn end_cap_differences<R: Real>(a: &LimitSurface<R>, b: &LimitSurface<R>) -> Vec<f64> {
     let t = &a.table;
     let nf = t.base.num_faces();
-    let mut face_of_ptex = vec![0u32; t.num_ptex_faces()];
-    for f in 0..nf {
-        for p in t.ptex_offsets[f]..t.ptex_offsets[f + 1] {
-            face_of_ptex[p as usize] = f as u32;
-        }
-    }
+    let face_of_ptex = t.ptex_base_faces();
     let per_patch: Vec<(u32, f64)> = (0..t.num_patches())
         .into_par_iter()
         .filter(|&p| t.patch_type(p) == PatchType::Gregory)
@@ -115,47 +97,60 @@ fn end_cap_differences<R: Real>(a: &LimitSurface<R>, b: &LimitSurface<R>) -> Vec
     out
 }
 
+/// Refuses an end-cap budget that is not a positive finite number.
+fn check_budget(budget: f32) -> Result<()> {
+    if budget.is_finite() && budget > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::Unsupported(format!(
+            "end-cap tolerance {budget} is not a positive finite number"
+        )))
+    }
+}
+
+/// The limit surface of `base` isolated to level `l` everywhere.
+fn surface_at<R: Real>(
+    base: &Topology,
+    options: &PatchOptions,
+    positions: &[[f32; 3]],
+    l: u32,
+) -> Result<LimitSurface<R>> {
+    let o = PatchOptions {
+        isolation_level: l,
+        ..*options
+    };
+    Ok(LimitSurface::new(
+        PatchTable::build_real(base, &o)?,
+        positions,
+    ))
+}
+
 /// The isolation level of each base face of `base` (positions `positions`) that keeps its end
 /// caps within `budget` × the bounding-box diagonal of the limit surface (module
 /// documentation), starting from `options.isolation_level`. A budget that is not a positive
-/// finite number is refused with [`Error::Unsupported`].
+/// finite number is refused with [`Error::Unsupported`] before any work.
 pub fn choose_isolation<R: Real>(
     base: &Topology,
     options: &PatchOptions,
     positions: &[[f32; 3]],
     budget: f32,
 ) -> Result<IsolationChoice> {
-    let surface = |l: u32| surface_at::<R>(base, options, positions, l);
-    choose_from(
-        base,
-        options,
-        positions,
-        budget,
-        &surface(options.isolation_level)?,
-        &surface,
-    )
+    check_budget(budget)?;
+    let s0 = surface_at::<R>(base, options, positions, options.level_for(base))?;
+    choose_from(base, options, positions, budget, &s0)
 }
 
-/// [`choose_isolation`] given the surface at the table's own level (reused by
-/// [`build_for_tolerance`]).
+/// [`choose_isolation`] given the surface at the table's own level `s0` (which
+/// [`build_for_tolerance`] keeps when no face needs more).
 fn choose_from<R: Real>(
     base: &Topology,
     options: &PatchOptions,
     positions: &[[f32; 3]],
     budget: f32,
     s0: &LimitSurface<R>,
-    surface: &(dyn Fn(u32) -> Result<LimitSurface<R>> + Sync),
 ) -> Result<IsolationChoice> {
-    if !(budget.is_finite() && budget > 0.0) {
-        return Err(Error::Unsupported(format!(
-            "end-cap tolerance {budget} is not a positive finite number"
-        )));
-    }
     let nf = base.num_faces();
-    let mut l0 = options.isolation_level;
-    if !base.is_all_quads() {
-        l0 = l0.max(1);
-    }
+    let l0 = options.level_for(base);
     let keep = |l: u32| IsolationChoice {
         face_levels: vec![l.min(MAX_ISOLATION_LEVEL) as u8; nf],
         deviation: vec![0.0; nf],
@@ -166,6 +161,7 @@ fn choose_from<R: Real>(
     }
     let diag = f64::from(crate::mesh::bbox_diagonal(positions));
     let bound = f64::from(budget) * diag;
+    let surface = |l: u32| surface_at::<R>(base, options, positions, l);
     let (s1, s2) = rayon::join(
         || surface(l0 + 1),
         || (l0 + 2 <= MAX_ISOLATION_LEVEL).then(|| surface(l0 + 2)),
@@ -214,14 +210,48 @@ pub fn build_for_tolerance<R: Real>(
     positions: &[[f32; 3]],
     budget: f32,
 ) -> Result<(PatchTable<R>, IsolationChoice)> {
-    let surface = |l: u32| surface_at::<R>(base, options, positions, l);
-    let s0 = surface(options.isolation_level)?;
-    let choice = choose_from(base, options, positions, budget, &s0, &surface)?;
-    let l0 = options.isolation_level.max(u32::from(!base.is_all_quads()));
+    check_budget(budget)?;
+    let l0 = options.level_for(base);
+    let s0 = surface_at::<R>(base, options, positions, l0)?;
+    let choice = choose_from(base, options, positions, budget, &s0)?;
     let table = if choice.face_levels.iter().all(|&l| u32::from(l) <= l0) {
         s0.table
     } else {
         PatchTable::build_face_levels(base, options, &choice.face_levels)?
     };
     Ok((table, choice))
+}
+
+/// The table a total tolerance `e` tessellates and the tolerance left to its chords: end
+/// caps within `e/4` ([`split_tolerance`], [`build_for_tolerance`]) and the chords within
+/// `3e/4`; where even the deepest isolation leaves an end cap past `e/4`, the end caps take
+/// their estimate, up to [`MAX_END_CAP_SHARE`] of `e`, and the chords the rest. Beyond that,
+/// [`TessError::ToleranceUnreachable`] naming `origin`, the base face, its estimate and level.
+pub fn table_for_tolerance<R: Real>(
+    base: &Topology,
+    options: &PatchOptions,
+    positions: &[[f32; 3]],
+    e: f32,
+    origin: &str,
+) -> Result<(PatchTable<R>, f32)> {
+    let (caps, chords) = split_tolerance(e);
+    let (table, choice) = build_for_tolerance(base, options, positions, caps)?;
+    let worst = choice.deviation.iter().copied().fold(0.0f32, f32::max);
+    if worst > e * MAX_END_CAP_SHARE {
+        let face = choice
+            .deviation
+            .iter()
+            .position(|&d| d == worst)
+            .unwrap_or(0);
+        return Err(TessError::ToleranceUnreachable {
+            origin: origin.to_string(),
+            tolerance: e,
+            budget: e * MAX_END_CAP_SHARE,
+            face,
+            estimate: worst,
+            level: u32::from(choice.face_levels[face]),
+        }
+        .into());
+    }
+    Ok((table, if worst > caps { e - worst } else { chords }))
 }

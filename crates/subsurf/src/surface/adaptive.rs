@@ -5,8 +5,8 @@
 
 use super::limit::patch_class;
 use super::{class, Backend, Colors, Surface, SurfaceError};
-use crate::limit::tolerance::split_tolerance;
-use crate::limit::{build_for_tolerance, LimitSurface, PatchOptions, PatchTable};
+use crate::limit::tolerance::table_for_tolerance;
+use crate::limit::{LimitSurface, PatchOptions, PatchTable};
 use crate::tess::{plan, tessellate_within_tolerance, AdaptiveTessellation, EdgeRates, RatePolicy};
 use crate::{Mesh, Topology};
 
@@ -59,15 +59,12 @@ pub fn tessellate(
     })
 }
 
-/// The most of a tolerance the end caps may take.
-const MAX_END_CAP_SHARE: f32 = 0.5;
-
 /// The limit surface to tessellate under `policy`, and the policy of its chords.
 ///
 /// Under [`RatePolicy::Tolerance`]`(e)` the tolerance bounds the whole approximation: the
 /// isolation is chosen per region so that the end caps are within `e/4` of the limit surface
 /// ([`crate::limit::tolerance`]), and the chords get the other `3e/4`
-/// ([`crate::limit::tolerance::split_tolerance`]). Where the deepest isolation
+/// ([`table_for_tolerance`]). Where the deepest isolation
 /// ([`crate::limit::MAX_ISOLATION_LEVEL`]) leaves end caps further off than `e/4` (a pole of
 /// high valence under a small tolerance), the end caps take their estimated distance, up to
 /// `e/2`, and the chords the rest. Every other policy takes the table of `options` as it is.
@@ -83,28 +80,7 @@ pub fn adaptive_surface(
 ) -> Result<(LimitSurface, RatePolicy), SurfaceError> {
     if let RatePolicy::Tolerance(e) = *policy {
         policy.validate(topo, origin)?;
-        let (caps, chords) = split_tolerance(e);
-        let (table, choice) = build_for_tolerance(topo, options, positions, caps)?;
-        // Where the deepest isolation leaves the end caps past their share, they may take up
-        // to half the tolerance, the chords the rest.
-        let worst = choice.deviation.iter().copied().fold(0.0f32, f32::max);
-        if worst > e * MAX_END_CAP_SHARE {
-            let face = choice
-                .deviation
-                .iter()
-                .position(|&d| d == worst)
-                .unwrap_or(0);
-            return Err(crate::Error::from(crate::TessError::ToleranceUnreachable {
-                origin: origin.to_string(),
-                tolerance: e,
-                budget: e * MAX_END_CAP_SHARE,
-                face,
-                estimate: worst,
-                level: u32::from(choice.face_levels[face]),
-            })
-            .into());
-        }
-        let chords = if worst > caps { e - worst } else { chords };
+        let (table, chords) = table_for_tolerance(topo, options, positions, e, origin)?;
         return Ok((
             LimitSurface::new(table, positions),
             RatePolicy::Tolerance(chords),

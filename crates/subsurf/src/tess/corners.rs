@@ -8,7 +8,8 @@
 //! were `1.03e-3` off at the pole. (At the default isolation 4 an end cap spans 1/16 of its
 //! face, one sample spacing of the rate curves, which see its bending.) So in base faces
 //! isolated deeper than the table's least level, the triangles that touch a ptex-face corner
-//! lying in an end cap are measured after the tessellation (the midpoints of their edges at that corner and their centroid against the surface), and the
+//! lying in an end cap are measured after the tessellation (the midpoints of their edges at
+//! that corner and their centroid against the surface), and the
 //! rates of every base face where one misses are raised by the square root of the excess
 //! (chord error falling as the square of the spacing) and tessellated again, until none
 //! misses or the rates reach [`MAX_RATE`].
@@ -143,12 +144,7 @@ pub fn tessellate_within_tolerance(
     if corners.iter().all(|&c| c == 0) {
         return Ok((rates, out, uv));
     }
-    let mut face_of_ptex = vec![0u32; table.num_ptex_faces()];
-    for f in 0..t.num_faces() {
-        for x in table.ptex_offsets[f]..table.ptex_offsets[f + 1] {
-            face_of_ptex[x as usize] = f as u32;
-        }
-    }
+    let face_of_ptex = table.ptex_base_faces();
     // After the first round only the faces whose rates were raised are measured again.
     let mut only: Vec<bool> = Vec::new();
     for _ in 1..ROUNDS {
