@@ -75,6 +75,20 @@ impl VertexBuffer {
         read_back(ctx, &self.buffer, self.len_floats() as u64 * WORD)
     }
 
+    /// Reads the contents back into `out`, which must hold [`Self::len_floats`] floats
+    /// (blocks as [`Self::download`]): a caller that reads every frame keeps `out`, and the
+    /// context keeps its staging buffer, so nothing is allocated per frame.
+    pub fn download_into(&self, ctx: &GpuContext, out: &mut [f32]) -> Result<()> {
+        if out.len() != self.len_floats() {
+            return Err(GpuError::BufferMismatch(format!(
+                "reading {} floats into a buffer of {}",
+                self.len_floats(),
+                out.len()
+            )));
+        }
+        read_back_into(ctx, &self.buffer, bytemuck::cast_slice_mut(out))
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.vertex_count
@@ -143,18 +157,44 @@ pub(crate) fn storage_buffer_init(
     })
 }
 
-/// Copies the first `bytes` bytes of `buffer` to a staging buffer and maps it.
+/// Largest staging buffer a [`GpuContext`] keeps between read-backs (256 MiB); a larger read
+/// allocates its own and frees it after.
+pub const KEEP_STAGING_MAX: u64 = 256 << 20;
+
+/// The first `bytes` bytes of `buffer` as floats (words), through [`read_back_into`].
 pub(crate) fn read_back(ctx: &GpuContext, buffer: &wgpu::Buffer, bytes: u64) -> Result<Vec<f32>> {
+    let mut out = vec![0.0f32; (bytes / WORD) as usize];
+    read_back_into(ctx, buffer, bytemuck::cast_slice_mut(&mut out))?;
+    Ok(out)
+}
+
+/// Copies the first `dst.len()` bytes of `buffer` (a multiple of 4) into `dst`: one copy on
+/// the GPU into the context's staging buffer (kept and reused while it is large enough and at
+/// most [`KEEP_STAGING_MAX`]; allocating and mapping fresh host-visible memory each time cost
+/// more than the copy itself), then one copy from the mapped range into `dst`.
+pub(crate) fn read_back_into(
+    ctx: &GpuContext,
+    buffer: &wgpu::Buffer,
+    dst: &mut [u8],
+) -> Result<()> {
+    let bytes = dst.len() as u64;
     if bytes == 0 {
-        return Ok(Vec::new());
+        return Ok(());
     }
+    let mut kept = ctx
+        .staging
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let staging = ctx.scoped(|| {
-        let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("subsurf read-back"),
-            size: bytes,
-            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
+        let staging = match kept.take() {
+            Some(b) if b.size() >= bytes => b,
+            _ => ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("subsurf read-back"),
+                size: bytes,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            }),
+        };
         let mut encoder = ctx
             .device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor {
@@ -165,21 +205,25 @@ pub(crate) fn read_back(ctx: &GpuContext, buffer: &wgpu::Buffer, bytes: u64) -> 
         Ok(staging)
     })?;
     let (tx, rx) = std::sync::mpsc::channel();
-    staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+    let range = staging.slice(..bytes);
+    range.map_async(wgpu::MapMode::Read, move |r| {
         let _ = tx.send(r);
     });
     ctx.wait_idle()?;
     rx.recv()
         .map_err(|e| GpuError::Map(e.to_string()))?
         .map_err(|e| GpuError::Map(e.to_string()))?;
-    let data = {
-        let view = staging
-            .get_mapped_range(..)
+    {
+        let view = range
+            .get_mapped_range()
             .map_err(|e| GpuError::Map(e.to_string()))?;
-        bytemuck::pod_collect_to_vec::<u8, f32>(&view)
-    };
+        dst.copy_from_slice(&view);
+    }
     staging.unmap();
-    Ok(data)
+    if staging.size() <= KEEP_STAGING_MAX {
+        *kept = Some(staging);
+    }
+    Ok(())
 }
 
 impl VertexBuffer {

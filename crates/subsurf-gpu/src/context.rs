@@ -26,6 +26,9 @@ pub struct GpuContext {
     info: wgpu::AdapterInfo,
     limits: wgpu::Limits,
     features: wgpu::Features,
+    /// The read-back staging buffer kept between read-backs (see
+    /// [`GpuContext::release_staging`]).
+    pub(crate) staging: std::sync::Mutex<Option<wgpu::Buffer>>,
 }
 
 impl GpuContext {
@@ -87,7 +90,19 @@ impl GpuContext {
             info,
             limits,
             features,
+            staging: std::sync::Mutex::new(None),
         })
+    }
+
+    /// Frees the host-visible staging buffer that read-backs keep between calls (up to
+    /// [`crate::buffers::KEEP_STAGING_MAX`] bytes, the size of the largest read so far), for
+    /// a program that has finished reading results back; the next read-back allocates one
+    /// again.
+    pub fn release_staging(&self) {
+        *self
+            .staging
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner) = None;
     }
 
     /// The adapter's description (name, backend, driver).

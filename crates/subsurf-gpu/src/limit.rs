@@ -357,8 +357,9 @@ impl GpuLimit {
 
     /// Reads the point array back (waits for the submitted work).
     pub fn download_points(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
-        let flat = self.points.download(ctx)?;
-        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+        let mut out = vec![[0.0f32; 3]; self.points.vertex_count()];
+        self.points.download_into(ctx, out.as_flattened_mut())?;
+        Ok(out)
     }
 
     /// Writes the whole point array computed elsewhere ([`subsurf::limit::LimitSurface`]'s

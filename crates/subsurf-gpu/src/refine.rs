@@ -387,8 +387,16 @@ impl GpuRefiner {
                 self.max_level()
             ))
         })?;
-        let flat = buf.download(ctx)?;
-        Ok(flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
+        let mut out = vec![[0.0f32; 3]; buf.vertex_count()];
+        buf.download_into(ctx, out.as_flattened_mut())?;
+        Ok(out)
+    }
+
+    /// Reads the last level back into `out` (one position per last-level vertex), allocating
+    /// nothing once the context's staging buffer is large enough: the read-back of a frame
+    /// loop.
+    pub fn download_into(&self, ctx: &GpuContext, out: &mut [[f32; 3]]) -> Result<()> {
+        self.output().download_into(ctx, out.as_flattened_mut())
     }
 }
 

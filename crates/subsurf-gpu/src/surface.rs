@@ -58,15 +58,12 @@ impl Backend for GpuBackend {
         let ctx = &self.ctx;
         let gpu = GpuRefiner::new(ctx, refiner).map_err(gpu_err("uploading the refiner"))?;
         gpu.update(ctx, base).map_err(gpu_err("refining"))?;
-        let flat = if limit {
-            StencilKernel::apply_once(ctx, refiner.limit_table(), gpu.output())
-                .map_err(gpu_err("limit step"))?
-        } else {
-            gpu.output()
-                .download(ctx)
-                .map_err(gpu_err("reading positions back"))?
-        };
-        Ok(triples(&flat))
+        if limit {
+            let flat = StencilKernel::apply_once(ctx, refiner.limit_table(), gpu.output())
+                .map_err(gpu_err("limit step"))?;
+            return Ok(triples(&flat));
+        }
+        gpu.download(ctx).map_err(gpu_err("reading positions back"))
     }
 
     fn one_pass(&self) -> bool {

@@ -186,3 +186,51 @@ fn update_follows_a_deformation() {
     assert!(gpu.update(&ctx, &mesh.positions[1..]).is_err());
     assert!(gpu.download_level(&ctx, 4).is_err());
 }
+
+/// Read-backs through the context's kept staging buffer: a frame loop reading into one kept
+/// buffer gets each frame's positions (not a stale copy), smaller reads after larger ones and
+/// larger after smaller read exactly their own bytes, a released staging buffer is made
+/// again, and a buffer of the wrong length is refused before any work.
+#[test]
+fn read_backs_into_kept_buffers_follow_every_frame() {
+    let Some(ctx) = context_or_skip("read_backs_into_kept_buffers_follow_every_frame") else {
+        return;
+    };
+    let mesh = subsurf::io::read_path(shapes_dir().join("catmark_car.obj")).unwrap();
+    let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
+    let gpu = GpuRefiner::new(&ctx, &refiner).unwrap();
+    let mut kept = vec![[f32::NAN; 3]; refiner.last().num_vertices()];
+    for frame in 0..3 {
+        let moved: Vec<[f32; 3]> = mesh
+            .positions
+            .iter()
+            .map(|p| {
+                [
+                    p[0] + frame as f32,
+                    p[1],
+                    p[2] * (1.0 + 0.25 * frame as f32),
+                ]
+            })
+            .collect();
+        gpu.update(&ctx, &moved).unwrap();
+        gpu.download_into(&ctx, &mut kept).unwrap();
+        let all = refiner.refine_all(&moved);
+        assert_close(&format!("frame {frame}"), &kept, &all[2]);
+        // A smaller level through the larger staging buffer, then the larger one again.
+        assert_close(
+            &format!("frame {frame} level 1"),
+            &gpu.download_level(&ctx, 1).unwrap(),
+            &all[1],
+        );
+        assert_eq!(
+            bits(gpu.download(&ctx).unwrap().as_flattened()),
+            bits(kept.as_flattened())
+        );
+        if frame == 1 {
+            ctx.release_staging();
+        }
+    }
+    let mut short = vec![[0.0f32; 3]; kept.len() - 1];
+    let err = gpu.download_into(&ctx, &mut short).unwrap_err();
+    assert!(err.to_string().contains("floats"), "{err}");
+}

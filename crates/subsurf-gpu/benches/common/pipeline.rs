@@ -76,7 +76,18 @@ fn refine_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh,
     let readback = median(|| {
         std::hint::black_box(gpu.refine(ctx, &mesh.positions).expect("refine"));
     });
-    for (what, t) in [("resident", resident), ("+ read-back", readback)] {
+    // The frame loop's read-back: into a kept buffer, through the context's kept staging.
+    let mut kept = vec![[0.0f32; 3]; refiner.last().num_vertices()];
+    let into = median(|| {
+        gpu.update(ctx, &mesh.positions).expect("update");
+        gpu.download_into(ctx, &mut kept).expect("read-back");
+        std::hint::black_box(&kept);
+    });
+    for (what, t) in [
+        ("resident", resident),
+        ("+ read-back", readback),
+        ("+ read-back into a kept buffer", into),
+    ] {
         println!(
             "refine {name} L{level} ({out:.0} vertices) | GPU {adapter} {what} | {:9.3} ms | {:8.1} Mvert/s",
             ms(t),
