@@ -96,9 +96,11 @@ fn run_gpu(
         gpu.update(&ctx, base)?;
         Ok(ctx.wait_idle()?)
     })?;
+    // A frame loop's read-back: into one kept buffer (the context keeps its staging buffer).
+    let mut out = vec![[0.0f32; 3]; gpu.num_output_vertices()];
     let readback = time_ms(runs, || {
-        gpu.refine(&ctx, base)?;
-        Ok(())
+        gpu.update(&ctx, base)?;
+        Ok(gpu.download_into(&ctx, &mut out)?)
     })?;
     let verts = gpu.num_output_vertices();
     println!(
