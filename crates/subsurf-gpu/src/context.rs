@@ -29,7 +29,16 @@ pub struct GpuContext {
     /// The read-back staging buffer kept between read-backs (see
     /// [`GpuContext::release_staging`]).
     pub(crate) staging: std::sync::Mutex<Option<wgpu::Buffer>>,
+    /// Compute pipelines made on this device, one per kernel (see [`GpuContext::kernel`]).
+    kernels: std::sync::Mutex<std::collections::HashMap<KernelKey, Kernel>>,
 }
+
+/// A kernel's shader source, entry point, and whether its bind group layout is explicit.
+type KernelKey = (&'static str, &'static str, bool);
+
+/// A compiled kernel: its explicit bind group layout (none for a layout derived from the
+/// shader, read back from the pipeline) and its pipeline.
+pub(crate) type Kernel = (Option<wgpu::BindGroupLayout>, wgpu::ComputePipeline);
 
 impl GpuContext {
     /// Opens a device on the adapter chosen as described in the module documentation,
@@ -91,7 +100,34 @@ impl GpuContext {
             limits,
             features,
             staging: std::sync::Mutex::new(None),
+            kernels: Default::default(),
         })
+    }
+
+    /// The compute pipeline of the kernel `source` / `entry`, made by `make` inside an error
+    /// scope on first use and kept for the device's life: compiling a shader costs
+    /// milliseconds (tens on a software adapter), and every upload of tables (a patch table's
+    /// levels, a crease edit's re-uploaded level, each stencil kernel) used to compile its
+    /// kernel again. Wgpu pipelines and layouts are shared handles, so every user binds
+    /// groups made from the same layout. A pipeline that failed is not kept.
+    pub(crate) fn kernel(
+        &self,
+        source: &'static str,
+        entry: &'static str,
+        explicit_layout: bool,
+        make: impl FnOnce() -> Kernel,
+    ) -> Result<Kernel> {
+        let mut kernels = self
+            .kernels
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let key = (source, entry, explicit_layout);
+        if let Some(k) = kernels.get(&key) {
+            return Ok(k.clone());
+        }
+        let k = self.scoped(|| Ok(make()))?;
+        kernels.insert(key, k.clone());
+        Ok(k)
     }
 
     /// Frees the host-visible staging buffer that read-backs keep between calls (up to
@@ -233,5 +269,45 @@ async fn pick_adapter(
                 .await
                 .map_err(|e| e.to_string())
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::GpuContext;
+    use crate::{GpuRefiner, StencilKernel};
+    use subsurf::{shapes, Refiner, Topology};
+
+    /// Two refiners and two stencil applications on one device compile two kernels, not
+    /// four, and the shared pipelines still give each job its own result.
+    #[test]
+    fn kernels_compile_once_per_device() {
+        let ctx = match GpuContext::new() {
+            Ok(c) => c,
+            Err(e) if std::env::var("SUBSURF_SKIP_GPU").as_deref() == Ok("1") => {
+                eprintln!("SKIPPED kernels_compile_once_per_device: {e}");
+                return;
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let count = || ctx.kernels.lock().map(|k| k.len()).unwrap_or(usize::MAX);
+        assert_eq!(count(), 0);
+        let cube = shapes::cube();
+        let r2 = Refiner::new(Topology::new(&cube).unwrap(), 2).unwrap();
+        let r1 = Refiner::new(Topology::new(&cube).unwrap(), 1).unwrap();
+        let a = GpuRefiner::new(&ctx, &r2).unwrap();
+        let b = GpuRefiner::new(&ctx, &r1).unwrap();
+        assert_eq!(count(), 1);
+        let (pa, pb) = (
+            a.refine(&ctx, &cube.positions).unwrap(),
+            b.refine(&ctx, &cube.positions).unwrap(),
+        );
+        assert_eq!(pa.len(), r2.last().num_vertices());
+        assert_eq!(pb.len(), r1.last().num_vertices());
+        for _ in 0..2 {
+            let limit = StencilKernel::apply_once(&ctx, r2.limit_table(), a.output()).unwrap();
+            assert_eq!(limit.len(), 3 * r2.last().num_vertices());
+        }
+        assert_eq!(count(), 2);
     }
 }

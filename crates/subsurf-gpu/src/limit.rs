@@ -320,14 +320,7 @@ impl GpuLimit {
                 cv_offsets: table.cv_offsets.clone(),
             }
         };
-        let pipeline = ctx.scoped(|| {
-            Ok(auto_pipeline(
-                ctx,
-                "limit_eval",
-                shaders::LIMIT_EVAL,
-                "main",
-            ))
-        })?;
+        let pipeline = auto_pipeline(ctx, "limit_eval", shaders::LIMIT_EVAL, "main")?;
         let row_align =
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         Ok(Self {

@@ -80,8 +80,7 @@ impl GpuLoopLimit {
             storage_buffer_init(ctx, "Loop patch data", bytemuck::cast_slice(&t.patch_info))?;
         let points =
             storage_buffer_init(ctx, "Loop patch points", bytemuck::cast_slice(&t.points))?;
-        let pipeline =
-            ctx.scoped(|| Ok(auto_pipeline(ctx, "loop_eval", shaders::LOOP_EVAL, "main")))?;
+        let pipeline = auto_pipeline(ctx, "loop_eval", shaders::LOOP_EVAL, "main")?;
         let row_align =
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         Ok(Self {

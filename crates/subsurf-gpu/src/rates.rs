@@ -82,14 +82,7 @@ impl GpuRates {
         let samples = limit.samples(ctx, &curves.queries, false)?;
         let n = curves.num_curves();
         let measures = storage_buffer_init(ctx, "rate measures", &vec![0u8; 4 * n.max(1)])?;
-        let pipeline = ctx.scoped(|| {
-            Ok(auto_pipeline(
-                ctx,
-                "rate_measure",
-                shaders::RATE_MEASURE,
-                "main",
-            ))
-        })?;
+        let pipeline = auto_pipeline(ctx, "rate_measure", shaders::RATE_MEASURE, "main")?;
         let layout = pipeline.get_bind_group_layout(0);
         let limits = limits.clamped_to(ChunkLimits::from_context(ctx));
         let align =

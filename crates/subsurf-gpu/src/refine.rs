@@ -114,7 +114,7 @@ impl GpuRefiner {
                 .clamp(1, adapter.max_workgroups_per_dimension),
             max_stride: 1,
         };
-        let pipeline = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
+        let pipeline = create_pipeline(ctx)?;
         let layout = pipeline.get_bind_group_layout(0);
         let b = limits.max_binding_bytes;
         let mut levels = Vec::with_capacity(vertex_counts.len());
@@ -414,30 +414,36 @@ pub(crate) fn uniform_init(ctx: &GpuContext, bytes: &[u8]) -> Result<wgpu::Buffe
     })
 }
 
-/// A compute pipeline with the layout derived from the shader (entry point `entry`).
+/// A compute pipeline with the layout derived from the shader (entry point `entry`), compiled
+/// once per device ([`GpuContext::kernel`]).
 pub(crate) fn auto_pipeline(
     ctx: &GpuContext,
     label: &'static str,
     source: &'static str,
     entry: &'static str,
-) -> wgpu::ComputePipeline {
-    let module = ctx
-        .device
-        .create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some(label),
-            source: wgpu::ShaderSource::Wgsl(source.into()),
-        });
-    ctx.device
-        .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-            label: Some(label),
-            layout: None,
-            module: &module,
-            entry_point: Some(entry),
-            compilation_options: Default::default(),
-            cache: None,
-        })
+) -> Result<wgpu::ComputePipeline> {
+    let (_, pipeline) = ctx.kernel(source, entry, false, || {
+        let module = ctx
+            .device
+            .create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(source.into()),
+            });
+        let pipeline = ctx
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: None,
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            });
+        (None, pipeline)
+    })?;
+    Ok(pipeline)
 }
 
-fn create_pipeline(ctx: &GpuContext) -> wgpu::ComputePipeline {
+fn create_pipeline(ctx: &GpuContext) -> Result<wgpu::ComputePipeline> {
     auto_pipeline(ctx, "refine_level", shaders::REFINE_LEVEL, "main")
 }

@@ -147,7 +147,7 @@ pub(crate) fn pass(
         Bind::Whole(..) => None,
     });
     let words = per_item.map_or(0, |(w, _)| w);
-    let pipeline = ctx.scoped(|| Ok(auto_pipeline(ctx, label, source, entry)))?;
+    let pipeline = auto_pipeline(ctx, label, source, entry)?;
     let layout = pipeline.get_bind_group_layout(0);
     let mut dispatches = Vec::new();
     let mut configs = Vec::new();

@@ -312,7 +312,7 @@ impl StencilKernel {
         } else {
             None
         };
-        let (layout, pipeline) = ctx.scoped(|| Ok(create_pipeline(ctx)))?;
+        let (layout, pipeline) = create_pipeline(ctx)?;
         Ok(Self {
             rows: table.rows(),
             min_source_vertices: table.min_source_vertices(),
@@ -551,8 +551,20 @@ fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// Bind group layout (bindings 0..=5 of `shaders/stencil_apply.wgsl`) and pipeline.
-fn create_pipeline(ctx: &GpuContext) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
+/// Bind group layout (bindings 0..=5 of `shaders/stencil_apply.wgsl`) and pipeline, compiled
+/// once per device ([`GpuContext::kernel`]).
+fn create_pipeline(ctx: &GpuContext) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline)> {
+    let (layout, pipeline) = ctx.kernel(shaders::STENCIL_APPLY, "main", true, || {
+        let (layout, pipeline) = make_pipeline(ctx);
+        (Some(layout), pipeline)
+    })?;
+    let layout = layout.ok_or_else(|| {
+        GpuError::Wgpu("internal: the stencil kernel was cached without its layout".into())
+    })?;
+    Ok((layout, pipeline))
+}
+
+fn make_pipeline(ctx: &GpuContext) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
     let device = &ctx.device;
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("stencil_apply"),
