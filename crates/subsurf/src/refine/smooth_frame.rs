@@ -12,10 +12,12 @@
 //! nothing of rules or topology: a row is smooth when its entries have exactly the smooth
 //! pattern and weights, bit for bit), and keeps the rows where the rules differ (creases,
 //! boundaries, corners, irregular faces or rules) as a sorted list of exceptions. Applying
-//! the plan then reads, per smooth row, only its input indices: no weight, and for face and
-//! edge points no row offset either (their length is known). Exceptions are evaluated from
-//! their stored rows. Every row is summed in the stored entry order with the stored weights,
-//! so the result is bit-identical to [`LevelStencils::apply`].
+//! the plan then reads, per smooth row, only its input indices: no weight, and for face
+//! points, edge points and vertices of valence 4 no row offset either (their length is known;
+//! the plan also lists the smooth vertices of other valences, which read their offsets).
+//! Exceptions are evaluated from their stored rows. Every row is summed in the stored entry
+//! order with the stored weights, so the result is bit-identical to [`LevelStencils::apply`].
+//! On a one-thread rayon pool each pass is one sequential loop over its rows.
 
 use super::masks::LevelStencils;
 use super::stencil::StencilTable;
@@ -34,6 +36,9 @@ pub(crate) struct StepPlan {
     quad_faces: bool,
     /// Vertex rows that are not the smooth rule, ascending.
     vertex_special: Vec<u32>,
+    /// Smooth vertex rows of a valence other than 4, ascending: between these and the
+    /// exceptions, vertex rows have 9 entries each, read without their offsets.
+    vertex_odd: Vec<u32>,
     /// Edge rows that are not the smooth two-face rule, ascending.
     edge_special: Vec<u32>,
     /// `(1/n², (n - 2)/n)` of a smooth vertex of valence `n`, as the tables store them.
@@ -70,31 +75,40 @@ impl StepPlan {
             })
             .collect();
         let vw = &valence_weights;
-        let vertex_special = specials(&s.vertex, |idx, w| {
+        // Per vertex row: `None` for a smooth row of valence 4, `Some(0)` for an exception,
+        // `Some(1)` for a smooth row of another valence.
+        let vertex_class = |idx: &[u32], w: &[f32]| {
             let len = idx.len();
             if len % 2 == 0 || !(3..=2 * MAX_VALENCE + 1).contains(&len) {
-                return false;
+                return Some(0);
             }
             let n = len / 2;
             let [a, b] = vw[n].map(f32::to_bits);
-            idx[..n].iter().all(|&k| k >= p)
+            let smooth = idx[..n].iter().all(|&k| k >= p)
                 && idx[n..].iter().all(|&k| k < p)
                 && w[..2 * n].iter().all(|x| x.to_bits() == a)
-                && w[2 * n].to_bits() == b
-        });
-        let edge_special = specials(&s.edge, |idx, w| {
-            idx.len() == 4
+                && w[2 * n].to_bits() == b;
+            match (smooth, n) {
+                (false, _) => Some(0),
+                (true, 4) => None,
+                (true, _) => Some(1),
+            }
+        };
+        let [vertex_special, vertex_odd] = rows_by_class(&s.vertex, vertex_class);
+        let edge_special = rows_where(&s.edge, |idx, w| {
+            !(idx.len() == 4
                 && idx[0] >= p
                 && idx[1] >= p
                 && idx[2] < p
                 && idx[3] < p
-                && w.iter().all(|x| x.to_bits() == quarter)
+                && w.iter().all(|x| x.to_bits() == quarter))
         });
         let exceptions = vertex_special.len() + edge_special.len();
         StepPlan {
             stencils_only: 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows(),
             quad_faces,
             vertex_special,
+            vertex_odd,
             edge_special,
             valence_weights,
         }
@@ -107,7 +121,8 @@ impl StepPlan {
     }
 
     /// One step of `N`-component values, bit-identical to [`LevelStencils::apply`] (`s` is the
-    /// step this plan was made from), in parallel chunks of rows.
+    /// step this plan was made from), in parallel chunks of rows (on the calling thread when
+    /// the pool has one thread).
     pub(crate) fn apply<const N: usize>(
         &self,
         s: &LevelStencils,
@@ -116,42 +131,50 @@ impl StepPlan {
     ) {
         assert_eq!(dst.len(), s.num_rows(), "destination length");
         assert!(src.len() >= s.num_parent_vertices, "source length");
+        let serial = rayon::current_num_threads() == 1;
         if self.stencils_only {
-            s.apply(src, dst);
+            if serial {
+                s.apply_serial(src, dst);
+            } else {
+                s.apply(src, dst);
+            }
             return;
         }
         let (nv, nf) = (s.vertex.num_rows(), s.face.num_rows());
         let (vd, rest) = dst.split_at_mut(nv);
         let (fd, ed) = rest.split_at_mut(nf);
         if self.quad_faces {
-            let idx = &s.face.indices;
-            fd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-                let q = &idx[4 * c * CHUNK..4 * (c * CHUNK + out.len())];
-                for (o, q) in out.iter_mut().zip(q.chunks_exact(4)) {
-                    let mut acc = [0.0f32; N];
-                    for &k in q {
-                        let v = &src[k as usize];
-                        for (a, x) in acc.iter_mut().zip(v) {
-                            *a += 0.25 * x;
-                        }
-                    }
-                    *o = acc;
-                }
-            });
+            let idx = &s.face.indices[..4 * nf];
+            if serial {
+                quad_rows(idx, src, fd);
+            } else {
+                fd.par_chunks_mut(CHUNK)
+                    .zip(idx.par_chunks(4 * CHUNK))
+                    .for_each(|(out, q)| quad_rows(q, src, out));
+            }
+        } else if serial {
+            s.face.apply_serial(src, fd);
         } else {
             s.face.apply(src, fd);
         }
         let fd: &[[f32; N]] = fd;
         let p = s.num_parent_vertices;
-        vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.vertex_rows(&s.vertex, p, c * CHUNK, out, src, fd);
-        });
-        ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            edge_rows(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
-        });
+        if serial {
+            self.vertex_rows(&s.vertex, p, 0, vd, src, fd);
+            edge_rows(&s.edge, &self.edge_special, p, 0, ed, src, fd);
+        } else {
+            vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+                self.vertex_rows(&s.vertex, p, c * CHUNK, out, src, fd);
+            });
+            ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+                edge_rows(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
+            });
+        }
     }
 
-    /// Vertex rows `first..first + out.len()`.
+    /// Vertex rows `first..first + out.len()`: the runs of smooth valence-4 rows (9 entries
+    /// each, contiguous from the run's first offset) between the other rows, each of those
+    /// from its offsets (an exception from its stored row).
     fn vertex_rows<const N: usize>(
         &self,
         t: &StencilTable,
@@ -161,22 +184,34 @@ impl StepPlan {
         src: &[[f32; N]],
         fd: &[[f32; N]],
     ) {
+        let end = first + out.len();
         let mut special = in_range(&self.vertex_special, first, out.len()).iter();
-        let mut next = special.next().map_or(usize::MAX, |&r| r as usize);
-        let offs = &t.offsets[first..=first + out.len()];
-        for (i, (o, w2)) in out.iter_mut().zip(offs.windows(2)).enumerate() {
-            let (lo, hi) = (w2[0] as usize, w2[1] as usize);
-            let idx = &t.indices[lo..hi];
-            if first + i == next {
-                *o = general_row(idx, &t.weights[lo..hi], p, src, fd);
-                next = special.next().map_or(usize::MAX, |&r| r as usize);
-                continue;
+        let mut odd = in_range(&self.vertex_odd, first, out.len()).iter();
+        let row = |r: Option<&u32>| r.map_or(end, |&r| r as usize);
+        let (mut next_special, mut next_odd) = (row(special.next()), row(odd.next()));
+        let [w4, wv4] = VALENCE4;
+        let mut out = out;
+        let mut r = first;
+        let mut j = t.offsets[first] as usize;
+        loop {
+            let e = next_special.min(next_odd);
+            let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
+            let idx = &t.indices[j..j + 9 * run.len()];
+            for (o, q) in run.iter_mut().zip(idx.chunks_exact(9)) {
+                let q: &[u32; 9] = q.try_into().expect("chunks of 9");
+                *o = smooth_vertex4(q, w4, wv4, p, src, fd);
             }
-            let n = idx.len() / 2;
-            let [w, wv] = self.valence_weights[n];
-            *o = if n == 4 {
-                smooth_vertex4(idx[..9].try_into().expect("9 entries"), w, wv, p, src, fd)
+            let Some((o, rest)) = rest.split_first_mut() else {
+                break;
+            };
+            let (lo, hi) = (j + 9 * run.len(), t.offsets[e + 1] as usize);
+            let idx = &t.indices[lo..hi];
+            if e == next_special {
+                *o = general_row(idx, &t.weights[lo..hi], p, src, fd);
+                next_special = row(special.next());
             } else {
+                let n = idx.len() / 2;
+                let [w, wv] = self.valence_weights[n];
                 let mut acc = [0.0f32; N];
                 for &k in &idx[..n] {
                     add(&mut acc, w, &fd[k as usize - p]);
@@ -185,9 +220,32 @@ impl StepPlan {
                     add(&mut acc, w, &src[k as usize]);
                 }
                 add(&mut acc, wv, &src[idx[2 * n] as usize]);
-                acc
-            };
+                *o = acc;
+                next_odd = row(odd.next());
+            }
+            out = rest;
+            j = hi;
+            r = e + 1;
         }
+    }
+}
+
+/// The smooth vertex weights at valence 4, `(1/16, 1/2)` (equal to
+/// `smooth_vertex_weights(4)`, tested).
+const VALENCE4: [f32; 2] = [0.0625, 0.5];
+
+/// Face points of quads whose vertices are `idx` (four per row of `out`), `1/4` each.
+fn quad_rows<const N: usize>(idx: &[u32], src: &[[f32; N]], out: &mut [[f32; N]]) {
+    for (o, q) in out.iter_mut().zip(idx.chunks_exact(4)) {
+        let &[a, b, c, d] = q else {
+            unreachable!("chunks of 4")
+        };
+        let mut acc = [0.0f32; N];
+        add(&mut acc, 0.25, &src[a as usize]);
+        add(&mut acc, 0.25, &src[b as usize]);
+        add(&mut acc, 0.25, &src[c as usize]);
+        add(&mut acc, 0.25, &src[d as usize]);
+        *o = acc;
     }
 }
 
@@ -220,8 +278,9 @@ fn smooth_vertex4<const N: usize>(
     acc
 }
 
-/// Edge rows `first..first + out.len()`: smooth rows are four indices at a known stride from
-/// the chunk's first offset; only exceptions read their offsets and weights.
+/// Edge rows `first..first + out.len()`: the runs of smooth rows between exceptions (four
+/// indices each, contiguous from the run's first offset), then each exception from its
+/// stored row.
 fn edge_rows<const N: usize>(
     t: &StencilTable,
     special: &[u32],
@@ -231,26 +290,36 @@ fn edge_rows<const N: usize>(
     src: &[[f32; N]],
     fd: &[[f32; N]],
 ) {
-    let mut special = in_range(special, first, out.len()).iter();
-    let mut next = special.next().map_or(usize::MAX, |&r| r as usize);
+    let end = first + out.len();
+    let mut out = out;
+    let mut r = first;
     let mut j = t.offsets[first] as usize;
-    for (i, o) in out.iter_mut().enumerate() {
-        let r = first + i;
-        if r == next {
-            let hi = t.offsets[r + 1] as usize;
-            *o = general_row(&t.indices[j..hi], &t.weights[j..hi], p, src, fd);
-            j = hi;
-            next = special.next().map_or(usize::MAX, |&r| r as usize);
-            continue;
+    for e in in_range(special, first, out.len())
+        .iter()
+        .map(|&e| e as usize)
+        .chain([end])
+    {
+        let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
+        let idx = &t.indices[j..j + 4 * run.len()];
+        for (o, q) in run.iter_mut().zip(idx.chunks_exact(4)) {
+            let &[a, b, c, d] = q else {
+                unreachable!("chunks of 4")
+            };
+            let mut acc = [0.0f32; N];
+            add(&mut acc, 0.25, &fd[a as usize - p]);
+            add(&mut acc, 0.25, &fd[b as usize - p]);
+            add(&mut acc, 0.25, &src[c as usize]);
+            add(&mut acc, 0.25, &src[d as usize]);
+            *o = acc;
         }
-        let q = &t.indices[j..j + 4];
-        let mut acc = [0.0f32; N];
-        add(&mut acc, 0.25, &fd[q[0] as usize - p]);
-        add(&mut acc, 0.25, &fd[q[1] as usize - p]);
-        add(&mut acc, 0.25, &src[q[2] as usize]);
-        add(&mut acc, 0.25, &src[q[3] as usize]);
-        *o = acc;
-        j += 4;
+        let Some((o, rest)) = rest.split_first_mut() else {
+            break;
+        };
+        let (lo, hi) = (j + 4 * run.len(), t.offsets[e + 1] as usize);
+        *o = general_row(&t.indices[lo..hi], &t.weights[lo..hi], p, src, fd);
+        out = rest;
+        j = hi;
+        r = e + 1;
     }
 }
 
@@ -278,22 +347,33 @@ fn in_range(rows: &[u32], first: usize, len: usize) -> &[u32] {
     &rows[lo..hi]
 }
 
-/// The rows of `t` for which `smooth(indices, weights)` is false, ascending.
-fn specials(t: &StencilTable, smooth: impl Fn(&[u32], &[f32]) -> bool + Sync) -> Vec<u32> {
+/// The rows of `t` for which `keep(indices, weights)` is true, ascending.
+fn rows_where(t: &StencilTable, keep: impl Fn(&[u32], &[f32]) -> bool + Sync) -> Vec<u32> {
+    let [rows] = rows_by_class(t, |idx, w| keep(idx, w).then_some(0));
+    rows
+}
+
+/// The rows of `t` in each of `K` classes, ascending: row `r` is in class `c` when
+/// `class(indices, weights)` is `Some(c)`, in none when it is `None`.
+fn rows_by_class<const K: usize>(
+    t: &StencilTable,
+    class: impl Fn(&[u32], &[f32]) -> Option<usize> + Sync,
+) -> [Vec<u32>; K] {
     let rows = t.num_rows();
-    let parts: Vec<Vec<u32>> = (0..rows.div_ceil(CHUNK))
+    let parts: Vec<[Vec<u32>; K]> = (0..rows.div_ceil(CHUNK))
         .into_par_iter()
         .map(|c| {
-            (c * CHUNK..((c + 1) * CHUNK).min(rows))
-                .filter(|&r| {
-                    let (lo, hi) = (t.offsets[r] as usize, t.offsets[r + 1] as usize);
-                    !smooth(&t.indices[lo..hi], &t.weights[lo..hi])
-                })
-                .map(|r| r as u32)
-                .collect()
+            let mut part: [Vec<u32>; K] = std::array::from_fn(|_| Vec::new());
+            for r in c * CHUNK..((c + 1) * CHUNK).min(rows) {
+                let (lo, hi) = (t.offsets[r] as usize, t.offsets[r + 1] as usize);
+                if let Some(k) = class(&t.indices[lo..hi], &t.weights[lo..hi]) {
+                    part[k].push(r as u32);
+                }
+            }
+            part
         })
         .collect();
-    parts.concat()
+    std::array::from_fn(|k| parts.iter().flat_map(|p| p[k].iter().copied()).collect())
 }
 
 #[cfg(test)]
@@ -317,6 +397,35 @@ mod tests {
         for s in &p {
             assert!(s.quad_faces && !s.stencils_only);
             assert_eq!(s.num_exceptions(), 0);
+            assert!(s.vertex_odd.is_empty());
+        }
+    }
+
+    #[test]
+    fn other_valences_break_the_valence_4_runs() {
+        // A cube's eight corners have valence 3 at every level, the face centres of the
+        // first step valence 4: the corners are the only smooth rows of another valence,
+        // and applying the plan gives the stored tables' bits.
+        let m = shapes::cube();
+        let (r, p) = plans(&m, 3);
+        for plan in &p {
+            assert_eq!(plan.num_exceptions(), 0);
+            assert_eq!(plan.vertex_odd, (0..8).collect::<Vec<u32>>());
+        }
+        assert_plans_match_tables(&r, &p, m.positions.clone());
+    }
+
+    /// Applies every step's plan and its stored tables from `src` on: the same bits.
+    fn assert_plans_match_tables(r: &Refiner, p: &[StepPlan], mut src: Vec<[f32; 3]>) {
+        let bits =
+            |v: &[[f32; 3]]| -> Vec<[u32; 3]> { v.iter().map(|x| x.map(f32::to_bits)).collect() };
+        for (s, plan) in r.stencils.iter().zip(p) {
+            let mut want = vec![[0.0f32; 3]; s.num_rows()];
+            let mut got = vec![[f32::NAN; 3]; s.num_rows()];
+            s.apply(&src, &mut want);
+            plan.apply(s, &src, &mut got);
+            assert_eq!(bits(&got), bits(&want));
+            src = want;
         }
     }
 
@@ -343,17 +452,50 @@ mod tests {
             .map(|&v| [v as f32 * 0.37, 1.0 - v as f32, -0.5])
             .collect();
         src.resize(r.levels[0].num_vertices(), [0.1, 0.2, -0.3]);
-        for (s, plan) in r.stencils.iter().zip(&p) {
-            let mut want = vec![[0.0f32; 3]; s.num_rows()];
-            let mut got = vec![[f32::NAN; 3]; s.num_rows()];
-            s.apply(&src, &mut want);
-            plan.apply(s, &src, &mut got);
-            let bits = |v: &[[f32; 3]]| -> Vec<[u32; 3]> {
-                v.iter().map(|x| x.map(f32::to_bits)).collect()
-            };
-            assert_eq!(bits(&got), bits(&want));
-            src = want;
-        }
+        assert_plans_match_tables(&r, &p, src);
+    }
+
+    #[test]
+    fn a_one_thread_pool_gives_the_same_bits() {
+        // On one thread every pass runs as one sequential loop (no chunks): the same bits
+        // as the tables on every regression shape, the car one level deeper.
+        let dir =
+            std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
+        let mut cases: Vec<_> =
+            shapes::regression_shapes(&dir, &["catmark_", "bilinear_", "loop_"])
+                .unwrap()
+                .into_iter()
+                .map(|p| (p, 2))
+                .collect();
+        assert!(cases.len() > 50);
+        cases.push((dir.join("catmark_car.obj"), 3));
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut scratch = Vec::new();
+            for (path, level) in cases {
+                let m = crate::io::read_path(&path).unwrap();
+                let r = Refiner::new(Topology::new(&m).unwrap(), level).unwrap();
+                let want = r.refine_positions(&m.positions);
+                let mut out = vec![[f32::NAN; 3]; want.len()];
+                r.refine_positions_into(&m.positions, &mut out, &mut scratch)
+                    .unwrap();
+                let bits = |v: &[[f32; 3]]| -> Vec<[u32; 3]> {
+                    v.iter().map(|x| x.map(f32::to_bits)).collect()
+                };
+                assert_eq!(bits(&out), bits(&want), "{}", path.display());
+            }
+        });
+    }
+
+    #[test]
+    fn valence4_weights_are_the_tables() {
+        assert_eq!(
+            VALENCE4.map(f32::to_bits),
+            smooth_vertex_weights(4).map(f32::to_bits)
+        );
     }
 
     #[test]
