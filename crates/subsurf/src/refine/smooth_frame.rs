@@ -17,7 +17,6 @@
 //! the plan also lists the smooth vertices of other valences, which read their offsets).
 //! Exceptions are evaluated from their stored rows. Every row is summed in the stored entry
 //! order with the stored weights, so the result is bit-identical to [`LevelStencils::apply`].
-//! On a one-thread rayon pool each pass is one sequential loop over its rows.
 
 use super::masks::LevelStencils;
 use super::stencil::StencilTable;
@@ -121,8 +120,7 @@ impl StepPlan {
     }
 
     /// One step of `N`-component values, bit-identical to [`LevelStencils::apply`] (`s` is the
-    /// step this plan was made from), in parallel chunks of rows (on the calling thread when
-    /// the pool has one thread).
+    /// step this plan was made from), in parallel chunks of rows.
     pub(crate) fn apply<const N: usize>(
         &self,
         s: &LevelStencils,
@@ -131,45 +129,28 @@ impl StepPlan {
     ) {
         assert_eq!(dst.len(), s.num_rows(), "destination length");
         assert!(src.len() >= s.num_parent_vertices, "source length");
-        let serial = rayon::current_num_threads() == 1;
         if self.stencils_only {
-            if serial {
-                s.apply_serial(src, dst);
-            } else {
-                s.apply(src, dst);
-            }
+            s.apply(src, dst);
             return;
         }
         let (nv, nf) = (s.vertex.num_rows(), s.face.num_rows());
         let (vd, rest) = dst.split_at_mut(nv);
         let (fd, ed) = rest.split_at_mut(nf);
         if self.quad_faces {
-            let idx = &s.face.indices[..4 * nf];
-            if serial {
-                quad_rows(idx, src, fd);
-            } else {
-                fd.par_chunks_mut(CHUNK)
-                    .zip(idx.par_chunks(4 * CHUNK))
-                    .for_each(|(out, q)| quad_rows(q, src, out));
-            }
-        } else if serial {
-            s.face.apply_serial(src, fd);
+            fd.par_chunks_mut(CHUNK)
+                .zip(s.face.indices[..4 * nf].par_chunks(4 * CHUNK))
+                .for_each(|(out, q)| quad_rows(q, src, out));
         } else {
             s.face.apply(src, fd);
         }
         let fd: &[[f32; N]] = fd;
         let p = s.num_parent_vertices;
-        if serial {
-            self.vertex_rows(&s.vertex, p, 0, vd, src, fd);
-            edge_rows(&s.edge, &self.edge_special, p, 0, ed, src, fd);
-        } else {
-            vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-                self.vertex_rows(&s.vertex, p, c * CHUNK, out, src, fd);
-            });
-            ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-                edge_rows(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
-            });
-        }
+        vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+            self.vertex_rows(&s.vertex, p, c * CHUNK, out, src, fd);
+        });
+        ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+            edge_rows(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
+        });
     }
 
     /// Vertex rows `first..first + out.len()`: the runs of smooth valence-4 rows (9 entries
