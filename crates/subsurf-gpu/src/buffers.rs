@@ -89,6 +89,21 @@ impl VertexBuffer {
         read_back_into(ctx, &self.buffer, bytemuck::cast_slice_mut(out))
     }
 
+    /// Reads back a buffer of stride 3 (positions) as one `[f32; 3]` per vertex, copied once
+    /// from the staging buffer into the result. Another stride is
+    /// [`GpuError::BufferMismatch`].
+    pub fn download_triples(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
+        if self.stride != 3 {
+            return Err(GpuError::BufferMismatch(format!(
+                "reading vertices of stride {} as positions (stride 3)",
+                self.stride
+            )));
+        }
+        let mut out = vec![[0.0f32; 3]; self.vertex_count];
+        self.download_into(ctx, out.as_flattened_mut())?;
+        Ok(out)
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.vertex_count

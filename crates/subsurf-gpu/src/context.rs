@@ -30,15 +30,11 @@ pub struct GpuContext {
     /// [`GpuContext::release_staging`]).
     pub(crate) staging: std::sync::Mutex<Option<wgpu::Buffer>>,
     /// Compute pipelines made on this device, one per kernel (see [`GpuContext::kernel`]).
-    kernels: std::sync::Mutex<std::collections::HashMap<KernelKey, Kernel>>,
+    /// Keyed by shader source and entry point.
+    kernels: std::sync::Mutex<
+        std::collections::HashMap<(&'static str, &'static str), wgpu::ComputePipeline>,
+    >,
 }
-
-/// A kernel's shader source, entry point, and whether its bind group layout is explicit.
-type KernelKey = (&'static str, &'static str, bool);
-
-/// A compiled kernel: its explicit bind group layout (none for a layout derived from the
-/// shader, read back from the pipeline) and its pipeline.
-pub(crate) type Kernel = (Option<wgpu::BindGroupLayout>, wgpu::ComputePipeline);
 
 impl GpuContext {
     /// Opens a device on the adapter chosen as described in the module documentation,
@@ -108,20 +104,19 @@ impl GpuContext {
     /// scope on first use and kept for the device's life: compiling a shader costs
     /// milliseconds (tens on a software adapter), and every upload of tables (a patch table's
     /// levels, a crease edit's re-uploaded level, each stencil kernel) used to compile its
-    /// kernel again. Wgpu pipelines and layouts are shared handles, so every user binds
-    /// groups made from the same layout. A pipeline that failed is not kept.
+    /// kernel again. Wgpu pipelines are shared handles, so every user binds groups made
+    /// from the same layout (`get_bind_group_layout`). A pipeline that failed is not kept.
     pub(crate) fn kernel(
         &self,
         source: &'static str,
         entry: &'static str,
-        explicit_layout: bool,
-        make: impl FnOnce() -> Kernel,
-    ) -> Result<Kernel> {
+        make: impl FnOnce() -> wgpu::ComputePipeline,
+    ) -> Result<wgpu::ComputePipeline> {
         let mut kernels = self
             .kernels
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
-        let key = (source, entry, explicit_layout);
+        let key = (source, entry);
         if let Some(k) = kernels.get(&key) {
             return Ok(k.clone());
         }

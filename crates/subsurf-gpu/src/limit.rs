@@ -350,9 +350,7 @@ impl GpuLimit {
 
     /// Reads the point array back (waits for the submitted work).
     pub fn download_points(&self, ctx: &GpuContext) -> Result<Vec<[f32; 3]>> {
-        let mut out = vec![[0.0f32; 3]; self.points.vertex_count()];
-        self.points.download_into(ctx, out.as_flattened_mut())?;
-        Ok(out)
+        self.points.download_triples(ctx)
     }
 
     /// Writes the whole point array computed elsewhere ([`subsurf::limit::LimitSurface`]'s

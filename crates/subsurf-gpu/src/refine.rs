@@ -387,9 +387,7 @@ impl GpuRefiner {
                 self.max_level()
             ))
         })?;
-        let mut out = vec![[0.0f32; 3]; buf.vertex_count()];
-        buf.download_into(ctx, out.as_flattened_mut())?;
-        Ok(out)
+        buf.download_triples(ctx)
     }
 
     /// Reads the last level back into `out` (one position per last-level vertex), allocating
@@ -422,15 +420,14 @@ pub(crate) fn auto_pipeline(
     source: &'static str,
     entry: &'static str,
 ) -> Result<wgpu::ComputePipeline> {
-    let (_, pipeline) = ctx.kernel(source, entry, false, || {
+    ctx.kernel(source, entry, || {
         let module = ctx
             .device
             .create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(label),
                 source: wgpu::ShaderSource::Wgsl(source.into()),
             });
-        let pipeline = ctx
-            .device
+        ctx.device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(label),
                 layout: None,
@@ -438,10 +435,8 @@ pub(crate) fn auto_pipeline(
                 entry_point: Some(entry),
                 compilation_options: Default::default(),
                 cache: None,
-            });
-        (None, pipeline)
-    })?;
-    Ok(pipeline)
+            })
+    })
 }
 
 fn create_pipeline(ctx: &GpuContext) -> Result<wgpu::ComputePipeline> {

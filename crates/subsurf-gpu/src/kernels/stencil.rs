@@ -552,19 +552,14 @@ fn storage_entry(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
 }
 
 /// Bind group layout (bindings 0..=5 of `shaders/stencil_apply.wgsl`) and pipeline, compiled
-/// once per device ([`GpuContext::kernel`]).
+/// once per device ([`GpuContext::kernel`]; the layout is the pipeline's own, which bind
+/// groups made from it share).
 fn create_pipeline(ctx: &GpuContext) -> Result<(wgpu::BindGroupLayout, wgpu::ComputePipeline)> {
-    let (layout, pipeline) = ctx.kernel(shaders::STENCIL_APPLY, "main", true, || {
-        let (layout, pipeline) = make_pipeline(ctx);
-        (Some(layout), pipeline)
-    })?;
-    let layout = layout.ok_or_else(|| {
-        GpuError::Wgpu("internal: the stencil kernel was cached without its layout".into())
-    })?;
-    Ok((layout, pipeline))
+    let pipeline = ctx.kernel(shaders::STENCIL_APPLY, "main", || make_pipeline(ctx))?;
+    Ok((pipeline.get_bind_group_layout(0), pipeline))
 }
 
-fn make_pipeline(ctx: &GpuContext) -> (wgpu::BindGroupLayout, wgpu::ComputePipeline) {
+fn make_pipeline(ctx: &GpuContext) -> wgpu::ComputePipeline {
     let device = &ctx.device;
     let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("stencil_apply"),
@@ -597,15 +592,14 @@ fn make_pipeline(ctx: &GpuContext) -> (wgpu::BindGroupLayout, wgpu::ComputePipel
         label: Some("stencil_apply"),
         source: wgpu::ShaderSource::Wgsl(shaders::STENCIL_APPLY.into()),
     });
-    let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some("stencil_apply"),
         layout: Some(&pipeline_layout),
         module: &module,
         entry_point: Some("main"),
         compilation_options: Default::default(),
         cache: None,
-    });
-    (layout, pipeline)
+    })
 }
 
 #[cfg(test)]
