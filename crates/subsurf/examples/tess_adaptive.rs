@@ -9,7 +9,7 @@
 //! bounding-box diagonal. The limit surface is an isolation-10 table's (end caps within
 //! ~1e-5 of the diagonal on the car and the pawn). Adaptive tessellations go through
 //! `surface::adaptive_surface` (isolation chosen per region, the chords at 3/4 of the
-//! tolerance, the corner check); uniform ones are drawn from the isolation-10 table, the best
+//! tolerance, the check of every triangle); uniform ones are drawn from the isolation-10 table, the best
 //! a uniform rate can do. Times are medians of 11 runs on all threads: the adaptive surface's
 //! construction (tables for the choice and the final one), then rates + tessellation.
 

@@ -2,7 +2,7 @@
 //! on the surface `--tolerance` tessellates (`surface::adaptive_surface`):
 //! `cargo run --release -p subsurf --example tess_speed [-- FILE TOLERANCE RUNS]` (default
 //! `testdata/shapes/catmark_car.obj`, `1e-3`, 21 runs). Prints the medians of the rate step,
-//! the tessellation (with its end-cap corner check) and both, in milliseconds, on all threads (`RAYON_NUM_THREADS`
+//! the tessellation (with the check of every triangle, `tess::check`) and both, in milliseconds, on all threads (`RAYON_NUM_THREADS`
 //! sets how many). One run under `valgrind --tool=callgrind` counts instructions.
 
 use std::time::Instant;
@@ -54,7 +54,7 @@ fn main() {
     }
     println!(
         "{file} tolerance {tol:e}: {triangles} triangles, {} patches; rates {:.2} ms, tessellation \
-         with the end-cap corner check {:.2} ms, both {:.2} ms (medians of {runs}, {} \
+         checked {:.2} ms, both {:.2} ms (medians of {runs}, {} \
          threads)",
         s.table.num_patches(),
         median(rates_ms),

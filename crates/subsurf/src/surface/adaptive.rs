@@ -31,8 +31,8 @@ impl Adaptive {
     }
 }
 
-/// Rates of `policy` on `surface` (chosen on `backend`; a tolerance then checked at the end
-/// caps' corners, [`tessellate_within_tolerance`]), then the tessellation at those
+/// Rates of `policy` on `surface` (chosen on `backend`; a tolerance then checked on every
+/// triangle, [`tessellate_within_tolerance`]), then the tessellation at those
 /// rates (`origin` names where the policy came from in errors: a flag, a file).
 pub fn tessellate(
     surface: &LimitSurface,

@@ -11,18 +11,18 @@
 //! - [`mesh`]: the ptex faces' patterns joined through shared edge samples;
 //! - [`rates`]: policies (uniform, maximum edge length, chordal tolerance, screen space,
 //!   explicit rates) turned into per-edge rates;
-//! - [`corners`]: a tolerance checked after planning at the end caps' corners, where the
+//! - [`check`]: a tolerance checked on every planned triangle, where the
 //!   rate curves cannot see;
 //! - [`curves`]: the curves on the limit surface that the policies measure, as a flat list
 //!   of samples any evaluator (the CPU's, a GPU's) can measure.
 
-pub mod corners;
+pub mod check;
 pub mod curves;
 pub mod mesh;
 pub mod pattern;
 pub mod rates;
 
-pub use corners::tessellate_within_tolerance;
+pub use check::{chord_errors, tessellate_within_tolerance};
 pub use curves::{CurveMeasure, RateCurves};
 pub use mesh::{plan, plan_without_uv, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::QuadPattern;

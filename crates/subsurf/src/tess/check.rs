@@ -1,0 +1,225 @@
+//! A tolerance checked on every triangle of the tessellation, where the rate curves cannot see.
+//!
+//! The tolerance policy estimates each curve's second derivative from second differences of
+//! 17 samples ([`super::curves`]), which misses bending confined to less than a sample
+//! spacing: across a semi-sharp crease (the surface turns within a band about `2^-s` of the
+//! face wide), at the ends of creases and at corners (valence-one corners of the car, chords
+//! 1.47x over their budget at `3e-4`), and around extraordinary vertices (on the pawn's pole,
+//! chords of rates chosen for `7.5e-4` were `1.03e-3` off). With the rate curves alone, 30 of
+//! the 64 `catmark_*` regression shapes had edge midpoints or centroids past a tolerance of
+//! `1e-3` or `1e-2` (up to 3x).
+//!
+//! So after planning, before anything is evaluated for output, every triangle is measured:
+//! the midpoints of its edges and its centroid against the surface at the same ptex
+//! parameters (each edge inside a ptex face once, from the side whose first vertex index is
+//! the smaller). The rates of every base face where one misses are raised (every edge and the
+//! interior, by the square root of the excess — chord error falls as the square of the
+//! spacing — at least 1.25x; by the excess itself when the face misses again, as across a
+//! bend narrower than its triangles the error falls only linearly) and the faces whose samples changed planned and measured again,
+//! until none misses, the rates reach [`MAX_RATE`], or a raise no longer cuts a face's miss
+//! by a hundredth (no chord error then: the table's own patches part there, as at the infinitely
+//! sharp crease loop of `catmark_fvar_project0`), at most [`ROUNDS`] plans. The output is
+//! evaluated once, from the last plan.
+
+use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
+use crate::error::Result;
+use crate::limit::eval::PatchCache;
+use crate::limit::LimitSurface;
+use rayon::prelude::*;
+
+/// At most this many plans.
+pub const ROUNDS: usize = 8;
+
+/// Which side of its ptex face a `(u, v)` lies on: bit 0 `v = 0`, 1 `u = 1`, 2 `v = 1`,
+/// 3 `u = 0`.
+fn sides(c: [f32; 2]) -> u8 {
+    u8::from(c[1] == 0.0)
+        | u8::from(c[0] == 1.0) << 1
+        | u8::from(c[1] == 1.0) << 2
+        | u8::from(c[0] == 0.0) << 3
+}
+
+fn dist(a: [f32; 3], b: [f32; 3]) -> f64 {
+    (0..3)
+        .map(|k| f64::from(a[k] - b[k]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Per base face, the largest distance (world units) between the flat triangles of `p` and
+/// the surface at their edge midpoints and centroids, over the faces flagged in `only` (all
+/// when `None`; the others read zero).
+pub fn chord_errors(
+    surface: &LimitSurface,
+    p: &AdaptivePlan,
+    face_of_ptex: &[u32],
+    only: Option<&[bool]>,
+) -> Vec<f64> {
+    let nf = surface.table.base.num_faces();
+    let measured = |ptex: u32| only.is_none_or(|o| o[face_of_ptex[ptex as usize] as usize]);
+    // The positions of the samples the measured triangles join, as the output will have
+    // them (a sample shared by two ptex faces is evaluated from the first, as `eval_plan`).
+    let mut needed = vec![only.is_none(); p.queries.len()];
+    if only.is_some() {
+        for (tri, &(ptex, _)) in p.triangles.iter().zip(&p.triangle_uv) {
+            if measured(ptex) {
+                tri.iter().for_each(|&i| needed[i as usize] = true);
+            }
+        }
+    }
+    let positions: Vec<[f32; 3]> = p
+        .queries
+        .par_iter()
+        .zip(&needed)
+        .map_init(PatchCache::new, |cache, (&(f, u, v), &need)| {
+            if need {
+                cache
+                    .position(surface, f as usize, u, v)
+                    .unwrap_or_default()
+            } else {
+                [0.0; 3]
+            }
+        })
+        .collect();
+    let found: Vec<(u32, f64)> = p
+        .triangles
+        .par_iter()
+        .zip(&p.triangle_uv)
+        .filter(|(_, &(ptex, _))| measured(ptex))
+        .map_init(PatchCache::new, |cache, (tri, &(ptex, c))| {
+            let mut at = |u: f32, v: f32| cache.position(surface, ptex as usize, u, v);
+            // A sample another ptex face evaluates is taken again from this one: the chords
+            // are this face's (a table whose neighbouring patches part by more than the
+            // tolerance is not mended by finer rates).
+            let x = [0, 1, 2].map(|k| {
+                let i = tri[k] as usize;
+                if p.queries[i].0 == ptex {
+                    positions[i]
+                } else {
+                    at(c[k][0], c[k][1]).unwrap_or(positions[i])
+                }
+            });
+            let mut w = 0.0f64;
+            for i in 0..3 {
+                let j = (i + 1) % 3;
+                // An edge inside the ptex face is measured from one of its two triangles;
+                // one along its side from each (its twin lies in another ptex face).
+                if tri[i] > tri[j] && sides(c[i]) & sides(c[j]) == 0 {
+                    continue;
+                }
+                if let Some(m) = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1])) {
+                    w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
+                }
+            }
+            let g = at(
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            );
+            if let Some(g) = g {
+                w = w.max(dist(
+                    [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0),
+                    g,
+                ));
+            }
+            (face_of_ptex[ptex as usize], w)
+        })
+        .collect();
+    let mut out = vec![0.0f64; nf];
+    for (f, w) in found {
+        out[f as usize] = out[f as usize].max(w);
+    }
+    out
+}
+
+/// A tessellation of `surface` at `rates`, with the rates of base faces whose triangles miss
+/// `tolerance` (a fraction of the points' bounding-box diagonal) at an edge midpoint or
+/// centroid raised until they meet it (module documentation): the rates used, the
+/// tessellation and, per triangle, its ptex face and corners' `(u, v)`. Refuses what [`plan`]
+/// refuses, naming `origin`.
+pub fn tessellate_within_tolerance(
+    surface: &LimitSurface,
+    mut rates: EdgeRates,
+    tolerance: f32,
+    origin: &str,
+) -> Result<Tessellated> {
+    let table = &surface.table;
+    let t = &table.base;
+    let bound = f64::from(tolerance) * f64::from(crate::mesh::bbox_diagonal(&surface.points));
+    let face_of_ptex = table.ptex_base_faces();
+    let mut p = plan(table, &rates, origin)?;
+    // After the first round only the faces whose samples changed are measured again.
+    let mut only: Option<Vec<bool>> = None;
+    let (mut missed, mut stuck) = (vec![false; t.num_faces()], vec![false; t.num_faces()]);
+    let mut last = vec![0.0f64; t.num_faces()];
+    for _ in 1..ROUNDS {
+        let errors = chord_errors(surface, &p, &face_of_ptex, only.as_deref());
+        if rates.faces.is_empty() {
+            rates.faces = vec![0; t.num_faces()];
+        }
+        let old = rates.edges.clone();
+        let mut again = vec![false; t.num_faces()];
+        let mut raised = false;
+        for (f, &w) in errors.iter().enumerate() {
+            if w.is_nan() || w <= bound || stuck[f] {
+                continue;
+            }
+            // A raise that did not cut the miss by a hundredth met no chord error: the face's
+            // patches part (a seam of the table) or bend within its samples' rounding.
+            if missed[f] && w > 0.99 * last[f] {
+                stuck[f] = true;
+                continue;
+            }
+            last[f] = w;
+            // Chord error falls as the square of the spacing where the surface is smooth at
+            // the scale of the triangles, but only linearly across a bend narrower than them
+            // (a crease of high sharpness): a face that misses again is raised by the
+            // excess itself.
+            let excess = w / bound;
+            let k = if missed[f] { excess } else { excess.sqrt() }.max(1.25) * 1.05;
+            missed[f] = true;
+            let up = |r: u32| ((f64::from(r) * k).ceil() as u32).min(MAX_RATE);
+            let finest = t
+                .face_edges(f)
+                .iter()
+                .map(|&e| old[e as usize])
+                .max()
+                .unwrap_or(1);
+            let inner = if rates.faces[f] > 0 {
+                rates.faces[f]
+            } else {
+                finest
+            };
+            for &e in t.face_edges(f) {
+                let e = e as usize;
+                let r = up(old[e]).max(rates.edges[e]);
+                if r != rates.edges[e] {
+                    rates.edges[e] = r;
+                    // Both sides of the edge change.
+                    for &g in t.edge_faces(e) {
+                        again[g as usize] = true;
+                    }
+                }
+            }
+            let r = up(inner);
+            if r != rates.faces[f] {
+                rates.faces[f] = r;
+                again[f] = true;
+            }
+            raised |= again[f];
+        }
+        if !raised {
+            break;
+        }
+        p = plan(table, &rates, origin)?;
+        only = Some(again);
+    }
+    let uv = std::mem::take(&mut p.triangle_uv);
+    Ok((rates, surface.eval_plan(p), uv))
+}
+
+/// What [`tessellate_within_tolerance`] gives: the rates used, the tessellation, and per
+/// triangle its ptex face and corners' `(u, v)`.
+pub type Tessellated = (EdgeRates, AdaptiveTessellation, Vec<TriangleUv>);
+
+/// A triangle's ptex face and its corners' `(u, v)` there.
+pub type TriangleUv = (u32, [[f32; 2]; 3]);
