@@ -5,26 +5,14 @@
 
 mod limit_common;
 
-use limit_common::{bbox_diagonal, load_shape, Lcg};
+use limit_common::{bbox_diagonal, dist, isolated, load_shape, Lcg};
 use subsurf::limit::tolerance::split_tolerance;
 use subsurf::limit::{
-    build_for_tolerance, choose_isolation, LimitSurface, PatchOptions, PatchTable, PatchType,
-    SharpnessEdit,
+    build_for_tolerance, choose_isolation, LimitSurface, PatchTable, PatchType, SharpnessEdit,
 };
 use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
 use subsurf::tess::{plan, AdaptiveTessellation, RatePolicy};
 use subsurf::{Error, Mesh, TessError, Topology};
-
-fn options(l: u32) -> PatchOptions {
-    PatchOptions {
-        isolation_level: l,
-        ..Default::default()
-    }
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
-}
 
 fn surface(mesh: &Mesh, table: PatchTable<f64>) -> LimitSurface<f64> {
     LimitSurface::new(table, &mesh.positions)
@@ -57,10 +45,10 @@ fn each_region_is_the_table_of_its_level() {
         let mesh = load_shape(name);
         let t = Topology::new(&mesh).unwrap();
         let levels: Vec<u8> = (0..t.num_faces()).map(|_| 2 + rng.next(4) as u8).collect();
-        let mixed = PatchTable::<f64>::build_face_levels(&t, &options(2), &levels).unwrap();
+        let mixed = PatchTable::<f64>::build_face_levels(&t, &isolated(2), &levels).unwrap();
         assert_eq!(mixed.face_levels.as_deref(), Some(&levels[..]), "{name}");
         let uniform: Vec<PatchTable<f64>> = (2..6)
-            .map(|l| PatchTable::build_real(&t, &options(l)).unwrap())
+            .map(|l| PatchTable::build_real(&t, &isolated(l)).unwrap())
             .collect();
         let (pm, pu) = (
             patches_of(&mixed),
@@ -98,9 +86,9 @@ fn each_region_is_the_table_of_its_level() {
 fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
     let mesh = load_shape("catmark_pawn");
     let t = Topology::new(&mesh).unwrap();
-    let plain = PatchTable::<f64>::build_real(&t, &options(4)).unwrap();
+    let plain = PatchTable::<f64>::build_real(&t, &isolated(4)).unwrap();
     let low =
-        PatchTable::<f64>::build_face_levels(&t, &options(4), &vec![2; t.num_faces()]).unwrap();
+        PatchTable::<f64>::build_face_levels(&t, &isolated(4), &vec![2; t.num_faces()]).unwrap();
     assert!(low.face_levels.is_none());
     assert_eq!(low.kinds, plain.kinds);
     assert_eq!(low.params, plain.params);
@@ -109,18 +97,18 @@ fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
 
     let mut levels = vec![4u8; t.num_faces()];
     levels[17] = 11;
-    let e = PatchTable::<f64>::build_face_levels(&t, &options(4), &levels).unwrap_err();
+    let e = PatchTable::<f64>::build_face_levels(&t, &isolated(4), &levels).unwrap_err();
     assert!(
         matches!(&e, Error::Unsupported(m) if m.contains("level 11 of base face 17")),
         "{e}"
     );
-    let e = PatchTable::<f64>::build_face_levels(&t, &options(4), &levels[1..]).unwrap_err();
+    let e = PatchTable::<f64>::build_face_levels(&t, &isolated(4), &levels[1..]).unwrap_err();
     assert!(
         matches!(&e, Error::Unsupported(m) if m.contains(&format!("{} base faces", t.num_faces()))),
         "{e}"
     );
     for bad in [0.0f32, -1.0, f32::NAN, f32::INFINITY] {
-        let e = choose_isolation::<f32>(&t, &options(4), &mesh.positions, bad).unwrap_err();
+        let e = choose_isolation::<f32>(&t, &isolated(4), &mesh.positions, bad).unwrap_err();
         assert!(
             matches!(&e, Error::Unsupported(m) if m.contains("positive finite")),
             "{e}"
@@ -161,11 +149,11 @@ fn end_caps_within_the_budget_of_the_true_limit() {
         let mesh = load_shape(name);
         let t = Topology::new(&mesh).unwrap();
         let diag = f64::from(bbox_diagonal(&mesh.positions));
-        let reference = surface(&mesh, PatchTable::build_real(&t, &options(10)).unwrap());
-        let plain = surface(&mesh, PatchTable::build_real(&t, &options(4)).unwrap());
+        let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
+        let plain = surface(&mesh, PatchTable::build_real(&t, &isolated(4)).unwrap());
         let before = end_cap_deviation(&plain, &reference, diag);
         let (table, choice) =
-            build_for_tolerance::<f64>(&t, &options(4), &mesh.positions, budget).unwrap();
+            build_for_tolerance::<f64>(&t, &isolated(4), &mesh.positions, budget).unwrap();
         let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
         let after = end_cap_deviation(&surface(&mesh, table), &reference, diag);
         eprintln!(
@@ -193,7 +181,7 @@ fn tolerance_bounds_the_whole_approximation() {
     let mesh = load_shape(name);
     let t = Topology::new(&mesh).unwrap();
     let diag = f64::from(bbox_diagonal(&mesh.positions));
-    let reference = surface(&mesh, PatchTable::build_real(&t, &options(10)).unwrap());
+    let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
     // The worst edge midpoint or centroid of a tessellation (positions, triangles, per
     // triangle its ptex face and corners' (u, v)) against `reference`.
     let worst = |out: &AdaptiveTessellation,
@@ -222,14 +210,17 @@ fn tolerance_bounds_the_whole_approximation() {
     };
     let policy = RatePolicy::Tolerance(e);
     let (s, chords) =
-        adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &options(4)).unwrap();
+        adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &isolated(4)).unwrap();
     assert_eq!(chords, RatePolicy::Tolerance(split_tolerance(e).1));
     assert!(s.table.face_levels.is_some());
     let truth = |p: u32, u: f64, v: f64| reference.eval_position(p as usize, u, v).unwrap();
     let a = tessellate_adaptive(&s, &chords, "tolerance", &Cpu).unwrap();
     let whole = worst(&a.tessellation, &a.triangle_uv, &truth);
     // Before: the isolation-4 table, the whole tolerance given to the chords, no corner check.
-    let plain = LimitSurface::new(PatchTable::build(&t, &options(4)).unwrap(), &mesh.positions);
+    let plain = LimitSurface::new(
+        PatchTable::build(&t, &isolated(4)).unwrap(),
+        &mesh.positions,
+    );
     let mut p = plan(&plain.table, &policy.rates(&plain, "").unwrap(), "").unwrap();
     let uv = std::mem::take(&mut p.triangle_uv);
     let before = worst(&plain.eval_plan(p), &uv, &truth);
@@ -244,7 +235,7 @@ fn tolerance_bounds_the_whole_approximation() {
         &mesh.positions,
         &RatePolicy::Tolerance(-1.0),
         "--tolerance",
-        &options(4),
+        &isolated(4),
     )
     .unwrap_err();
     assert!(e.to_string().contains("--tolerance"), "{e}");
@@ -255,10 +246,11 @@ fn tolerance_bounds_the_whole_approximation() {
         &mesh.positions,
         &RatePolicy::Tolerance(3e-4),
         "tolerance",
-        &options(4),
+        &isolated(4),
     )
     .unwrap();
-    let (_, choice) = build_for_tolerance::<f32>(&t, &options(4), &mesh.positions, 7.5e-5).unwrap();
+    let (_, choice) =
+        build_for_tolerance::<f32>(&t, &isolated(4), &mesh.positions, 7.5e-5).unwrap();
     let worst = choice.deviation.iter().copied().fold(0.0f32, f32::max);
     assert!(worst > 7.5e-5 && worst <= 1.5e-4, "{worst:e}");
     assert_eq!(chords, RatePolicy::Tolerance(3e-4 - worst));
@@ -270,7 +262,7 @@ fn tolerance_bounds_the_whole_approximation() {
         &mesh.positions,
         &RatePolicy::Tolerance(1e-4),
         "--tolerance",
-        &options(4),
+        &isolated(4),
     )
     .unwrap_err();
     match &e {
@@ -300,7 +292,7 @@ fn edits_keep_the_levels() {
     let mesh = load_shape("catmark_cube_creases1");
     let t = Topology::new(&mesh).unwrap();
     let levels: Vec<u8> = (0..t.num_faces()).map(|f| 3 + (f % 3) as u8).collect();
-    let mut table = PatchTable::<f64>::build_face_levels(&t, &options(3), &levels).unwrap();
+    let mut table = PatchTable::<f64>::build_face_levels(&t, &isolated(3), &levels).unwrap();
     let c = &mesh.creases[0];
     let edit = [SharpnessEdit::Edge {
         v0: c.v0,
@@ -312,7 +304,7 @@ fn edits_keep_the_levels() {
     edited.creases[0].sharpness += 1.5;
     let fresh = PatchTable::<f64>::build_face_levels(
         &Topology::new(&edited).unwrap(),
-        &options(3),
+        &isolated(3),
         &levels,
     )
     .unwrap();

@@ -6,22 +6,11 @@
 
 mod limit_common;
 
-use limit_common::{bbox_diagonal, load_shape};
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use limit_common::{bbox_diagonal, dist, isolated, load_shape};
+use subsurf::limit::{LimitSurface, PatchTable};
 use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
 use subsurf::tess::{chord_errors, plan, RatePolicy};
 use subsurf::Topology;
-
-fn options(l: u32) -> PatchOptions {
-    PatchOptions {
-        isolation_level: l,
-        ..Default::default()
-    }
-}
-
-fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
-}
 
 type Uv = (u32, [[f32; 2]; 3]);
 
@@ -70,7 +59,7 @@ fn every_triangle_meets_the_tolerance() {
         let diag = f64::from(bbox_diagonal(&mesh.positions));
         let policy = RatePolicy::Tolerance(e);
         let (s, chords) =
-            adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &options(4)).unwrap();
+            adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &isolated(4)).unwrap();
         let RatePolicy::Tolerance(budget) = chords else {
             panic!("{chords:?}")
         };
@@ -112,7 +101,7 @@ fn every_triangle_meets_the_tolerance() {
             &own,
         );
         // The promise: output positions against the true limit surface.
-        let o10 = PatchTable::build_real(&t, &options(10)).unwrap();
+        let o10 = PatchTable::build_real(&t, &isolated(10)).unwrap();
         let reference = LimitSurface::<f64>::new(o10, &mesh.positions);
         let truth = |ptex: u32, u: f32, v: f32| {
             reference

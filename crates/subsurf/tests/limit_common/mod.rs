@@ -41,6 +41,19 @@ pub fn bbox_diagonal(p: &[[f32; 3]]) -> f32 {
     subsurf::mesh::bbox_diagonal(p)
 }
 
+/// Patch options isolated to level `l`, the rest default.
+pub fn isolated(l: u32) -> subsurf::limit::PatchOptions {
+    subsurf::limit::PatchOptions {
+        isolation_level: l,
+        ..Default::default()
+    }
+}
+
+/// The distance between two points.
+pub fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
 /// The cross product.
 pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
