@@ -119,9 +119,19 @@ fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
 /// The largest distance between `s`'s end caps and the reference `r`, over a 9 x 9 grid of
 /// each, as a fraction of `diag`.
 fn end_cap_deviation(s: &LimitSurface<f64>, r: &LimitSurface<f64>, diag: f64) -> f64 {
+    deviation_of(s, r, diag, &[PatchType::Gregory])
+}
+
+/// [`end_cap_deviation`] over the patches of the types `kinds`.
+fn deviation_of(
+    s: &LimitSurface<f64>,
+    r: &LimitSurface<f64>,
+    diag: f64,
+    kinds: &[PatchType],
+) -> f64 {
     let t = &s.table;
     let mut worst = 0.0f64;
-    for p in (0..t.num_patches()).filter(|&p| t.patch_type(p) == PatchType::Gregory) {
+    for p in (0..t.num_patches()).filter(|&p| kinds.contains(&t.patch_type(p))) {
         let pp = t.params[p];
         let ptex = pp.face_id() as usize;
         for i in 0..=8 {
@@ -169,6 +179,41 @@ fn end_caps_within_the_budget_of_the_true_limit() {
             assert!(deeper < t.num_faces() / 2, "{name}: {deeper}");
         }
         assert!(choice.face_levels.iter().all(|&l| l >= 4));
+    }
+}
+
+/// At infinitely sharp crease loops and Chaikin creases the table's regular and single-crease
+/// patches only approximate the limit surface too: the choice measures them with the end caps
+/// and isolates their faces deeper, within the budget of the isolation-10 surface.
+#[test]
+fn sharp_features_are_isolated_deeper() {
+    for (name, budget) in [
+        ("catmark_inf_crease0", 7.5e-4f32),
+        ("catmark_fvar_project0", 7.5e-4),
+        ("catmark_chaikin1", 2.5e-4),
+    ] {
+        let mesh = load_shape(name);
+        let t = Topology::new(&mesh).unwrap();
+        let diag = f64::from(bbox_diagonal(&mesh.positions));
+        let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
+        let plain = surface(&mesh, PatchTable::build_real(&t, &isolated(4)).unwrap());
+        let kinds = [
+            PatchType::Regular,
+            PatchType::SingleCrease,
+            PatchType::Gregory,
+        ];
+        let before = deviation_of(&plain, &reference, diag, &kinds);
+        let (table, choice) =
+            build_for_tolerance::<f64>(&t, &isolated(4), &mesh.positions, budget).unwrap();
+        let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
+        let after = deviation_of(&surface(&mesh, table), &reference, diag, &kinds);
+        eprintln!(
+            "{name}: {before:.2e} at isolation 4 -> {after:.2e}, {deeper} of {} faces deeper",
+            t.num_faces()
+        );
+        assert!(before > f64::from(budget), "{name}: {before:e}");
+        assert!(deeper > 0, "{name}");
+        assert!(after <= f64::from(budget), "{name}: {after:e} > {budget:e}");
     }
 }
 
