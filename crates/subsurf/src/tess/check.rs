@@ -15,11 +15,11 @@
 //! the smaller). The rates of every base face where one misses are raised (every edge and the
 //! interior, by the square root of the excess — chord error falls as the square of the
 //! spacing — at least 1.25x; by the excess itself when the face misses again, as across a
-//! bend narrower than its triangles the error falls only linearly) and the faces whose samples changed planned and measured again,
-//! until none misses, the rates reach [`MAX_RATE`], or a raise no longer cuts a face's miss
-//! by a hundredth (no chord error then: the table's own patches part there, as at the infinitely
-//! sharp crease loop of `catmark_fvar_project0`), at most [`ROUNDS`] plans. The output is
-//! evaluated once, from the last plan.
+//! bend narrower than its triangles the error falls only linearly) and the faces whose
+//! samples changed planned and measured again, until none misses, the rates reach
+//! [`MAX_RATE`], or a raise no longer cuts a face's miss by a hundredth (no chord error then:
+//! the table's own patches part there, as on the non-manifold `catmark_nonman_verts`), at
+//! most [`ROUNDS`] plans. The output is evaluated once, from the last plan.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
