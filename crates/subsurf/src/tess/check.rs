@@ -18,8 +18,8 @@
 //! bend narrower than its triangles the error falls only linearly) and the faces whose
 //! samples changed planned and measured again, until none misses, the rates reach
 //! [`MAX_RATE`], or a raise no longer cuts a face's miss by a hundredth (no chord error then:
-//! the table's own patches part there, as on the non-manifold `catmark_nonman_verts`), at
-//! most [`ROUNDS`] plans. The output is evaluated once, from the last plan.
+//! the surface is not continuous there at the triangles' scale, or finer rates do not resolve
+//! it), at most [`ROUNDS`] plans. The output is evaluated once, from the last plan.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
@@ -163,8 +163,8 @@ pub fn tessellate_within_tolerance(
             if w.is_nan() || w <= bound || stuck[f] {
                 continue;
             }
-            // A raise that did not cut the miss by a hundredth met no chord error: the face's
-            // patches part (a seam of the table) or bend within its samples' rounding.
+            // A raise that did not cut the miss by a hundredth met no chord error: the surface
+            // is not continuous there at the triangles' scale, or finer rates do not resolve it.
             if missed[f] && w > 0.99 * last[f] {
                 stuck[f] = true;
                 continue;
