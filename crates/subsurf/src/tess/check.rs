@@ -16,10 +16,12 @@
 //! interior, by the square root of the excess — chord error falls as the square of the
 //! spacing — at least 1.25x; by the excess itself when the face misses again, as across a
 //! bend narrower than its triangles the error falls only linearly) and the faces whose
-//! samples changed planned and measured again, until none misses, the rates reach
-//! [`MAX_RATE`], or a raise no longer cuts a face's miss by a hundredth (no chord error then:
-//! the surface is not continuous there at the triangles' scale, or finer rates do not resolve
-//! it), at most [`ROUNDS`] plans. The output is evaluated once, from the last plan.
+//! samples changed planned and measured again, until none misses or the rates reach
+//! [`MAX_RATE`], at most [`ROUNDS`] plans. A miss that a raise does not cut lies in a bend
+//! narrower than the triangles (within `2^-s` of a semi-sharp corner), which finer rates
+//! resolve once they pass its width: such a face's rates are doubled, up to 8x those of its
+//! first miss, and then left (no chord error there: the surface is not continuous at that
+//! scale). The output is evaluated once, from the last plan.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
@@ -151,6 +153,7 @@ pub fn tessellate_within_tolerance(
     let mut only: Option<Vec<bool>> = None;
     let (mut missed, mut stuck) = (vec![false; t.num_faces()], vec![false; t.num_faces()]);
     let mut last = vec![0.0f64; t.num_faces()];
+    let mut first = vec![0u32; t.num_faces()];
     for _ in 1..ROUNDS {
         let errors = chord_errors(surface, &p, &face_of_ptex, only.as_deref());
         if rates.faces.is_empty() {
@@ -163,9 +166,25 @@ pub fn tessellate_within_tolerance(
             if w.is_nan() || w <= bound || stuck[f] {
                 continue;
             }
-            // A raise that did not cut the miss by a hundredth met no chord error: the surface
-            // is not continuous there at the triangles' scale, or finer rates do not resolve it.
-            if missed[f] && w > 0.99 * last[f] {
+            // A miss that a raise did not cut by a hundredth lies in a bend narrower than the
+            // triangles (a semi-sharp corner: the surface turns within `2^-s` of the vertex),
+            // which finer rates resolve only once they pass its width, or is no chord error
+            // at all (the surface is not continuous there): the face's rates are doubled
+            // until they are 8x those of its first miss, then left.
+            let flat = missed[f] && w > 0.99 * last[f];
+            let inner = if rates.faces[f] > 0 {
+                rates.faces[f]
+            } else {
+                t.face_edges(f)
+                    .iter()
+                    .map(|&e| old[e as usize])
+                    .max()
+                    .unwrap_or(1)
+            };
+            if !missed[f] {
+                first[f] = inner;
+            }
+            if flat && inner >= 8 * first[f] {
                 stuck[f] = true;
                 continue;
             }
@@ -175,20 +194,15 @@ pub fn tessellate_within_tolerance(
             // (a crease of high sharpness): a face that misses again is raised by the
             // excess itself.
             let excess = w / bound;
-            let k = if missed[f] { excess } else { excess.sqrt() }.max(1.25) * 1.05;
+            let k = if flat {
+                2.0
+            } else if missed[f] {
+                excess.max(1.25) * 1.05
+            } else {
+                excess.sqrt().max(1.25) * 1.05
+            };
             missed[f] = true;
             let up = |r: u32| ((f64::from(r) * k).ceil() as u32).min(MAX_RATE);
-            let finest = t
-                .face_edges(f)
-                .iter()
-                .map(|&e| old[e as usize])
-                .max()
-                .unwrap_or(1);
-            let inner = if rates.faces[f] > 0 {
-                rates.faces[f]
-            } else {
-                finest
-            };
             for &e in t.face_edges(f) {
                 let e = e as usize;
                 let r = up(old[e]).max(rates.edges[e]);
