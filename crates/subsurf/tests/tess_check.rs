@@ -1,5 +1,6 @@
 //! `--tolerance E` checked on every triangle (`tess::check`): on shapes whose creases,
-//! corners and crease ends bend within less than the rate curves' sample spacing, every
+//! corners and crease ends bend within less than the rate curves' sample spacing (and, on
+//! `catmark_cube_creases1`, less than the triangles' first raise), every
 //! triangle's edge midpoints and centroid come within the chord budget of the surface the
 //! tessellation is drawn from, and within `E` of the true limit surface (an isolation-10
 //! reference); the rate curves' estimate alone misses there.
@@ -45,14 +46,16 @@ fn worst(
 
 #[test]
 fn every_triangle_meets_the_tolerance() {
-    let e = 1e-3f32;
-    for name in [
-        "catmark_edgeonly",
-        "catmark_tent",
-        "catmark_flap",
-        "catmark_square_hedit0",
-        "catmark_cube_creases0",
-        "catmark_fvar_bound0",
+    for (name, e) in [
+        ("catmark_edgeonly", 1e-3f32),
+        ("catmark_tent", 1e-3),
+        ("catmark_flap", 1e-3),
+        ("catmark_square_hedit0", 1e-3),
+        ("catmark_cube_creases0", 1e-3),
+        ("catmark_fvar_bound0", 1e-3),
+        // A corner of three creases of sharpness 5: the miss stays flat until the rates
+        // pass the bend's width (about 2^-5 of a face), so a flat miss doubles the rates.
+        ("catmark_cube_creases1", 3e-3),
     ] {
         let mesh = load_shape(name);
         let t = Topology::new(&mesh).unwrap();
