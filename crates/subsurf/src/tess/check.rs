@@ -29,6 +29,9 @@ use crate::limit::eval::PatchCache;
 use crate::limit::LimitSurface;
 use rayon::prelude::*;
 
+/// Queries or triangles per parallel chunk.
+const CHUNK: usize = 512;
+
 /// At most this many plans.
 pub const ROUNDS: usize = 8;
 
@@ -69,61 +72,72 @@ pub fn chord_errors(
             }
         }
     }
-    let positions: Vec<[f32; 3]> = p
-        .queries
-        .par_iter()
-        .zip(&needed)
-        .map_init(PatchCache::new, |cache, (&(f, u, v), &need)| {
-            if need {
-                cache
-                    .position(surface, f as usize, u, v)
-                    .unwrap_or_default()
-            } else {
-                [0.0; 3]
+    // In chunks, one cache each, walked by plain loops: rayon's per-item adaptors move their
+    // state (the cache's 20 points) with every item.
+    let mut positions = vec![[0.0f32; 3]; p.queries.len()];
+    positions
+        .par_chunks_mut(CHUNK)
+        .zip(p.queries.par_chunks(CHUNK))
+        .zip(needed.par_chunks(CHUNK))
+        .for_each(|((out, q), need)| {
+            let mut cache = PatchCache::new();
+            for ((x, &(f, u, v)), &need) in out.iter_mut().zip(q).zip(need) {
+                if need {
+                    *x = cache
+                        .position(surface, f as usize, u, v)
+                        .unwrap_or_default();
+                }
             }
-        })
-        .collect();
+        });
     let found: Vec<(u32, f64)> = p
         .triangles
-        .par_iter()
-        .zip(&p.triangle_uv)
-        .filter(|(_, &(ptex, _))| measured(ptex))
-        .map_init(PatchCache::new, |cache, (tri, &(ptex, c))| {
-            let mut at = |u: f32, v: f32| cache.position(surface, ptex as usize, u, v);
-            // A sample another ptex face evaluates is taken again from this one: the chords
-            // are this face's (a table whose neighbouring patches part by more than the
-            // tolerance is not mended by finer rates).
-            let x = [0, 1, 2].map(|k| {
-                let i = tri[k] as usize;
-                if p.queries[i].0 == ptex {
-                    positions[i]
-                } else {
-                    at(c[k][0], c[k][1]).unwrap_or(positions[i])
-                }
-            });
-            let mut w = 0.0f64;
-            for i in 0..3 {
-                let j = (i + 1) % 3;
-                // An edge inside the ptex face is measured from one of its two triangles;
-                // one along its side from each (its twin lies in another ptex face).
-                if tri[i] > tri[j] && sides(c[i]) & sides(c[j]) == 0 {
+        .par_chunks(CHUNK)
+        .zip(p.triangle_uv.par_chunks(CHUNK))
+        .flat_map_iter(|(tris, uvs)| {
+            let mut cache = PatchCache::new();
+            let mut found = Vec::new();
+            for (tri, &(ptex, c)) in tris.iter().zip(uvs) {
+                if !measured(ptex) {
                     continue;
                 }
-                if let Some(m) = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1])) {
-                    w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
+                let mut at = |u: f32, v: f32| cache.position(surface, ptex as usize, u, v);
+                // A sample another ptex face evaluates is taken again from this one: the
+                // chords are this face's (a table whose neighbouring patches part by more
+                // than the tolerance is not mended by finer rates).
+                let x = [0, 1, 2].map(|k| {
+                    let i = tri[k] as usize;
+                    if p.queries[i].0 == ptex {
+                        positions[i]
+                    } else {
+                        at(c[k][0], c[k][1]).unwrap_or(positions[i])
+                    }
+                });
+                let mut w = 0.0f64;
+                for i in 0..3 {
+                    let j = (i + 1) % 3;
+                    // An edge inside the ptex face is measured from one of its two
+                    // triangles; one along its side from each (its twin lies in another
+                    // ptex face).
+                    if tri[i] > tri[j] && sides(c[i]) & sides(c[j]) == 0 {
+                        continue;
+                    }
+                    if let Some(m) = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1])) {
+                        w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
+                    }
                 }
+                let g = at(
+                    (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                    (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+                );
+                if let Some(g) = g {
+                    w = w.max(dist(
+                        [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0),
+                        g,
+                    ));
+                }
+                found.push((face_of_ptex[ptex as usize], w));
             }
-            let g = at(
-                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
-                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
-            );
-            if let Some(g) = g {
-                w = w.max(dist(
-                    [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0),
-                    g,
-                ));
-            }
-            (face_of_ptex[ptex as usize], w)
+            found
         })
         .collect();
     let mut out = vec![0.0f64; nf];
