@@ -113,7 +113,7 @@ fn basis<T: Real>(kind: PatchKind, param: &PatchParam, sharpness: T, s: T, t: T)
 /// The position weights of [`patch_weights`] alone (its `p`, bit for bit): for regular and
 /// single-crease patches only the tensor of the two curves' position weights is formed, none
 /// of the derivative weights, which a position query (the rate curves of adaptive
-/// tessellation) does not read; Gregory patches go through [`patch_weights`].
+/// tessellation) does not read; for Gregory patches only the 20 position weights.
 pub fn patch_position_weights<T: Real>(
     kind: PatchKind,
     param: &PatchParam,
@@ -123,7 +123,7 @@ pub fn patch_position_weights<T: Real>(
 ) -> [T; 20] {
     let (s, t) = param.normalize(u, v);
     let Basis::Tensor([wu, wv]) = basis(kind, param, sharpness, s, t) else {
-        return patch_weights(kind, param, sharpness, u, v).p;
+        return super::gregory::gregory_position_weights(s, t);
     };
     let mut p = [T::ZERO; 20];
     for j in 0..4 {

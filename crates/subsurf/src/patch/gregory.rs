@@ -87,13 +87,7 @@ pub const GREGORY_INTERIOR: [(usize, usize, usize, usize); 4] =
 /// `g = N / D` with `N`, `D` linear: corner 0 `u/(u+v)`, corner 1 `v/(1−u+v)`,
 /// corner 2 `(1−u)/(2−u−v)`, corner 3 `(1−v)/(1+u−v)`.
 fn rational<T: Real>(k: usize, u: T, v: T) -> Option<[T; 6]> {
-    let one = T::ONE;
-    let (n, nu, nv, d, du, dv) = match k {
-        0 => (u, one, T::ZERO, u + v, one, one),
-        1 => (v, T::ZERO, one, one - u + v, -one, one),
-        2 => (one - u, -one, T::ZERO, (one - u) + (one - v), -one, -one),
-        _ => (one - v, T::ZERO, -one, u + (one - v), one, -one),
-    };
+    let (n, nu, nv, d, du, dv) = rational_terms(k, u, v);
     if d <= T::ZERO {
         return None;
     }
@@ -109,6 +103,37 @@ fn rational<T: Real>(k: usize, u: T, v: T) -> Option<[T; 6]> {
         -(dv * gu + du * gv) / d,
         -two * dv * gv / d,
     ])
+}
+
+/// The numerator and denominator of [`rational`]'s `g` with their partial derivatives:
+/// `(N, N_u, N_v, D, D_u, D_v)`.
+fn rational_terms<T: Real>(k: usize, u: T, v: T) -> (T, T, T, T, T, T) {
+    let one = T::ONE;
+    match k {
+        0 => (u, one, T::ZERO, u + v, one, one),
+        1 => (v, T::ZERO, one, one - u + v, -one, one),
+        2 => (one - u, -one, T::ZERO, (one - u) + (one - v), -one, -one),
+        _ => (one - v, T::ZERO, -one, u + (one - v), one, -one),
+    }
+}
+
+/// The position weights of [`gregory_patch_weights`] alone (its `p`, bit for bit: the same
+/// products in the same order), without the derivative weights a position query does not
+/// read.
+pub fn gregory_position_weights<T: Real>(u: T, v: T) -> [T; 20] {
+    let (bu, bv) = (bezier_curve(u).p, bezier_curve(v).p);
+    let mut p = [T::ZERO; 20];
+    for &(g, i, j) in &GREGORY_BOUNDARY {
+        p[g] = bu[i] * bv[j];
+    }
+    for (k, &(plus, minus, i, j)) in GREGORY_INTERIOR.iter().enumerate() {
+        let (n, _, _, d, _, _) = rational_terms(k, u, v);
+        let g = if d <= T::ZERO { T::ZERO } else { n / d };
+        let (a, b) = (bu[i], bv[j]);
+        p[plus] = a * b * g;
+        p[minus] = a * b * (T::ONE - g);
+    }
+    p
 }
 
 /// Weights of the 20 Gregory points at `(u, v)`.
@@ -169,6 +194,29 @@ pub fn eval_gregory_patch<T: Real, const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The position-only weights are those of the full evaluation, bit for bit, on a grid
+    /// that holds the corners (where the rational weights fall back) and the edges.
+    #[test]
+    fn position_weights_are_the_full_weights() {
+        let n = 24;
+        for i in 0..=n {
+            for j in 0..=n {
+                let (u, v) = (i as f32 / n as f32, j as f32 / n as f32);
+                for d in [
+                    GregoryDerivatives::Exact,
+                    GregoryDerivatives::BezierApproximation,
+                ] {
+                    let full = gregory_patch_weights(u, v, d).p;
+                    let pos = gregory_position_weights(u, v);
+                    assert_eq!(pos.map(f32::to_bits), full.map(f32::to_bits), "({u}, {v})");
+                }
+                let (u, v) = (f64::from(u) * 0.999 + 1e-4, f64::from(v));
+                let full = gregory_patch_weights(u, v, GregoryDerivatives::Exact).p;
+                assert_eq!(gregory_position_weights(u, v), full, "({u}, {v})");
+            }
+        }
+    }
 
     #[test]
     fn every_point_has_a_slot() {
