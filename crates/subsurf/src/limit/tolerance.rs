@@ -74,7 +74,8 @@ const RATIO: (f64, f64) = (0.5, 0.8);
 /// Chaikin's rule, whose sharpness varies along a crease) one on a semi-sharp crease.
 /// (Boundary vertices, whose edges are infinitely sharp too, are left out: their boundary
 /// patches are exact. Non-manifold vertices are left out too: measuring them changed nothing
-/// on `catmark_nonman_verts` or `catmark_val2_nonman`, whose misses are seams, not levels.)
+/// on `catmark_nonman_verts` or `catmark_val2_nonman`, whose misses were narrow bends that
+/// the tessellation's check resolves, not levels.)
 fn sharp_feature_face(base: &Topology, f: usize) -> bool {
     let chaikin = base.options.crease_method == CreaseMethod::Chaikin;
     base.face_vertices(f).iter().any(|&v| {
@@ -86,12 +87,16 @@ fn sharp_feature_face(base: &Topology, f: usize) -> bool {
 }
 
 /// Per base face: the largest distance between `a` and `b` at `a`'s patches that may only
-/// approximate the limit surface in that face (module documentation).
-fn end_cap_differences<R: Real>(a: &LimitSurface<R>, b: &LimitSurface<R>) -> Vec<f64> {
+/// approximate the limit surface in that face (module documentation): its end caps, and all
+/// its patches where `feature` flags it ([`sharp_feature_face`]).
+fn end_cap_differences<R: Real>(
+    a: &LimitSurface<R>,
+    b: &LimitSurface<R>,
+    feature: &[bool],
+) -> Vec<f64> {
     let t = &a.table;
     let nf = t.base.num_faces();
     let face_of_ptex = t.ptex_base_faces();
-    let feature: Vec<bool> = (0..nf).map(|f| sharp_feature_face(&t.base, f)).collect();
     let per_patch: Vec<(u32, f64)> = (0..t.num_patches())
         .into_par_iter()
         .filter(|&p| {
@@ -184,7 +189,8 @@ fn choose_from<R: Real>(
         deviation: vec![0.0; nf],
         ratio: vec![1.0; nf],
     };
-    let plain = s0.table.counts().gregory == 0 && !(0..nf).any(|f| sharp_feature_face(base, f));
+    let feature: Vec<bool> = (0..nf).map(|f| sharp_feature_face(base, f)).collect();
+    let plain = s0.table.counts().gregory == 0 && !feature.contains(&true);
     if l0 >= MAX_ISOLATION_LEVEL || plain {
         return Ok(keep(l0));
     }
@@ -200,11 +206,11 @@ fn choose_from<R: Real>(
         Some(s2) => {
             let s2 = s2?;
             rayon::join(
-                || end_cap_differences(s0, &s1),
-                || end_cap_differences(&s1, &s2),
+                || end_cap_differences(s0, &s1, &feature),
+                || end_cap_differences(&s1, &s2, &feature),
             )
         }
-        None => (end_cap_differences(s0, &s1), vec![f64::NAN; nf]),
+        None => (end_cap_differences(s0, &s1, &feature), vec![f64::NAN; nf]),
     };
     let mut out = keep(l0);
     for f in 0..nf {
