@@ -117,8 +117,8 @@ fn rational_terms<T: Real>(k: usize, u: T, v: T) -> (T, T, T, T, T, T) {
     }
 }
 
-/// The position weights of [`gregory_patch_weights`] alone (its `p`, bit for bit: the same
-/// products in the same order), without the derivative weights a position query does not
+/// The position weights of the 20 Gregory points at `(u, v)`: [`gregory_patch_weights`]'s
+/// `p` (which it takes from here), without the derivative weights a position query does not
 /// read.
 pub fn gregory_position_weights<T: Real>(u: T, v: T) -> [T; 20] {
     let (bu, bv) = (bezier_curve(u).p, bezier_curve(v).p);
@@ -144,9 +144,11 @@ pub fn gregory_patch_weights<T: Real>(
 ) -> PatchWeights<T, 20> {
     let bu = bezier_curve(u);
     let bv = bezier_curve(v);
-    let mut w = PatchWeights::<T, 20>::default();
+    let mut w = PatchWeights::<T, 20> {
+        p: gregory_position_weights(u, v),
+        ..Default::default()
+    };
     for &(g, i, j) in &GREGORY_BOUNDARY {
-        w.p[g] = bu.p[i] * bv.p[j];
         w.du[g] = bu.d1[i] * bv.p[j];
         w.dv[g] = bu.p[i] * bv.d1[j];
         w.duu[g] = bu.d2[i] * bv.p[j];
@@ -170,7 +172,6 @@ pub fn gregory_patch_weights<T: Real>(
         let (b, b1, b2) = (bv.p[j], bv.d1[j], bv.d2[j]);
         for (idx, q) in [plus, minus].into_iter().zip(pair) {
             let [g, gu, gv, guu, guv, gvv] = q;
-            w.p[idx] = a * b * g;
             w.du[idx] = (a1 * g + a * gu) * b;
             w.dv[idx] = (b1 * g + b * gv) * a;
             w.duu[idx] = (a2 * g + two * a1 * gu + a * guu) * b;
@@ -195,8 +196,10 @@ pub fn eval_gregory_patch<T: Real, const D: usize>(
 mod tests {
     use super::*;
 
-    /// The position-only weights are those of the full evaluation, bit for bit, on a grid
-    /// that holds the corners (where the rational weights fall back) and the edges.
+    /// The position-only weights are those of the full evaluation, bit for bit (which takes
+    /// them from there), on a grid that holds the corners (where the rational weights fall
+    /// back) and the edges; the full evaluation's agreement with OpenSubdiv is
+    /// `tests/limit_osd.rs`'s.
     #[test]
     fn position_weights_are_the_full_weights() {
         let n = 24;
