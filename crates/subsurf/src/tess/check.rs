@@ -165,9 +165,11 @@ pub fn tessellate_within_tolerance(
     let mut p = plan(table, &rates, origin)?;
     // After the first round only the faces whose samples changed are measured again.
     let mut only: Option<Vec<bool>> = None;
-    let (mut missed, mut stuck) = (vec![false; t.num_faces()], vec![false; t.num_faces()]);
-    let mut last = vec![0.0f64; t.num_faces()];
+    // Per face: its interior rate at its first miss (0: none yet), its last miss, and
+    // whether it is left.
     let mut first = vec![0u32; t.num_faces()];
+    let mut last = vec![0.0f64; t.num_faces()];
+    let mut stuck = vec![false; t.num_faces()];
     for _ in 1..ROUNDS {
         let errors = chord_errors(surface, &p, &face_of_ptex, only.as_deref());
         if rates.faces.is_empty() {
@@ -185,7 +187,8 @@ pub fn tessellate_within_tolerance(
             // which finer rates resolve only once they pass its width, or is no chord error
             // at all (the surface is not continuous there): the face's rates are doubled
             // until they are 8x those of its first miss, then left.
-            let flat = missed[f] && w > 0.99 * last[f];
+            let missed = first[f] > 0;
+            let flat = missed && w > 0.99 * last[f];
             let inner = if rates.faces[f] > 0 {
                 rates.faces[f]
             } else {
@@ -195,7 +198,7 @@ pub fn tessellate_within_tolerance(
                     .max()
                     .unwrap_or(1)
             };
-            if !missed[f] {
+            if !missed {
                 first[f] = inner;
             }
             if flat && inner >= 8 * first[f] {
@@ -210,12 +213,11 @@ pub fn tessellate_within_tolerance(
             let excess = w / bound;
             let k = if flat {
                 2.0
-            } else if missed[f] {
+            } else if missed {
                 excess.max(1.25) * 1.05
             } else {
                 excess.sqrt().max(1.25) * 1.05
             };
-            missed[f] = true;
             let up = |r: u32| ((f64::from(r) * k).ceil() as u32).min(MAX_RATE);
             for &e in t.face_edges(f) {
                 let e = e as usize;
