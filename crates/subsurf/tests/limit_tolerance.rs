@@ -8,7 +8,8 @@ mod limit_common;
 use limit_common::{bbox_diagonal, dist, isolated, load_shape, Lcg};
 use subsurf::limit::tolerance::split_tolerance;
 use subsurf::limit::{
-    build_for_tolerance, choose_isolation, LimitSurface, PatchTable, PatchType, SharpnessEdit,
+    build_for_tolerance, choose_isolation, IsolationChoice, LimitSurface, PatchTable, PatchType,
+    SharpnessEdit,
 };
 use subsurf::surface::{adaptive_surface, tessellate_adaptive, Cpu};
 use subsurf::tess::{plan, AdaptiveTessellation, RatePolicy};
@@ -116,13 +117,8 @@ fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
     }
 }
 
-/// The largest distance between `s`'s end caps and the reference `r`, over a 9 x 9 grid of
-/// each, as a fraction of `diag`.
-fn end_cap_deviation(s: &LimitSurface<f64>, r: &LimitSurface<f64>, diag: f64) -> f64 {
-    deviation_of(s, r, diag, &[PatchType::Gregory])
-}
-
-/// [`end_cap_deviation`] over the patches of the types `kinds`.
+/// The largest distance between `s`'s patches of the types `kinds` and the reference `r`,
+/// over a 9 x 9 grid of each, as a fraction of `diag`.
 fn deviation_of(
     s: &LimitSurface<f64>,
     r: &LimitSurface<f64>,
@@ -146,6 +142,41 @@ fn deviation_of(
     worst
 }
 
+/// What `build_for_tolerance` at isolation 4 does to shape `name` under `budget`.
+struct Choice {
+    /// The topology.
+    t: Topology,
+    /// The worst distance of the patches of the measured types to the isolation-10 surface,
+    /// as a fraction of the diagonal, at isolation 4 everywhere and with the choice.
+    before: f64,
+    after: f64,
+    /// The choice.
+    choice: IsolationChoice,
+    /// Base faces isolated deeper than 4.
+    deeper: usize,
+}
+
+/// [`Choice`] of shape `name`, measured on the patches of the types `kinds`.
+fn choose(name: &str, budget: f32, kinds: &[PatchType]) -> Choice {
+    let mesh = load_shape(name);
+    let t = Topology::new(&mesh).unwrap();
+    let diag = f64::from(bbox_diagonal(&mesh.positions));
+    let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
+    let plain = surface(&mesh, PatchTable::build_real(&t, &isolated(4)).unwrap());
+    let before = deviation_of(&plain, &reference, diag, kinds);
+    let (table, choice) =
+        build_for_tolerance::<f64>(&t, &isolated(4), &mesh.positions, budget).unwrap();
+    let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
+    let after = deviation_of(&surface(&mesh, table), &reference, diag, kinds);
+    Choice {
+        t,
+        before,
+        after,
+        choice,
+        deeper,
+    }
+}
+
 /// `build_for_tolerance`: every end cap within the budget of the isolation-10 surface, where
 /// the default isolation 4 misses it; only the faces that need it are isolated deeper.
 #[test]
@@ -156,16 +187,13 @@ fn end_caps_within_the_budget_of_the_true_limit() {
         ("catmark_xord_boundary", 1e-3),
         ("catmark_car", 2.5e-4),
     ] {
-        let mesh = load_shape(name);
-        let t = Topology::new(&mesh).unwrap();
-        let diag = f64::from(bbox_diagonal(&mesh.positions));
-        let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
-        let plain = surface(&mesh, PatchTable::build_real(&t, &isolated(4)).unwrap());
-        let before = end_cap_deviation(&plain, &reference, diag);
-        let (table, choice) =
-            build_for_tolerance::<f64>(&t, &isolated(4), &mesh.positions, budget).unwrap();
-        let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
-        let after = end_cap_deviation(&surface(&mesh, table), &reference, diag);
+        let Choice {
+            t,
+            before,
+            after,
+            choice,
+            deeper,
+        } = choose(name, budget, &[PatchType::Gregory]);
         eprintln!(
             "{name}: budget {budget:e}: end caps {before:.2e} at isolation 4 -> {after:.2e}, \
              {deeper} of {} faces deeper (levels up to {})",
@@ -187,26 +215,23 @@ fn end_caps_within_the_budget_of_the_true_limit() {
 /// and isolates their faces deeper, within the budget of the isolation-10 surface.
 #[test]
 fn sharp_features_are_isolated_deeper() {
+    let kinds = [
+        PatchType::Regular,
+        PatchType::SingleCrease,
+        PatchType::Gregory,
+    ];
     for (name, budget) in [
         ("catmark_inf_crease0", 7.5e-4f32),
         ("catmark_fvar_project0", 7.5e-4),
         ("catmark_chaikin1", 2.5e-4),
     ] {
-        let mesh = load_shape(name);
-        let t = Topology::new(&mesh).unwrap();
-        let diag = f64::from(bbox_diagonal(&mesh.positions));
-        let reference = surface(&mesh, PatchTable::build_real(&t, &isolated(10)).unwrap());
-        let plain = surface(&mesh, PatchTable::build_real(&t, &isolated(4)).unwrap());
-        let kinds = [
-            PatchType::Regular,
-            PatchType::SingleCrease,
-            PatchType::Gregory,
-        ];
-        let before = deviation_of(&plain, &reference, diag, &kinds);
-        let (table, choice) =
-            build_for_tolerance::<f64>(&t, &isolated(4), &mesh.positions, budget).unwrap();
-        let deeper = choice.face_levels.iter().filter(|&&l| l > 4).count();
-        let after = deviation_of(&surface(&mesh, table), &reference, diag, &kinds);
+        let Choice {
+            t,
+            before,
+            after,
+            deeper,
+            ..
+        } = choose(name, budget, &kinds);
         eprintln!(
             "{name}: {before:.2e} at isolation 4 -> {after:.2e}, {deeper} of {} faces deeper",
             t.num_faces()
