@@ -26,6 +26,8 @@ mod fvar_stencils;
 mod fvar_topology;
 mod interpolate;
 mod into;
+#[cfg(target_arch = "x86_64")]
+mod lanes;
 mod last_level;
 mod level;
 mod level_tags;

@@ -18,6 +18,8 @@
 //! Exceptions are evaluated from their stored rows. Every row is summed in the stored entry
 //! order with the stored weights, so the result is bit-identical to [`LevelStencils::apply`].
 
+#[cfg(target_arch = "x86_64")]
+use super::lanes;
 use super::masks::LevelStencils;
 use super::stencil::StencilTable;
 use rayon::prelude::*;
@@ -103,8 +105,9 @@ impl StepPlan {
                 && w.iter().all(|x| x.to_bits() == quarter))
         });
         let exceptions = vertex_special.len() + edge_special.len();
+        let stencils_only = 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows();
         StepPlan {
-            stencils_only: 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows(),
+            stencils_only,
             quad_faces,
             vertex_special,
             vertex_odd,
@@ -133,30 +136,45 @@ impl StepPlan {
             s.apply(src, dst);
             return;
         }
+        #[cfg(target_arch = "x86_64")]
+        if let (Some(src), Some(dst)) = (lanes::as3(src), lanes::as3_mut(dst)) {
+            return self.apply_with::<3, lanes::Lanes3>(s, src, dst);
+        }
+        self.apply_with::<N, [f32; N]>(s, src, dst);
+    }
+
+    /// [`StepPlan::apply`] summing each row in accumulators of type `A` (the same products
+    /// and sums in the same order, whatever `A`).
+    fn apply_with<const N: usize, A: Acc<N>>(
+        &self,
+        s: &LevelStencils,
+        src: &[[f32; N]],
+        dst: &mut [[f32; N]],
+    ) {
         let (nv, nf) = (s.vertex.num_rows(), s.face.num_rows());
         let (vd, rest) = dst.split_at_mut(nv);
         let (fd, ed) = rest.split_at_mut(nf);
         if self.quad_faces {
             fd.par_chunks_mut(CHUNK)
                 .zip(s.face.indices[..4 * nf].par_chunks(4 * CHUNK))
-                .for_each(|(out, q)| quad_rows(q, src, out));
+                .for_each(|(out, q)| quad_rows::<N, A>(q, src, out));
         } else {
             s.face.apply(src, fd);
         }
         let fd: &[[f32; N]] = fd;
         let p = s.num_parent_vertices;
         vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.vertex_rows(&s.vertex, p, c * CHUNK, out, src, fd);
+            self.vertex_rows::<N, A>(&s.vertex, p, c * CHUNK, out, src, fd);
         });
         ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            edge_rows(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
+            edge_rows::<N, A>(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
         });
     }
 
     /// Vertex rows `first..first + out.len()`: the runs of smooth valence-4 rows (9 entries
     /// each, contiguous from the run's first offset) between the other rows, each of those
     /// from its offsets (an exception from its stored row).
-    fn vertex_rows<const N: usize>(
+    fn vertex_rows<const N: usize, A: Acc<N>>(
         &self,
         t: &StencilTable,
         p: usize,
@@ -170,38 +188,33 @@ impl StepPlan {
         let mut odd = in_range(&self.vertex_odd, first, out.len()).iter();
         let row = |r: Option<&u32>| r.map_or(end, |&r| r as usize);
         let (mut next_special, mut next_odd) = (row(special.next()), row(odd.next()));
-        let [w4, wv4] = VALENCE4;
         let mut out = out;
         let mut r = first;
         let mut j = t.offsets[first] as usize;
         loop {
             let e = next_special.min(next_odd);
             let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
-            let idx = &t.indices[j..j + 9 * run.len()];
-            for (o, q) in run.iter_mut().zip(idx.chunks_exact(9)) {
-                let q: &[u32; 9] = q.try_into().expect("chunks of 9");
-                *o = smooth_vertex4(q, w4, wv4, p, src, fd);
-            }
+            vertex4_run::<N, A>(&t.indices[j..j + 9 * run.len()], run, p, src, fd);
             let Some((o, rest)) = rest.split_first_mut() else {
                 break;
             };
             let (lo, hi) = (j + 9 * run.len(), t.offsets[e + 1] as usize);
             let idx = &t.indices[lo..hi];
             if e == next_special {
-                *o = general_row(idx, &t.weights[lo..hi], p, src, fd);
+                *o = general_row::<N, A>(idx, &t.weights[lo..hi], p, src, fd);
                 next_special = row(special.next());
             } else {
                 let n = idx.len() / 2;
                 let [w, wv] = self.valence_weights[n];
-                let mut acc = [0.0f32; N];
+                let mut acc = A::zero();
                 for &k in &idx[..n] {
-                    add(&mut acc, w, &fd[k as usize - p]);
+                    acc.add(w, fd, k as usize - p);
                 }
                 for &k in &idx[n..2 * n] {
-                    add(&mut acc, w, &src[k as usize]);
+                    acc.add(w, src, k as usize);
                 }
-                add(&mut acc, wv, &src[idx[2 * n] as usize]);
-                *o = acc;
+                acc.add(wv, src, idx[2 * n] as usize);
+                *o = acc.get();
                 next_odd = row(odd.next());
             }
             out = rest;
@@ -216,53 +229,75 @@ impl StepPlan {
 const VALENCE4: [f32; 2] = [0.0625, 0.5];
 
 /// Face points of quads whose vertices are `idx` (four per row of `out`), `1/4` each.
-fn quad_rows<const N: usize>(idx: &[u32], src: &[[f32; N]], out: &mut [[f32; N]]) {
+fn quad_rows<const N: usize, A: Acc<N>>(idx: &[u32], src: &[[f32; N]], out: &mut [[f32; N]]) {
     for (o, q) in out.iter_mut().zip(idx.chunks_exact(4)) {
         let &[a, b, c, d] = q else {
             unreachable!("chunks of 4")
         };
-        let mut acc = [0.0f32; N];
-        add(&mut acc, 0.25, &src[a as usize]);
-        add(&mut acc, 0.25, &src[b as usize]);
-        add(&mut acc, 0.25, &src[c as usize]);
-        add(&mut acc, 0.25, &src[d as usize]);
-        *o = acc;
+        let mut acc = A::zero();
+        acc.add(0.25, src, a as usize);
+        acc.add(0.25, src, b as usize);
+        acc.add(0.25, src, c as usize);
+        acc.add(0.25, src, d as usize);
+        *o = acc.get();
     }
 }
 
-/// `acc += w · v`, component by component (the tables' accumulation).
-#[inline(always)]
-fn add<const N: usize>(acc: &mut [f32; N], w: f32, v: &[f32; N]) {
-    for (a, x) in acc.iter_mut().zip(v) {
-        *a += w * x;
+/// A row's running sum: `add` does `acc += w · v` component by component (the tables'
+/// accumulation), whatever the representation.
+pub(crate) trait Acc<const N: usize>: Copy {
+    /// All components zero.
+    fn zero() -> Self;
+    /// `self += w · v[k]`.
+    fn add(&mut self, w: f32, v: &[[f32; N]], k: usize);
+    /// The components.
+    fn get(self) -> [f32; N];
+}
+
+impl<const N: usize> Acc<N> for [f32; N] {
+    #[inline(always)]
+    fn zero() -> Self {
+        [0.0; N]
+    }
+    #[inline(always)]
+    fn add(&mut self, w: f32, v: &[[f32; N]], k: usize) {
+        for (a, x) in self.iter_mut().zip(&v[k]) {
+            *a += w * x;
+        }
+    }
+    #[inline(always)]
+    fn get(self) -> [f32; N] {
+        self
     }
 }
 
-/// A smooth vertex row of valence 4 (9 entries), unrolled.
-#[inline(always)]
-fn smooth_vertex4<const N: usize>(
-    idx: &[u32; 9],
-    w: f32,
-    wv: f32,
+/// Smooth vertex rows of valence 4, 9 indices each in `idx`, into `out`.
+fn vertex4_run<const N: usize, A: Acc<N>>(
+    idx: &[u32],
+    out: &mut [[f32; N]],
     p: usize,
     src: &[[f32; N]],
     fd: &[[f32; N]],
-) -> [f32; N] {
-    let mut acc = [0.0f32; N];
-    for &k in &idx[..4] {
-        add(&mut acc, w, &fd[k as usize - p]);
+) {
+    let [w, wv] = VALENCE4;
+    for (o, q) in out.iter_mut().zip(idx.chunks_exact(9)) {
+        let q: &[u32; 9] = q.try_into().expect("chunks of 9");
+        let mut acc = A::zero();
+        for &k in &q[..4] {
+            acc.add(w, fd, k as usize - p);
+        }
+        for &k in &q[4..8] {
+            acc.add(w, src, k as usize);
+        }
+        acc.add(wv, src, q[8] as usize);
+        *o = acc.get();
     }
-    for &k in &idx[4..8] {
-        add(&mut acc, w, &src[k as usize]);
-    }
-    add(&mut acc, wv, &src[idx[8] as usize]);
-    acc
 }
 
 /// Edge rows `first..first + out.len()`: the runs of smooth rows between exceptions (four
 /// indices each, contiguous from the run's first offset), then each exception from its
 /// stored row.
-fn edge_rows<const N: usize>(
+fn edge_rows<const N: usize, A: Acc<N>>(
     t: &StencilTable,
     special: &[u32],
     p: usize,
@@ -281,44 +316,58 @@ fn edge_rows<const N: usize>(
         .chain([end])
     {
         let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
-        let idx = &t.indices[j..j + 4 * run.len()];
-        for (o, q) in run.iter_mut().zip(idx.chunks_exact(4)) {
-            let &[a, b, c, d] = q else {
-                unreachable!("chunks of 4")
-            };
-            let mut acc = [0.0f32; N];
-            add(&mut acc, 0.25, &fd[a as usize - p]);
-            add(&mut acc, 0.25, &fd[b as usize - p]);
-            add(&mut acc, 0.25, &src[c as usize]);
-            add(&mut acc, 0.25, &src[d as usize]);
-            *o = acc;
-        }
+        edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, p, src, fd);
         let Some((o, rest)) = rest.split_first_mut() else {
             break;
         };
         let (lo, hi) = (j + 4 * run.len(), t.offsets[e + 1] as usize);
-        *o = general_row(&t.indices[lo..hi], &t.weights[lo..hi], p, src, fd);
+        *o = general_row::<N, A>(&t.indices[lo..hi], &t.weights[lo..hi], p, src, fd);
         out = rest;
         j = hi;
         r = e + 1;
     }
 }
 
+/// Smooth two-face edge rows, 4 indices each in `idx` (two face points, two ends), into `out`.
+fn edge_run<const N: usize, A: Acc<N>>(
+    idx: &[u32],
+    out: &mut [[f32; N]],
+    p: usize,
+    src: &[[f32; N]],
+    fd: &[[f32; N]],
+) {
+    for (o, q) in out.iter_mut().zip(idx.chunks_exact(4)) {
+        let &[a, b, c, d] = q else {
+            unreachable!("chunks of 4")
+        };
+        let mut acc = A::zero();
+        acc.add(0.25, fd, a as usize - p);
+        acc.add(0.25, fd, b as usize - p);
+        acc.add(0.25, src, c as usize);
+        acc.add(0.25, src, d as usize);
+        *o = acc.get();
+    }
+}
+
 /// A stored row over parent vertices (`k < p`) and face points (`fd[k - p]`).
 #[inline]
-fn general_row<const N: usize>(
+fn general_row<const N: usize, A: Acc<N>>(
     idx: &[u32],
     w: &[f32],
     p: usize,
     src: &[[f32; N]],
     fd: &[[f32; N]],
 ) -> [f32; N] {
-    let mut acc = [0.0f32; N];
+    let mut acc = A::zero();
     for (&k, &w) in idx.iter().zip(w) {
         let k = k as usize;
-        add(&mut acc, w, if k < p { &src[k] } else { &fd[k - p] });
+        if k < p {
+            acc.add(w, src, k);
+        } else {
+            acc.add(w, fd, k - p);
+        }
     }
-    acc
+    acc.get()
 }
 
 /// The entries of the ascending list `rows` that fall in `first..first + len`.
