@@ -13,7 +13,7 @@ use subsurf::Refiner;
 /// smooth plan, and applying every stored row with its weight and offsets.
 pub fn frame_bytes(r: &Refiner) -> (usize, usize) {
     let (mut plan, mut tables) = (0, 0);
-    for s in &r.stencils {
+    for s in r.stencils() {
         let values = 12 * (s.num_parent_vertices + s.num_rows());
         plan += values
             + 4 * (s.face.indices.len() + s.vertex.offsets.len() + s.vertex.indices.len())
@@ -50,19 +50,19 @@ pub fn stored_rows_frame(
     out: &mut [[f32; 3]],
     scratch: &mut Vec<[f32; 3]>,
 ) {
-    let steps = r.stencils.len();
+    let steps = r.stencils().len();
     if steps >= 2 {
         scratch.resize(
-            scratch.len().max(r.stencils[steps - 2].num_rows()),
+            scratch.len().max(r.stencils()[steps - 2].num_rows()),
             [0.0; 3],
         );
     }
-    for (i, s) in r.stencils.iter().enumerate() {
+    for (i, s) in r.stencils().iter().enumerate() {
         let n = s.num_rows();
         let prev = if i == 0 {
             0
         } else {
-            r.stencils[i - 1].num_rows()
+            r.stencils()[i - 1].num_rows()
         };
         if (steps - i - 1) % 2 == 0 {
             let src: &[[f32; 3]] = if i == 0 { base } else { &scratch[..prev] };

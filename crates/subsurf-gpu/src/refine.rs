@@ -87,7 +87,7 @@ impl GpuRefiner {
     /// chunks, which tests use to exercise chunking).
     pub fn with_limits(ctx: &GpuContext, refiner: &Refiner, limits: ChunkLimits) -> Result<Self> {
         let counts: Vec<usize> = refiner.levels.iter().map(|t| t.num_vertices()).collect();
-        Self::from_stencils(ctx, &counts, &refiner.stencils, limits)
+        Self::from_stencils(ctx, &counts, refiner.stencils(), limits)
     }
 
     /// Uploads `stencils[k]` (level `k` to `k + 1`) for levels of `vertex_counts[k]` vertices

@@ -94,7 +94,7 @@ fn loop_shapes_refine_on_the_gpu_as_on_the_cpu() {
         gpu.update(&ctx, &mesh.positions).unwrap();
         // The CPU twin of the kernel, level by level, from the GPU's parent level.
         let mut parent: Vec<f32> = mesh.positions.as_flattened().to_vec();
-        for (l, s) in refiner.stencils.iter().enumerate() {
+        for (l, s) in refiner.stencils().iter().enumerate() {
             let got = gpu.download_level(&ctx, l + 1).unwrap();
             let what = format!("{name} level {}", l + 1);
             assert_twin(&what, exact, s, &parent, got.as_flattened());

@@ -1,6 +1,7 @@
-//! `Refiner::refine_positions_into` against `Refiner::refine_positions`: the same bits on
-//! creased, boundary and lean shapes at every depth, buffers reused across calls, and typed
-//! errors (no panic) on wrong lengths.
+//! `Refiner::refine_positions_into` against the stored stencil tables applied step by step
+//! (`Refiner::refine_all`, what `refine_positions` gives): the same bits on creased, boundary
+//! and lean shapes at every depth, buffers reused across calls, and typed errors (no panic)
+//! on wrong lengths.
 
 use std::path::PathBuf;
 use subsurf::{Error, Mesh, MeshError, RefineOptions, Refiner, Topology};
@@ -33,7 +34,7 @@ fn bit_identical_to_refine_positions_at_every_depth() {
             };
             for level in 0..=3 {
                 let r = Refiner::with_options(Topology::new(m).unwrap(), level, options).unwrap();
-                let want = r.refine_positions(&m.positions);
+                let want = r.refine_all(&m.positions).pop().unwrap();
                 // NaN-filled: every value must be written.
                 let mut out = vec![[f32::NAN; 3]; want.len()];
                 r.refine_positions_into(&m.positions, &mut out, &mut scratch)
@@ -47,7 +48,7 @@ fn bit_identical_to_refine_positions_at_every_depth() {
                     .collect();
                 r.refine_positions_into(&moved, &mut out, &mut scratch)
                     .unwrap();
-                assert_eq!(bits(&out), bits(&r.refine_positions(&moved)));
+                assert_eq!(bits(&out), bits(&r.refine_all(&moved).pop().unwrap()));
             }
         }
     }
@@ -62,7 +63,7 @@ fn other_widths_match_too() {
     let mut scratch = Vec::new();
     r.refine_positions_into(&uv, &mut out, &mut scratch)
         .unwrap();
-    assert_eq!(bits(&out), bits(&r.refine_positions(&uv)));
+    assert_eq!(bits(&out), bits(&r.refine_all(&uv).pop().unwrap()));
     // The scratch holds the second-to-last level only.
     assert_eq!(scratch.len(), r.levels[1].num_vertices());
 }
@@ -102,7 +103,7 @@ fn bit_identical_on_every_regression_shape() {
     for path in paths {
         let m = subsurf::io::read_path(&path).unwrap();
         let r = Refiner::new(Topology::new(&m).unwrap(), 2).unwrap();
-        let want = r.refine_positions(&m.positions);
+        let want = r.refine_all(&m.positions).pop().unwrap();
         let mut out = vec![[f32::NAN; 3]; want.len()];
         r.refine_positions_into(&m.positions, &mut out, &mut scratch)
             .unwrap();

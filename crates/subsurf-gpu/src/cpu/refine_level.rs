@@ -111,7 +111,7 @@ pub fn refine_level_step(s: &LevelStencils, parent: &[f32], stride: usize) -> Re
 /// All levels of `refiner` applied to `base` positions; returns the last level.
 pub fn refine_positions(refiner: &Refiner, base: &[[f32; 3]]) -> Result<Vec<[f32; 3]>> {
     let mut cur: Vec<f32> = base.iter().flatten().copied().collect();
-    for s in &refiner.stencils {
+    for s in refiner.stencils() {
         cur = refine_level_step(s, &cur, 3)?;
     }
     Ok(cur.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect())
@@ -140,7 +140,7 @@ mod tests {
     fn rejects_bad_strides_and_lengths() {
         let mesh = shapes::cube();
         let r = Refiner::new(Topology::new(&mesh).unwrap(), 1).unwrap();
-        assert!(refine_level_step(&r.stencils[0], &[0.0; 8 * 5], 5).is_err());
-        assert!(refine_level_step(&r.stencils[0], &[0.0; 7 * 3], 3).is_err());
+        assert!(refine_level_step(&r.stencils()[0], &[0.0; 8 * 5], 5).is_err());
+        assert!(refine_level_step(&r.stencils()[0], &[0.0; 7 * 3], 3).is_err());
     }
 }

@@ -47,7 +47,8 @@ impl Refiner {
             }
             .into());
         }
-        let rows = self.stencils.last().map_or(inputs, |s| s.num_rows());
+        let steps = self.max_level();
+        let rows = self.levels[steps].num_vertices();
         if out.len() != rows {
             return Err(MeshError::LengthMismatch {
                 what: "last-level output",
@@ -56,35 +57,34 @@ impl Refiner {
             }
             .into());
         }
-        let steps = self.stencils.len();
         if steps == 0 {
             out.copy_from_slice(base);
             return Ok(());
         }
         if steps >= 2 {
-            let need = self.stencils[steps - 2].num_rows();
+            let need = self.levels[steps - 1].num_vertices();
             if scratch.len() < need {
                 scratch.resize(need, [0.0; N]);
             }
         }
         let plans = self
             .frame_plans
-            .get_or_init(|| self.stencils.iter().map(StepPlan::new).collect());
+            .get_or_init(|| self.stencils().iter().map(StepPlan::new).collect());
         // Level k (1-based) goes to `out` when `steps - k` is even, else to `scratch`.
-        for (i, (s, plan)) in self.stencils.iter().zip(plans).enumerate() {
+        for (i, plan) in plans.iter().enumerate() {
             let k = i + 1;
-            let n = s.num_rows();
-            let prev = if i == 0 {
-                0
-            } else {
-                self.stencils[i - 1].num_rows()
-            };
+            let (p, n, prev) = (
+                &self.levels[i],
+                self.levels[k].num_vertices(),
+                self.levels[i].num_vertices(),
+            );
+            let s = || self.stencils().get(i);
             if (steps - k) % 2 == 0 {
                 let src: &[[f32; N]] = if i == 0 { base } else { &scratch[..prev] };
-                plan.apply(s, src, &mut out[..n]);
+                plan.apply(p, s, src, &mut out[..n]);
             } else {
                 let src: &[[f32; N]] = if i == 0 { base } else { &out[..prev] };
-                plan.apply(s, src, &mut scratch[..n]);
+                plan.apply(p, s, src, &mut scratch[..n]);
             }
         }
         Ok(())

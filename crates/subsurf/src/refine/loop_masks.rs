@@ -372,7 +372,7 @@ impl super::Refiner {
         }
         let refiner = super::Refiner {
             levels,
-            stencils,
+            stencils: stencils.into(),
             limit_table: std::sync::OnceLock::new(),
             frame_plans: std::sync::OnceLock::new(),
             options,

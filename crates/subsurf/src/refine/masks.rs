@@ -177,7 +177,7 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
 /// The face-point table: row `f` is the vertices of face `f` in order, each of weight
 /// `1 / n` ([`LevelRows::face`]), so its offsets and indices are the parent's face lists,
 /// copied rather than formed row by row.
-fn face_table<W: Real>(p: &Topology) -> StencilTable<W> {
+pub(super) fn face_table<W: Real>(p: &Topology) -> StencilTable<W> {
     let nf = p.num_faces();
     let b = par::bounds(nf);
     let mut weights = super::alloc::zeroed(p.num_corners(), W::ZERO);

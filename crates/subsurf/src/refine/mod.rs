@@ -20,6 +20,7 @@
 //! [`Refiner::refine_uvs`], or [`Refiner::fvar_refinement`] to keep the tables.
 
 mod alloc;
+mod frame_plan;
 mod fvar_limit;
 mod fvar_propagate;
 mod fvar_stencils;
@@ -46,14 +47,15 @@ pub use fvar_limit::fvar_limit_stencils;
 pub use fvar_stencils::{fvar_level_stencils, FVarRefinement};
 pub use fvar_topology::FVarTopology;
 pub use interpolate::{refine_once, refine_once_mesh};
-use last_level::{refine_face_lists, ChildSharpnessBuf};
+use last_level::{refine_face_lists, ChildSharpness, ChildSharpnessBuf};
 pub use level::refine_topology;
 pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
 pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
-use masks::level_stencils_with;
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
+use masks::{level_stencils_with, LevelRows};
 pub(crate) use resharpen::{resharpen_at, restencil};
+use smooth_frame::StepPlan;
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
@@ -91,7 +93,8 @@ impl RefineOptions {
     }
 }
 
-/// Refined topology of every level and the stencils between consecutive levels.
+/// Refined topology of every level, the per-frame plans between consecutive levels, and
+/// the stencils between them ([`Refiner::stencils`], on first use for Catmull-Clark).
 ///
 /// # Example
 ///
@@ -142,11 +145,13 @@ pub struct Refiner {
     /// relation accessors (`vertex_faces`, `edge_faces`, ...) must not be called — check
     /// [`Refiner::is_full`] first.
     pub levels: Vec<Topology>,
-    /// `stencils[k]` maps vertex data of level `k` to level `k + 1`.
-    pub stencils: Vec<LevelStencils>,
+    /// `stencils[k]` maps vertex data of level `k` to level `k + 1` ([`Refiner::stencils`]):
+    /// built on first use where the per-frame plans were made from the topology.
+    stencils: std::sync::OnceLock<Vec<LevelStencils>>,
     /// Limit stencils of the last level, built on first use of [`Refiner::limit`].
     limit_table: std::sync::OnceLock<StencilTable>,
-    /// Smooth rows and exceptions of each step, found on first use of
+    /// Smooth rows and exceptions of each step: made from the topology as a Catmull-Clark
+    /// refiner refines, else found from the stencils on first use of
     /// [`Refiner::refine_positions_into`].
     frame_plans: std::sync::OnceLock<Vec<smooth_frame::StepPlan>>,
     options: RefineOptions,
@@ -226,43 +231,77 @@ impl Refiner {
         }
         let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
-        let mut stencils = Vec::with_capacity(level);
-        // The full child of the last level, built ahead while the previous step's stencils
-        // were: both read only that level, so they run side by side (`rayon::join`; one
-        // after the other on one thread, with the same results).
+        // Per step, the per-frame plan made from the topology (`None` for a bilinear step).
+        let mut plans = Vec::with_capacity(level);
+        // The full child of the last level, built ahead while the previous step's plan was:
+        // both read only that level, so they run side by side (`rayon::join`; one after the
+        // other on one thread, with the same results).
         let mut ahead: Option<Topology> = None;
         for k in 0..level {
             let parent = levels
                 .last()
                 .ok_or_else(|| Error::Internal("no base level".into()))?;
             if !full(k) {
-                let (s, child) = rayon::join(
+                let (plan, child) = rayon::join(
                     || {
                         let sharpness = ChildSharpnessBuf::new(parent);
-                        level_stencils_with(parent, sharpness.view(parent))
+                        let rows = LevelRows::new(parent, sharpness.view(parent));
+                        StepPlan::from_topology(parent, rows)
                     },
                     || refine_face_lists(parent),
                 );
-                stencils.push(s);
+                plans.push(plan);
                 levels.push(child);
             } else {
                 let child = ahead.take().unwrap_or_else(|| refine_topology(parent));
-                let (s, next) = rayon::join(
-                    || level_stencils(parent, &child),
+                let (plan, next) = rayon::join(
+                    || {
+                        let rows = LevelRows::new(parent, ChildSharpness::of_child(parent, &child));
+                        StepPlan::from_topology(parent, rows)
+                    },
                     || (k + 1 < level && full(k + 1)).then(|| refine_topology(&child)),
                 );
                 ahead = next;
-                stencils.push(s);
+                plans.push(plan);
                 levels.push(child);
             }
         }
-        Ok(Refiner {
+        let mut r = Refiner {
             levels,
-            stencils,
+            stencils: std::sync::OnceLock::new(),
             limit_table: std::sync::OnceLock::new(),
             frame_plans: std::sync::OnceLock::new(),
             options,
-        })
+        };
+        match plans.into_iter().collect::<Option<Vec<StepPlan>>>() {
+            Some(plans) => r.frame_plans = std::sync::OnceLock::from(plans),
+            None => r.stencils = std::sync::OnceLock::from(r.build_stencils()),
+        }
+        Ok(r)
+    }
+
+    /// The stencil tables of every step, from the levels.
+    fn build_stencils(&self) -> Vec<LevelStencils> {
+        (0..self.max_level())
+            .map(|k| {
+                let parent = &self.levels[k];
+                if self.is_full(k + 1) {
+                    level_stencils(parent, &self.levels[k + 1])
+                } else {
+                    let sharpness = ChildSharpnessBuf::new(parent);
+                    level_stencils_with(parent, sharpness.view(parent))
+                }
+            })
+            .collect()
+    }
+
+    /// `stencils()[k]` maps vertex data of level `k` to level `k + 1`: one sparse table per
+    /// step, what the GPU backend uploads and [`Refiner::refine_positions`] applies. A
+    /// Catmull-Clark refiner builds them on first use (its per-frame path,
+    /// [`Refiner::refine_positions_into`], reads plans made from the topology instead), and
+    /// keeps them.
+    pub fn stencils(&self) -> &[LevelStencils] {
+        self.stencils.get_or_init(|| self.build_stencils())
     }
 
     /// The options the refiner was built with.
@@ -301,7 +340,7 @@ impl Refiner {
     /// Vertex data of every level, starting with `base` (`N` components per vertex).
     pub fn refine_all<const N: usize>(&self, base: &[[f32; N]]) -> Vec<Vec<[f32; N]>> {
         let mut out = vec![base.to_vec()];
-        for s in &self.stencils {
+        for s in self.stencils() {
             let src = &out[out.len() - 1];
             let mut dst = vec![[0.0; N]; s.num_rows()];
             s.apply(src, &mut dst);
@@ -310,10 +349,20 @@ impl Refiner {
         out
     }
 
-    /// Vertex data of the last level only, applying the per-level tables in turn.
+    /// Vertex data of the last level only: [`Refiner::refine_positions_into`] into a new
+    /// buffer, bit-identical to applying the per-level tables ([`Refiner::stencils`]) in turn
+    /// (which is what this does, panicking, when `base` does not hold one value per base
+    /// vertex).
     pub fn refine_positions<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[f32; N]> {
+        let mut out = alloc::zeroed(self.last().num_vertices(), [0.0f32; N]);
+        if self
+            .refine_positions_into(base, &mut out, &mut Vec::new())
+            .is_ok()
+        {
+            return out;
+        }
         let mut cur = base.to_vec();
-        for s in &self.stencils {
+        for s in self.stencils() {
             let mut dst = alloc::zeroed(s.num_rows(), [0.0f32; N]);
             s.apply(&cur, &mut dst);
             cur = dst;
@@ -330,7 +379,7 @@ impl Refiner {
             weights: vec![1.0; n],
             num_inputs: n,
         };
-        for s in &self.stencils {
+        for s in self.stencils() {
             acc = acc.then(&s.to_table());
         }
         acc

@@ -8,15 +8,18 @@
 //! - a smooth vertex of valence `n`: its `n` faces' points, its `n` neighbours (the parent's
 //!   vertex-face and vertex-edge rings), `1/n²` each, then itself, `(n - 2)/n`.
 //!
-//! A [`StepPlan`] finds those rows once, by reading the stored rows themselves (so it knows
-//! nothing of rules or topology: a row is smooth when its entries have exactly the smooth
-//! pattern and weights, bit for bit), and keeps the rows where the rules differ (creases,
-//! boundaries, corners, irregular faces or rules) as a sorted list of exceptions. Applying
-//! the plan then reads, per smooth row, only its input indices: no weight, and for face
-//! points, edge points and vertices of valence 4 no row offset either (their length is known;
-//! the plan also lists the smooth vertices of other valences, which read their offsets).
-//! Exceptions are evaluated from their stored rows. Every row is summed in the stored entry
-//! order with the stored weights, so the result is bit-identical to [`LevelStencils::apply`].
+//! A [`StepPlan`] finds those rows once and keeps the rows where the rules differ (creases,
+//! boundaries, corners, irregular faces or rules) as a sorted list of exceptions with their
+//! rows. A Catmull-Clark `Refiner` makes its plans from the topology as it refines
+//! ([`StepPlan::from_topology`], `frame_plan.rs`: the smooth rows' indices and the
+//! exceptions' rows, no stencil table at all); otherwise a plan is found from a step's stored
+//! tables ([`StepPlan::new`]: a row is smooth when its entries have exactly the smooth
+//! pattern and weights, bit for bit). Applying the plan then reads, per smooth row, only its
+//! input indices: no weight, and for face points (the parent's face lists), edge points and
+//! vertices of valence 4 no row offset either (their length is known; the plan also lists the
+//! smooth vertices of other valences, which read their offsets). Every row is summed in the
+//! stored entry order with the stored weights, so the result is bit-identical to
+//! [`LevelStencils::apply`].
 
 #[cfg(target_arch = "x86_64")]
 use super::lanes;
@@ -32,18 +35,53 @@ const CHUNK: usize = 4096;
 pub(crate) struct StepPlan {
     /// Whether most rows are exceptions (a bilinear step, say): the stored tables are then
     /// applied as they are.
-    stencils_only: bool,
+    pub(super) stencils_only: bool,
     /// Whether every face row has four entries of weight `1/4` (an all-quad parent).
-    quad_faces: bool,
+    pub(super) quad_faces: bool,
     /// Vertex rows that are not the smooth rule, ascending.
-    vertex_special: Vec<u32>,
+    pub(super) vertex_special: Vec<u32>,
     /// Smooth vertex rows of a valence other than 4, ascending: between these and the
     /// exceptions, vertex rows have 9 entries each, read without their offsets.
-    vertex_odd: Vec<u32>,
+    pub(super) vertex_odd: Vec<u32>,
     /// Edge rows that are not the smooth two-face rule, ascending.
-    edge_special: Vec<u32>,
+    pub(super) edge_special: Vec<u32>,
     /// `(1/n², (n - 2)/n)` of a smooth vertex of valence `n`, as the tables store them.
-    valence_weights: Vec<[f32; 2]>,
+    pub(super) valence_weights: Vec<[f32; 2]>,
+    /// The exceptions' rows, in the order of `vertex_special` and of `edge_special`.
+    pub(super) exceptions: [StencilTable; 2],
+    /// The smooth rows' indices, where the plan was made from the topology
+    /// ([`StepPlan::from_topology`]) rather than from stored tables.
+    pub(super) own: Option<OwnRows>,
+}
+
+/// A plan's own tables ([`StepPlan::from_topology`]): offsets and indices of the smooth rows
+/// (an exception's row is empty here; no weights), and the face rows where the parent has
+/// faces other than quads.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct OwnRows {
+    pub(super) face: Option<StencilTable>,
+    pub(super) vertex: StencilTable,
+    pub(super) edge: StencilTable,
+}
+
+/// The rows `rows` (ascending) of `t`, as a table of their own.
+pub(super) fn pick_rows(t: &StencilTable, rows: &[u32]) -> StencilTable {
+    let mut out = StencilTable {
+        offsets: Vec::with_capacity(rows.len() + 1),
+        num_inputs: t.num_inputs,
+        ..Default::default()
+    };
+    out.offsets.push(0);
+    for &r in rows {
+        let (lo, hi) = (
+            t.offsets[r as usize] as usize,
+            t.offsets[r as usize + 1] as usize,
+        );
+        out.indices.extend_from_slice(&t.indices[lo..hi]);
+        out.weights.extend_from_slice(&t.weights[lo..hi]);
+        out.offsets.push(out.indices.len() as u32);
+    }
+    out
 }
 
 /// Weights of the smooth vertex rule at valence `n`, computed as the tables compute them.
@@ -52,9 +90,22 @@ fn smooth_vertex_weights(n: usize) -> [f32; 2] {
 }
 
 /// Largest valence with a precomputed weight pair; higher valences are exceptions.
-const MAX_VALENCE: usize = 32;
+pub(super) const MAX_VALENCE: usize = 32;
 
 impl StepPlan {
+    /// `(1/n², (n - 2)/n)` for valences `0..=MAX_VALENCE` (zero at 0).
+    pub(super) fn valence_table() -> Vec<[f32; 2]> {
+        (0..=MAX_VALENCE)
+            .map(|n| {
+                if n == 0 {
+                    [0.0; 2]
+                } else {
+                    smooth_vertex_weights(n)
+                }
+            })
+            .collect()
+    }
+
     /// Classifies the rows of `s`.
     pub(crate) fn new(s: &LevelStencils) -> StepPlan {
         let p = s.num_parent_vertices as u32;
@@ -66,15 +117,7 @@ impl StepPlan {
             .enumerate()
             .all(|(i, &o)| o as usize == 4 * i)
             && f.weights.iter().all(|w| w.to_bits() == quarter);
-        let valence_weights: Vec<[f32; 2]> = (0..=MAX_VALENCE)
-            .map(|n| {
-                if n == 0 {
-                    [0.0; 2]
-                } else {
-                    smooth_vertex_weights(n)
-                }
-            })
-            .collect();
+        let valence_weights = StepPlan::valence_table();
         let vw = &valence_weights;
         // Per vertex row: `None` for a smooth row of valence 4, `Some(0)` for an exception,
         // `Some(1)` for a smooth row of another valence.
@@ -106,6 +149,14 @@ impl StepPlan {
         });
         let exceptions = vertex_special.len() + edge_special.len();
         let stencils_only = 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows();
+        let exceptions = if stencils_only {
+            Default::default()
+        } else {
+            [
+                pick_rows(&s.vertex, &vertex_special),
+                pick_rows(&s.edge, &edge_special),
+            ]
+        };
         StepPlan {
             stencils_only,
             quad_faces,
@@ -113,6 +164,8 @@ impl StepPlan {
             vertex_odd,
             edge_special,
             valence_weights,
+            exceptions,
+            own: None,
         }
     }
 
@@ -122,61 +175,90 @@ impl StepPlan {
         self.vertex_special.len() + self.edge_special.len()
     }
 
-    /// One step of `N`-component values, bit-identical to [`LevelStencils::apply`] (`s` is the
-    /// step this plan was made from), in parallel chunks of rows.
-    pub(crate) fn apply<const N: usize>(
+    /// One step of `N`-component values from parent `p`, bit-identical to
+    /// [`LevelStencils::apply`] of the step's stencils `s`, in parallel chunks of rows. `s`
+    /// is read only when the plan was made from it ([`StepPlan::new`]): a plan made from the
+    /// topology ([`StepPlan::from_topology`]) reads its own rows and `p`'s face lists.
+    pub(crate) fn apply<'s, const N: usize>(
         &self,
-        s: &LevelStencils,
+        p: &super::Topology,
+        s: impl FnOnce() -> Option<&'s LevelStencils>,
         src: &[[f32; N]],
         dst: &mut [[f32; N]],
     ) {
-        assert_eq!(dst.len(), s.num_rows(), "destination length");
-        assert!(src.len() >= s.num_parent_vertices, "source length");
+        let stored = if self.own.is_none() { s() } else { None };
         if self.stencils_only {
+            let s = stored.expect("a plan made from stored tables");
             s.apply(src, dst);
             return;
         }
+        let t = match (&self.own, stored) {
+            (Some(own), _) => Tables {
+                face: own.face.as_ref(),
+                quads: &p.face_verts,
+                vertex: &own.vertex,
+                edge: &own.edge,
+            },
+            (None, Some(s)) => Tables {
+                face: Some(&s.face),
+                quads: &s.face.indices,
+                vertex: &s.vertex,
+                edge: &s.edge,
+            },
+            (None, None) => panic!("a plan made from stored tables needs them"),
+        };
+        let np = p.num_vertices();
+        let rows = match stored {
+            Some(s) => s.num_rows(),
+            None => np + p.num_faces() + p.num_edges(),
+        };
+        assert_eq!(dst.len(), rows, "destination length");
+        assert!(src.len() >= np, "source length");
         #[cfg(target_arch = "x86_64")]
         if let (Some(src), Some(dst)) = (lanes::as3(src), lanes::as3_mut(dst)) {
-            return self.apply_with::<3, lanes::Lanes3>(s, src, dst);
+            return self.apply_with::<3, lanes::Lanes3>(&t, np, src, dst);
         }
-        self.apply_with::<N, [f32; N]>(s, src, dst);
+        self.apply_with::<N, [f32; N]>(&t, np, src, dst);
     }
 
     /// [`StepPlan::apply`] summing each row in accumulators of type `A` (the same products
     /// and sums in the same order, whatever `A`).
     fn apply_with<const N: usize, A: Acc<N>>(
         &self,
-        s: &LevelStencils,
+        t: &Tables<'_>,
+        p: usize,
         src: &[[f32; N]],
         dst: &mut [[f32; N]],
     ) {
-        let (nv, nf) = (s.vertex.num_rows(), s.face.num_rows());
+        let (nv, ne) = (t.vertex.num_rows(), t.edge.num_rows());
+        let nf = dst.len() - nv - ne;
         let (vd, rest) = dst.split_at_mut(nv);
         let (fd, ed) = rest.split_at_mut(nf);
-        if self.quad_faces {
-            fd.par_chunks_mut(CHUNK)
-                .zip(s.face.indices[..4 * nf].par_chunks(4 * CHUNK))
-                .for_each(|(out, q)| quad_rows::<N, A>(q, src, out));
-        } else {
-            s.face.apply(src, fd);
+        match t.face {
+            Some(face) if !self.quad_faces => face.apply(src, fd),
+            _ => fd
+                .par_chunks_mut(CHUNK)
+                .zip(t.quads[..4 * nf].par_chunks(4 * CHUNK))
+                .for_each(|(out, q)| quad_rows::<N, A>(q, src, out)),
         }
         let fd: &[[f32; N]] = fd;
-        let p = s.num_parent_vertices;
+        let [vex, eex] = &self.exceptions;
         vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.vertex_rows::<N, A>(&s.vertex, p, c * CHUNK, out, src, fd);
+            self.vertex_rows::<N, A>(t.vertex, vex, p, c * CHUNK, out, src, fd);
         });
         ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            edge_rows::<N, A>(&s.edge, &self.edge_special, p, c * CHUNK, out, src, fd);
+            edge_rows::<N, A>(t.edge, eex, &self.edge_special, p, c * CHUNK, out, src, fd);
         });
     }
 
     /// Vertex rows `first..first + out.len()`: the runs of smooth valence-4 rows (9 entries
     /// each, contiguous from the run's first offset) between the other rows, each of those
     /// from its offsets (an exception from its stored row).
+    #[allow(clippy::too_many_arguments)]
     fn vertex_rows<const N: usize, A: Acc<N>>(
         &self,
         t: &StencilTable,
+        ex: &StencilTable,
         p: usize,
         first: usize,
         out: &mut [[f32; N]],
@@ -184,6 +266,9 @@ impl StepPlan {
         fd: &[[f32; N]],
     ) {
         let end = first + out.len();
+        let mut q = self
+            .vertex_special
+            .partition_point(|&r| (r as usize) < first);
         let mut special = in_range(&self.vertex_special, first, out.len()).iter();
         let mut odd = in_range(&self.vertex_odd, first, out.len()).iter();
         let row = |r: Option<&u32>| r.map_or(end, |&r| r as usize);
@@ -201,7 +286,8 @@ impl StepPlan {
             let (lo, hi) = (j + 9 * run.len(), t.offsets[e + 1] as usize);
             let idx = &t.indices[lo..hi];
             if e == next_special {
-                *o = general_row::<N, A>(idx, &t.weights[lo..hi], p, src, fd);
+                *o = exception_row::<N, A>(ex, q, p, src, fd);
+                q += 1;
                 next_special = row(special.next());
             } else {
                 let n = idx.len() / 2;
@@ -297,8 +383,10 @@ fn vertex4_run<const N: usize, A: Acc<N>>(
 /// Edge rows `first..first + out.len()`: the runs of smooth rows between exceptions (four
 /// indices each, contiguous from the run's first offset), then each exception from its
 /// stored row.
+#[allow(clippy::too_many_arguments)]
 fn edge_rows<const N: usize, A: Acc<N>>(
     t: &StencilTable,
+    ex: &StencilTable,
     special: &[u32],
     p: usize,
     first: usize,
@@ -307,21 +395,24 @@ fn edge_rows<const N: usize, A: Acc<N>>(
     fd: &[[f32; N]],
 ) {
     let end = first + out.len();
+    // Exception `q` of the chunk is row `q0 + q` of `ex`.
+    let q0 = special.partition_point(|&r| (r as usize) < first);
     let mut out = out;
     let mut r = first;
     let mut j = t.offsets[first] as usize;
-    for e in in_range(special, first, out.len())
+    for (q, e) in in_range(special, first, out.len())
         .iter()
         .map(|&e| e as usize)
         .chain([end])
+        .enumerate()
     {
         let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
         edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, p, src, fd);
         let Some((o, rest)) = rest.split_first_mut() else {
             break;
         };
-        let (lo, hi) = (j + 4 * run.len(), t.offsets[e + 1] as usize);
-        *o = general_row::<N, A>(&t.indices[lo..hi], &t.weights[lo..hi], p, src, fd);
+        *o = exception_row::<N, A>(ex, q0 + q, p, src, fd);
+        let hi = t.offsets[e + 1] as usize;
         out = rest;
         j = hi;
         r = e + 1;
@@ -347,6 +438,29 @@ fn edge_run<const N: usize, A: Acc<N>>(
         acc.add(0.25, src, d as usize);
         *o = acc.get();
     }
+}
+
+/// Row `q` of the exceptions' table `ex`.
+#[inline]
+fn exception_row<const N: usize, A: Acc<N>>(
+    ex: &StencilTable,
+    q: usize,
+    p: usize,
+    src: &[[f32; N]],
+    fd: &[[f32; N]],
+) -> [f32; N] {
+    let (lo, hi) = (ex.offsets[q] as usize, ex.offsets[q + 1] as usize);
+    general_row::<N, A>(&ex.indices[lo..hi], &ex.weights[lo..hi], p, src, fd)
+}
+
+/// The tables a plan reads: its own ([`OwnRows`]) or a step's stored stencils.
+struct Tables<'a> {
+    /// The face rows, where not all quads.
+    face: Option<&'a StencilTable>,
+    /// Four vertices per face, where all quads.
+    quads: &'a [u32],
+    vertex: &'a StencilTable,
+    edge: &'a StencilTable,
 }
 
 /// A stored row over parent vertices (`k < p`) and face points (`fd[k - p]`).
@@ -416,7 +530,7 @@ mod tests {
 
     fn plans(m: &crate::mesh::Mesh, level: usize) -> (Refiner, Vec<StepPlan>) {
         let r = Refiner::new(Topology::new(m).unwrap(), level).unwrap();
-        let p = r.stencils.iter().map(StepPlan::new).collect();
+        let p = r.stencils().iter().map(StepPlan::new).collect();
         (r, p)
     }
 
@@ -445,16 +559,22 @@ mod tests {
         assert_plans_match_tables(&r, &p, m.positions.clone());
     }
 
-    /// Applies every step's plan and its stored tables from `src` on: the same bits.
+    /// Applies every step's plan (those classified from the stored tables, `p`, and those
+    /// the refiner made from the topology) and its stored tables from `src` on: the same
+    /// bits.
     fn assert_plans_match_tables(r: &Refiner, p: &[StepPlan], mut src: Vec<[f32; 3]>) {
         let bits =
             |v: &[[f32; 3]]| -> Vec<[u32; 3]> { v.iter().map(|x| x.map(f32::to_bits)).collect() };
-        for (s, plan) in r.stencils.iter().zip(p) {
+        // A refiner whose steps are mostly exceptions keeps stored tables and no own plans.
+        let own = r.frame_plans.get();
+        for (k, (s, plan)) in r.stencils().iter().zip(p).enumerate() {
             let mut want = vec![[0.0f32; 3]; s.num_rows()];
-            let mut got = vec![[f32::NAN; 3]; s.num_rows()];
             s.apply(&src, &mut want);
-            plan.apply(s, &src, &mut got);
-            assert_eq!(bits(&got), bits(&want));
+            for plan in [Some(plan), own.map(|o| &o[k])].into_iter().flatten() {
+                let mut got = vec![[f32::NAN; 3]; s.num_rows()];
+                plan.apply(&r.levels[k], || Some(s), &src, &mut got);
+                assert_eq!(bits(&got), bits(&want));
+            }
             src = want;
         }
     }
@@ -488,7 +608,8 @@ mod tests {
     #[test]
     fn a_one_thread_pool_gives_the_same_bits() {
         // On one thread every pass runs as one sequential loop (no chunks): the same bits
-        // as the tables on every regression shape, the car one level deeper.
+        // as the tables (`refine_all` applies the stored stencils) on every regression
+        // shape, the car one level deeper.
         let dir =
             std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../testdata/shapes");
         let mut cases: Vec<_> =
@@ -508,7 +629,7 @@ mod tests {
             for (path, level) in cases {
                 let m = crate::io::read_path(&path).unwrap();
                 let r = Refiner::new(Topology::new(&m).unwrap(), level).unwrap();
-                let want = r.refine_positions(&m.positions);
+                let want = r.refine_all(&m.positions).pop().expect("levels");
                 let mut out = vec![[f32::NAN; 3]; want.len()];
                 r.refine_positions_into(&m.positions, &mut out, &mut scratch)
                     .unwrap();

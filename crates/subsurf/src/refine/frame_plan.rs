@@ -1,0 +1,202 @@
+//! A step's per-frame plan made from the topology, without the step's stencil tables: the
+//! smooth rows' input indices (no weights) and the exceptions' rows, as the stored tables
+//! would hold them.
+//!
+//! A vertex row follows the smooth rule when its parent vertex's rule is smooth (or a dart)
+//! and its rings close (as many faces as edges), at a valence of at most 32; an edge row when
+//! the edge is smooth (sharpness `<= 0`) with two faces, neither a triangle under the smooth
+//! triangle rule. Those are exactly the rows [`super::masks::LevelRows`] forms with the smooth
+//! weights; every other row is formed by `LevelRows` itself and kept whole. So applying the
+//! plan gives the stored tables' bits (`tests` below, and the frame tests on every shape).
+//!
+//! The `Refiner` builds these plans as it refines (the tables a frame reads) and its stencil
+//! tables only on first use: a plan holds no weights and no copy of the face lists, which the
+//! stencils do.
+
+use super::masks::{face_table, LevelRows, Scratch};
+use super::par;
+use super::smooth_frame::{OwnRows, StepPlan, MAX_VALENCE};
+use super::stencil::StencilTable;
+use crate::options::{Scheme, TriangleSubdivision};
+use crate::topology::tags::rule;
+use crate::topology::Topology;
+use rayon::prelude::*;
+
+/// One chunk's rows kept whole: their row numbers, entry counts and entries, and its smooth
+/// vertex rows of a valence other than 4.
+#[derive(Default)]
+struct Kept {
+    rows: Vec<u32>,
+    counts: Vec<u32>,
+    indices: Vec<u32>,
+    weights: Vec<f32>,
+    odd: Vec<u32>,
+}
+
+impl Kept {
+    /// Row `r`, formed by `form`, kept whole.
+    fn push(&mut self, r: usize, form: impl FnOnce(&mut dyn FnMut(u32, f32))) {
+        let before = self.indices.len();
+        let (idx, wts) = (&mut self.indices, &mut self.weights);
+        form(&mut |x, w| {
+            idx.push(x);
+            wts.push(w);
+        });
+        self.rows.push(r as u32);
+        self.counts.push((self.indices.len() - before) as u32);
+    }
+}
+
+/// The chunks' kept rows joined: the rows in order, their table, and the odd rows.
+fn join(parts: Vec<Kept>, inputs: usize) -> (Vec<u32>, StencilTable, Vec<u32>) {
+    let mut ex = StencilTable {
+        offsets: vec![0],
+        num_inputs: inputs,
+        ..Default::default()
+    };
+    let (mut rows, mut odd) = (Vec::new(), Vec::new());
+    let mut acc = 0u32;
+    for p in parts {
+        for c in p.counts {
+            acc += c;
+            ex.offsets.push(acc);
+        }
+        ex.indices.extend_from_slice(&p.indices);
+        ex.weights.extend_from_slice(&p.weights);
+        rows.extend_from_slice(&p.rows);
+        odd.extend_from_slice(&p.odd);
+    }
+    (rows, ex, odd)
+}
+
+impl StepPlan {
+    /// The plan of the step from `p` whose rows are `rows` (see the module documentation).
+    /// Bilinear steps and steps where most rows are exceptions take their stencil tables
+    /// whole (as [`StepPlan::new`] applies them), so this returns `None` for them.
+    pub(crate) fn from_topology(p: &Topology, rows: LevelRows<'_>) -> Option<StepPlan> {
+        if p.options.scheme != Scheme::Catmark {
+            return None;
+        }
+        let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
+        let inputs = nv + nf;
+        let quad_faces = (0..nf).all(|f| p.face_size(f) == 4);
+        let fp = |f: u32| nv as u32 + f;
+        // Vertex rows: a smooth row of valence n has 2n + 1 entries, a kept one none here.
+        let smooth_valence = |v: usize| -> Option<usize> {
+            let pr = p.vert_rule[v];
+            let n = p.vertex_faces(v).len();
+            ((pr == rule::SMOOTH || pr == rule::DART)
+                && n == p.valence(v)
+                && (1..=MAX_VALENCE).contains(&n))
+            .then_some(n)
+        };
+        let vb = par::bounds(nv);
+        let mut voffsets = super::alloc::zeroed(nv + 1, 0u32);
+        par::ranges(&vb)
+            .into_par_iter()
+            .zip(par::split(&mut voffsets[1..], &vb, |v| v))
+            .for_each(|(r, out)| {
+                let base = r.start;
+                for v in r {
+                    out[v - base] = smooth_valence(v).map_or(0, |n| 2 * n as u32 + 1);
+                }
+            });
+        let mut acc = 0u32;
+        for o in &mut voffsets[1..] {
+            acc += *o;
+            *o = acc;
+        }
+        let mut vindices = super::alloc::zeroed(acc as usize, 0u32);
+        let vstart = |v: usize| voffsets[v] as usize;
+        let vparts: Vec<Kept> = par::ranges(&vb)
+            .into_par_iter()
+            .zip(par::split(&mut vindices, &vb, vstart))
+            .map(|(r, out)| {
+                let mut kept = Kept::default();
+                let mut scratch = Scratch::<f32>::default();
+                let base = vstart(r.start);
+                for v in r {
+                    let Some(n) = smooth_valence(v) else {
+                        kept.push(v, |add| rows.vertex(v, &mut scratch, &mut |x, w| add(x, w)));
+                        continue;
+                    };
+                    let o = &mut out[vstart(v) - base..vstart(v + 1) - base];
+                    for (o, &f) in o.iter_mut().zip(p.vertex_faces(v)) {
+                        *o = fp(f);
+                    }
+                    for (o, &e) in o[n..].iter_mut().zip(p.vertex_edges(v)) {
+                        *o = p.other_vertex(e as usize, v as u32);
+                    }
+                    o[2 * n] = v as u32;
+                    if n != 4 {
+                        kept.odd.push(v as u32);
+                    }
+                }
+                kept
+            })
+            .collect();
+        // Edge rows: four entries each (zero where kept whole).
+        let tri_rule = p.options.triangle_subdivision == TriangleSubdivision::Smooth;
+        let eb = par::bounds(ne);
+        let mut eindices = super::alloc::zeroed(4 * ne, 0u32);
+        let eparts: Vec<Kept> = par::ranges(&eb)
+            .into_par_iter()
+            .zip(par::split(&mut eindices, &eb, |e| 4 * e))
+            .map(|(r, out)| {
+                let mut kept = Kept::default();
+                let base = 4 * r.start;
+                for e in r {
+                    let faces = p.edge_faces(e);
+                    let smooth = p.edge_sharpness[e] <= 0.0
+                        && faces.len() == 2
+                        && !(tri_rule
+                            && (p.face_size(faces[0] as usize) == 3
+                                || p.face_size(faces[1] as usize) == 3));
+                    if smooth {
+                        let ev = p.edge_verts[e];
+                        out[4 * e - base..4 * e - base + 4].copy_from_slice(&[
+                            fp(faces[0]),
+                            fp(faces[1]),
+                            ev[0],
+                            ev[1],
+                        ]);
+                    } else {
+                        kept.push(e, |add| rows.edge(e, &mut |x, w| add(x, w)));
+                    }
+                }
+                kept
+            })
+            .collect();
+        let (vertex_special, vex, vertex_odd) = join(vparts, inputs);
+        let (edge_special, eex, _) = join(eparts, inputs);
+        if 2 * (vertex_special.len() + edge_special.len()) > nv + ne {
+            return None;
+        }
+        let vertex = StencilTable {
+            offsets: voffsets,
+            indices: vindices,
+            weights: Vec::new(),
+            num_inputs: inputs,
+        };
+        let edge = StencilTable {
+            offsets: super::level::iota(ne + 1, |e| 4 * e as u32),
+            indices: eindices,
+            weights: Vec::new(),
+            num_inputs: inputs,
+        };
+        Some(StepPlan {
+            stencils_only: false,
+            quad_faces,
+            vertex_special,
+            vertex_odd,
+            edge_special,
+            valence_weights: StepPlan::valence_table(),
+            exceptions: [vex, eex],
+            own: Some(OwnRows {
+                face: (!quad_faces).then(|| face_table(p)),
+                vertex,
+                edge,
+            }),
+        })
+    }
+}
