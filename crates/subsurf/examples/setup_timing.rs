@@ -1,6 +1,6 @@
 //! Times one refinement setup path, for profiling (run it under callgrind for instruction
 //! counts): `cargo run --release --example setup_timing -- FILE LEVEL MODE`, MODE one of
-//! `full` (`Refiner::new`), `lean` (`Refiner::with_options(.., RefineOptions::lean())`) or
+//! `full` (`Refiner::new`), `stencils` (`Refiner::new` and its stencil tables), `lean` (`Refiner::with_options(.., RefineOptions::lean())`) or
 //! `once` (`refine_once` of the positions, lean); an optional fourth argument repeats the
 //! setup that many times in the process and prints the median (warm allocator).
 
@@ -24,13 +24,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t = Instant::now();
         vertices = match mode {
             "full" => Refiner::new(base, level)?.last().num_vertices(),
+            "stencils" => {
+                let r = Refiner::new(base, level)?;
+                r.stencils().len() + r.last().num_vertices()
+            }
             "lean" => Refiner::with_options(base, level, RefineOptions::lean())?
                 .last()
                 .num_vertices(),
             "once" => refine_once(base, level, &mesh.positions, RefineOptions::lean())?
                 .1
                 .len(),
-            _ => return Err(format!("unknown mode {mode} (full, lean or once)").into()),
+            _ => return Err(format!("unknown mode {mode} (full, stencils, lean or once)").into()),
         };
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }

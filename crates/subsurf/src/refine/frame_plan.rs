@@ -13,7 +13,7 @@
 //! tables only on first use: a plan holds no weights and no copy of the face lists, which the
 //! stencils do.
 
-use super::masks::{face_table, LevelRows, Scratch};
+use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
 use super::par;
 use super::smooth_frame::{OwnRows, StepPlan, MAX_VALENCE};
 use super::stencil::StencilTable;
@@ -198,5 +198,98 @@ impl StepPlan {
                 edge,
             }),
         })
+    }
+}
+
+impl StepPlan {
+    /// The step's stencil tables from a plan made by [`StepPlan::from_topology`] from `p`
+    /// (`None` for a plan made from stored tables): the smooth rows' indices with their
+    /// class's weights, the exceptions' rows as kept. The same tables as
+    /// [`super::level_stencils`] forms from the masks (tested).
+    pub(crate) fn stencils(&self, p: &Topology) -> Option<LevelStencils> {
+        let own = self.own.as_ref()?;
+        let [vex, eex] = &self.exceptions;
+        let vw = &self.valence_weights;
+        let vertex = expand(&own.vertex, vex, &self.vertex_special, |len| {
+            let n = (len - 1) / 2;
+            let [w, wv] = vw[n];
+            move |i| if i < 2 * n { w } else { wv }
+        });
+        let edge = expand(&own.edge, eex, &self.edge_special, |_| |_| 0.25f32);
+        Some(LevelStencils {
+            num_parent_vertices: p.num_vertices(),
+            face: own.face.clone().unwrap_or_else(|| face_table(p)),
+            vertex,
+            edge,
+        })
+    }
+}
+
+/// The full table of a plan's rows: row `r` is exception `q` of `ex` where `special[q] == r`,
+/// else the smooth row `r` of `t` with weights `weight(row length)(entry)`.
+fn expand<F: Fn(usize) -> f32>(
+    t: &StencilTable,
+    ex: &StencilTable,
+    special: &[u32],
+    weight: impl Fn(usize) -> F + Sync,
+) -> StencilTable {
+    let rows = t.num_rows();
+    let b = par::bounds(rows);
+    // Row lengths, then offsets.
+    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
+    let first_special = |r: usize| special.partition_point(|&s| (s as usize) < r);
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut offsets[1..], &b, |r| r))
+        .for_each(|(range, out)| {
+            let mut q = first_special(range.start);
+            let base = range.start;
+            for r in range {
+                out[r - base] = if special.get(q).is_some_and(|&s| s as usize == r) {
+                    q += 1;
+                    ex.offsets[q] - ex.offsets[q - 1]
+                } else {
+                    t.offsets[r + 1] - t.offsets[r]
+                };
+            }
+        });
+    let mut acc = 0u32;
+    for o in &mut offsets[1..] {
+        acc += *o;
+        *o = acc;
+    }
+    let mut indices = super::alloc::zeroed(acc as usize, 0u32);
+    let mut weights = super::alloc::zeroed(acc as usize, 0.0f32);
+    let start = |r: usize| offsets[r] as usize;
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split(&mut indices, &b, start))
+        .zip(par::split(&mut weights, &b, start))
+        .for_each(|((range, io), wo)| {
+            let mut q = first_special(range.start);
+            let base = start(range.start);
+            for r in range {
+                let (o, n) = (start(r) - base, start(r + 1) - start(r));
+                let (io, wo) = (&mut io[o..o + n], &mut wo[o..o + n]);
+                if special.get(q).is_some_and(|&s| s as usize == r) {
+                    let lo = ex.offsets[q] as usize;
+                    io.copy_from_slice(&ex.indices[lo..lo + n]);
+                    wo.copy_from_slice(&ex.weights[lo..lo + n]);
+                    q += 1;
+                } else {
+                    let lo = t.offsets[r] as usize;
+                    io.copy_from_slice(&t.indices[lo..lo + n]);
+                    let w = weight(n);
+                    for (i, x) in wo.iter_mut().enumerate() {
+                        *x = w(i);
+                    }
+                }
+            }
+        });
+    StencilTable {
+        offsets,
+        indices,
+        weights,
+        num_inputs: t.num_inputs,
     }
 }

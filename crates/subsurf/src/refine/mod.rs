@@ -280,12 +280,16 @@ impl Refiner {
         Ok(r)
     }
 
-    /// The stencil tables of every step, from the levels.
+    /// The stencil tables of every step: from the per-frame plans where they were made from
+    /// the topology, else from the levels.
     fn build_stencils(&self) -> Vec<LevelStencils> {
+        let plans = self.frame_plans.get();
         (0..self.max_level())
             .map(|k| {
                 let parent = &self.levels[k];
-                if self.is_full(k + 1) {
+                if let Some(s) = plans.and_then(|p| p[k].stencils(parent)) {
+                    s
+                } else if self.is_full(k + 1) {
                     level_stencils(parent, &self.levels[k + 1])
                 } else {
                     let sharpness = ChildSharpnessBuf::new(parent);

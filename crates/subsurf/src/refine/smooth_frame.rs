@@ -537,7 +537,12 @@ mod tests {
     #[test]
     fn a_closed_regular_mesh_has_no_exceptions() {
         // Every vertex of a torus grid has valence 4 and no crease: every row is smooth.
-        let (_, p) = plans(&shapes::torus(6, 5, 2.0, 0.5), 3);
+        let (r, p) = plans(&shapes::torus(6, 5, 2.0, 0.5), 3);
+        // The refiner made its own plans from the topology, with the same classes.
+        let own = r.frame_plans.get().expect("plans made from the topology");
+        for o in own {
+            assert!(o.own.is_some() && o.quad_faces && o.num_exceptions() == 0);
+        }
         for s in &p {
             assert!(s.quad_faces && !s.stencils_only);
             assert_eq!(s.num_exceptions(), 0);
