@@ -13,6 +13,7 @@
 //! tables only on first use: a plan holds no weights and no copy of the face lists, which the
 //! stencils do.
 
+use super::loop_masks::write_rows;
 use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
 use super::par;
 use super::smooth_frame::{OwnRows, StepPlan, MAX_VALENCE};
@@ -233,63 +234,32 @@ fn expand<F: Fn(usize) -> f32>(
     special: &[u32],
     weight: impl Fn(usize) -> F + Sync,
 ) -> StencilTable {
-    let rows = t.num_rows();
-    let b = par::bounds(rows);
-    // Row lengths, then offsets.
-    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
-    let first_special = |r: usize| special.partition_point(|&s| (s as usize) < r);
-    par::ranges(&b)
-        .into_par_iter()
-        .zip(par::split(&mut offsets[1..], &b, |r| r))
-        .for_each(|(range, out)| {
-            let mut q = first_special(range.start);
-            let base = range.start;
-            for r in range {
-                out[r - base] = if special.get(q).is_some_and(|&s| s as usize == r) {
-                    q += 1;
-                    ex.offsets[q] - ex.offsets[q - 1]
-                } else {
-                    t.offsets[r + 1] - t.offsets[r]
-                };
+    // Each pass walks its rows in order with a cursor on the next kept row.
+    let kept = |r: usize, q: &mut usize| -> Option<usize> {
+        let k = *q;
+        (special.get(k) == Some(&(r as u32))).then(|| {
+            *q += 1;
+            k
+        })
+    };
+    let span = |t: &StencilTable, r: usize| t.offsets[r] as usize..t.offsets[r + 1] as usize;
+    write_rows(
+        t.num_rows(),
+        t.num_inputs,
+        |first| special.partition_point(|&s| (s as usize) < first),
+        |r, q| kept(r, q).map_or_else(|| span(t, r), |k| span(ex, k)).len(),
+        |r, q, io, wo| match kept(r, q) {
+            Some(k) => {
+                io.copy_from_slice(&ex.indices[span(ex, k)]);
+                wo.copy_from_slice(&ex.weights[span(ex, k)]);
             }
-        });
-    let mut acc = 0u32;
-    for o in &mut offsets[1..] {
-        acc += *o;
-        *o = acc;
-    }
-    let mut indices = super::alloc::zeroed(acc as usize, 0u32);
-    let mut weights = super::alloc::zeroed(acc as usize, 0.0f32);
-    let start = |r: usize| offsets[r] as usize;
-    par::ranges(&b)
-        .into_par_iter()
-        .zip(par::split(&mut indices, &b, start))
-        .zip(par::split(&mut weights, &b, start))
-        .for_each(|((range, io), wo)| {
-            let mut q = first_special(range.start);
-            let base = start(range.start);
-            for r in range {
-                let (o, n) = (start(r) - base, start(r + 1) - start(r));
-                let (io, wo) = (&mut io[o..o + n], &mut wo[o..o + n]);
-                if special.get(q).is_some_and(|&s| s as usize == r) {
-                    let lo = ex.offsets[q] as usize;
-                    io.copy_from_slice(&ex.indices[lo..lo + n]);
-                    wo.copy_from_slice(&ex.weights[lo..lo + n]);
-                    q += 1;
-                } else {
-                    let lo = t.offsets[r] as usize;
-                    io.copy_from_slice(&t.indices[lo..lo + n]);
-                    let w = weight(n);
-                    for (i, x) in wo.iter_mut().enumerate() {
-                        *x = w(i);
-                    }
+            None => {
+                io.copy_from_slice(&t.indices[span(t, r)]);
+                let w = weight(io.len());
+                for (i, x) in wo.iter_mut().enumerate() {
+                    *x = w(i);
                 }
             }
-        });
-    StencilTable {
-        offsets,
-        indices,
-        weights,
-        num_inputs: t.num_inputs,
-    }
+        },
+    )
 }

@@ -61,6 +61,7 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
     let vertex = write_rows(
         nv,
         nv,
+        |_| Scratch::default(),
         |v, s| {
             let n = p.valence(v);
             if n == 0 {
@@ -124,6 +125,7 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
     let edge = write_rows(
         ne,
         nv,
+        |_| (),
         |e, _| {
             if p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2 {
                 // Smooth: both opposite vertices, merged where they are one.
@@ -174,11 +176,19 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
 
 /// Builds a table of `rows` rows over `num_inputs` inputs whose lengths `len(r)` are known
 /// before the rows are formed: sized in one parallel pass, then each row written by `row(r,
-/// indices, weights)` into its own slices of tables allocated once at their exact size.
-fn write_rows<L, R>(rows: usize, num_inputs: usize, len: L, row: R) -> StencilTable
+/// indices, weights)` into its own slices of tables allocated once at their exact size. Each
+/// pass over a chunk of rows starts with a state `state(first row)` (scratch buffers, a
+/// cursor) handed to `len` and `row` with each row, in order.
+pub(super) fn write_rows<S, L, R>(
+    rows: usize,
+    num_inputs: usize,
+    state: impl Fn(usize) -> S + Sync,
+    len: L,
+    row: R,
+) -> StencilTable
 where
-    L: Fn(usize, &mut Scratch) -> usize + Sync,
-    R: Fn(usize, &mut Scratch, &mut [u32], &mut [f32]) + Sync,
+    L: Fn(usize, &mut S) -> usize + Sync,
+    R: Fn(usize, &mut S, &mut [u32], &mut [f32]) + Sync,
 {
     let b = par::bounds(rows);
     let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
@@ -186,7 +196,7 @@ where
         .into_par_iter()
         .zip(par::split(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
-            let mut s = Scratch::default();
+            let mut s = state(r.start);
             let base = r.start;
             for i in r {
                 out[i - base] = len(i, &mut s) as u32;
@@ -205,7 +215,7 @@ where
         .zip(par::split(&mut indices, &b, start))
         .zip(par::split(&mut weights, &b, start))
         .for_each(|((r, io), wo)| {
-            let mut s = Scratch::default();
+            let mut s = state(r.start);
             let base = start(r.start);
             for i in r {
                 let (a, b) = (start(i) - base, start(i + 1) - base);
