@@ -201,7 +201,7 @@ impl Prepared for Kernels {
     }
 }
 
-/// subsurf: `Topology::new` + `Refiner::new` (full last level, per-level stencil tables kept);
+/// subsurf: `Topology::new` + `Refiner::new` (full last level, per-step frame plans kept);
 /// per frame `Refiner::refine_positions_into`.
 pub struct Subsurf {
     pub refiner: Refiner,

@@ -7,11 +7,13 @@
 //! the edge is smooth (sharpness `<= 0`) with two faces, neither a triangle under the smooth
 //! triangle rule. Those are exactly the rows [`super::masks::LevelRows`] forms with the smooth
 //! weights; every other row is formed by `LevelRows` itself and kept whole. So applying the
-//! plan gives the stored tables' bits (`tests` below, and the frame tests on every shape).
+//! plan gives the stored tables' bits (the smooth-plan tests in `smooth_frame.rs` and
+//! `tests/refine_positions_into.rs` on every shape).
 //!
 //! The `Refiner` builds these plans as it refines (the tables a frame reads) and its stencil
-//! tables only on first use: a plan holds no weights and no copy of the face lists, which the
-//! stencils do.
+//! tables only on first use, from the plans ([`StepPlan::stencils`]; `tests/refine_stencils.rs`
+//! checks them against the masks' tables): a plan holds no weights and no copy of the face
+//! lists, which the stencils do.
 
 use super::loop_masks::write_rows;
 use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
@@ -49,7 +51,7 @@ impl Kept {
 }
 
 /// The chunks' kept rows joined: the rows in order, their table, and the odd rows.
-fn join(parts: Vec<Kept>, inputs: usize) -> (Vec<u32>, StencilTable, Vec<u32>) {
+fn join_kept(parts: Vec<Kept>, inputs: usize) -> (Vec<u32>, StencilTable, Vec<u32>) {
     let mut ex = StencilTable {
         offsets: vec![0],
         num_inputs: inputs,
@@ -168,8 +170,8 @@ impl StepPlan {
                 kept
             })
             .collect();
-        let (vertex_special, vex, vertex_odd) = join(vparts, inputs);
-        let (edge_special, eex, _) = join(eparts, inputs);
+        let (vertex_special, vex, vertex_odd) = join_kept(vparts, inputs);
+        let (edge_special, eex, _) = join_kept(eparts, inputs);
         if 2 * (vertex_special.len() + edge_special.len()) > nv + ne {
             return None;
         }

@@ -231,7 +231,8 @@ impl Refiner {
         }
         let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
-        // Per step, the per-frame plan made from the topology (`None` for a bilinear step).
+        // Per step, the per-frame plan made from the topology (`None` for a bilinear step or
+        // one whose rows are mostly exceptions: the refiner then keeps its stencil tables).
         let mut plans = Vec::with_capacity(level);
         // The full child of the last level, built ahead while the previous step's plan was:
         // both read only that level, so they run side by side (`rayon::join`; one after the
