@@ -57,7 +57,7 @@ pub fn run(a: &BenchArgs) -> anyhow::Result<()> {
         verts = p.len();
     }
     println!(
-        "{}: level {} -> {} vertices, {} threads: topology+stencils {:.2} ms, positions {:.2} ms (medians of {runs})",
+        "{}: level {} -> {} vertices, {} threads: topology+plans {:.2} ms, positions {:.2} ms (medians of {runs})",
         a.input.display(),
         a.level,
         verts,
@@ -104,7 +104,7 @@ fn run_gpu(
     })?;
     let verts = gpu.num_output_vertices();
     println!(
-        "{}: level {} -> {verts} vertices on {}: topology+stencils (CPU) {topo_ms:.2} ms, upload {upload:.2} ms, \
+        "{}: level {} -> {verts} vertices on {}: topology+plans (CPU) {topo_ms:.2} ms, stencils + upload {upload:.2} ms, \
          positions resident {resident:.3} ms ({:.1} M vertices/s), with read-back {readback:.3} ms (medians of {runs})",
         a.input.display(),
         a.level,

@@ -21,7 +21,7 @@ fn fvar(c: &mut Criterion) {
     for level in [3usize, 4] {
         let r = Refiner::new(base.clone(), level).unwrap();
         g.bench_with_input(
-            BenchmarkId::new("vertex topology+stencils", level),
+            BenchmarkId::new("vertex topology+plans", level),
             &level,
             |b, &l| b.iter(|| Refiner::new(base.clone(), l).unwrap()),
         );

@@ -18,12 +18,12 @@ fn bench_mesh(c: &mut Criterion, name: &str, mesh: &Mesh, levels: &[usize]) {
     g.sample_size(10);
     for &level in levels {
         g.bench_with_input(
-            BenchmarkId::new("topology+stencils", level),
+            BenchmarkId::new("topology+plans", level),
             &level,
             |b, &l| b.iter(|| Refiner::new(base.clone(), l).unwrap()),
         );
         g.bench_with_input(
-            BenchmarkId::new("topology+stencils lean", level),
+            BenchmarkId::new("topology+plans lean", level),
             &level,
             |b, &l| {
                 b.iter(|| Refiner::with_options(base.clone(), l, RefineOptions::lean()).unwrap())
