@@ -306,9 +306,13 @@ impl LevelStencils {
         }
         if fd.is_empty() {
             // No face points (a Loop step): every input is a parent vertex.
-            let x = |k: usize| &src[k];
-            run(&self.vertex, vd, x, parallel);
-            run(&self.edge, ed, x, parallel);
+            if parallel {
+                self.vertex.apply(src, vd);
+                self.edge.apply(src, ed);
+            } else {
+                self.vertex.apply_serial(src, vd);
+                self.edge.apply_serial(src, ed);
+            }
         } else {
             let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
             run(&self.vertex, vd, x, parallel);

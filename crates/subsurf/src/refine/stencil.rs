@@ -4,6 +4,7 @@
 //! `indices[offsets[i]..offsets[i + 1]]` and the matching `weights`. Applying a table computes
 //! `dst[i] = Σ_j weights[j] · src[indices[j]]`, accumulated in `f32` in index order.
 
+use super::smooth_frame::Acc;
 use crate::real::Real;
 use rayon::prelude::*;
 
@@ -78,14 +79,61 @@ impl StencilTable {
         assert!(src.len() >= self.num_inputs, "source length");
         const CHUNK: usize = 4096;
         dst.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.eval_rows(c * CHUNK, out, |k| &src[k]);
+            self.eval_rows_of(c * CHUNK, out, src);
         });
     }
 
     /// Applies the table on the calling thread only.
     pub fn apply_serial<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
         assert_eq!(dst.len(), self.num_rows(), "destination length");
-        self.eval_rows(0, dst, |k| &src[k]);
+        self.eval_rows_of(0, dst, src);
+    }
+
+    /// [`StencilTable::eval_rows`] over the values `src`: three-component values summed in
+    /// one SSE register on x86-64 (`super::lanes`: the same products and sums, bit for bit).
+    pub(crate) fn eval_rows_of<const N: usize>(
+        &self,
+        first: usize,
+        out: &mut [[f32; N]],
+        src: &[[f32; N]],
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if let (Some(src), Some(out)) = (super::lanes::as3(src), super::lanes::as3_mut(out)) {
+            return self.eval_rows_acc::<3, super::lanes::Lanes3>(first, out, src);
+        }
+        self.eval_rows_acc::<N, [f32; N]>(first, out, src);
+    }
+
+    /// [`StencilTable::eval_rows`] over `src`, each row summed in an `A`.
+    #[inline(always)]
+    fn eval_rows_acc<const N: usize, A: Acc<N>>(
+        &self,
+        first: usize,
+        out: &mut [[f32; N]],
+        src: &[[f32; N]],
+    ) {
+        let offs = &self.offsets[first..=first + out.len()];
+        let (lo, hi) = (offs[0] as usize, offs[out.len()] as usize);
+        let (idx, wts) = (&self.indices[lo..hi], &self.weights[lo..hi]);
+        let mut j = 0;
+        let row = |ri: &[u32], rw: &[f32]| {
+            let mut acc = A::zero();
+            for (&k, &w) in ri.iter().zip(rw) {
+                acc.add(w, src, k as usize);
+            }
+            acc.get()
+        };
+        for (o, w2) in out.iter_mut().zip(offs.windows(2)) {
+            let n = (w2[1] - w2[0]) as usize;
+            let (ri, rw) = (&idx[j..j + n], &wts[j..j + n]);
+            j += n;
+            *o = match n {
+                4 => row(&ri[..4], &rw[..4]),
+                7 => row(&ri[..7], &rw[..7]),
+                9 => row(&ri[..9], &rw[..9]),
+                _ => row(ri, rw),
+            };
+        }
     }
 
     /// Rows `first..first + out.len()` into `out`, input `k` read as `x(k)`: each row is
