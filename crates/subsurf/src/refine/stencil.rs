@@ -112,34 +112,17 @@ impl StencilTable {
         out: &mut [[f32; N]],
         src: &[[f32; N]],
     ) {
-        let offs = &self.offsets[first..=first + out.len()];
-        let (lo, hi) = (offs[0] as usize, offs[out.len()] as usize);
-        let (idx, wts) = (&self.indices[lo..hi], &self.weights[lo..hi]);
-        let mut j = 0;
-        let row = |ri: &[u32], rw: &[f32]| {
+        self.walk_rows(first, out, |ri, rw| {
             let mut acc = A::zero();
             for (&k, &w) in ri.iter().zip(rw) {
                 acc.add(w, src, k as usize);
             }
             acc.get()
-        };
-        for (o, w2) in out.iter_mut().zip(offs.windows(2)) {
-            let n = (w2[1] - w2[0]) as usize;
-            let (ri, rw) = (&idx[j..j + n], &wts[j..j + n]);
-            j += n;
-            *o = match n {
-                4 => row(&ri[..4], &rw[..4]),
-                7 => row(&ri[..7], &rw[..7]),
-                9 => row(&ri[..9], &rw[..9]),
-                _ => row(ri, rw),
-            };
-        }
+        });
     }
 
     /// Rows `first..first + out.len()` into `out`, input `k` read as `x(k)`: each row is
-    /// `Σ w · x(k)` accumulated in `f32` in entry order. The rows' entries are contiguous, so
-    /// they are walked once; rows of 4 and 9 entries (a smooth edge point, a smooth valence-4
-    /// vertex) are unrolled, in the same order.
+    /// `Σ w · x(k)` accumulated in `f32` in entry order.
     #[inline(always)]
     pub(crate) fn eval_rows<'s, const N: usize>(
         &self,
@@ -147,11 +130,7 @@ impl StencilTable {
         out: &mut [[f32; N]],
         x: impl Fn(usize) -> &'s [f32; N],
     ) {
-        let offs = &self.offsets[first..=first + out.len()];
-        let (lo, hi) = (offs[0] as usize, offs[out.len()] as usize);
-        let (idx, wts) = (&self.indices[lo..hi], &self.weights[lo..hi]);
-        let mut j = 0;
-        let row = |ri: &[u32], rw: &[f32]| {
+        self.walk_rows(first, out, |ri, rw| {
             let mut acc = [0.0f32; N];
             for (&k, &w) in ri.iter().zip(rw) {
                 let v = x(k as usize);
@@ -160,7 +139,24 @@ impl StencilTable {
                 }
             }
             acc
-        };
+        });
+    }
+
+    /// Rows `first..first + out.len()` into `out`, each `row(indices, weights)`. The rows'
+    /// entries are contiguous, so they are walked once; rows of 4, 7 and 9 entries (a smooth
+    /// edge point, a smooth Loop vertex of valence 6, a smooth valence-4 vertex) are handed
+    /// over as slices of known length, so `row` unrolls for them.
+    #[inline(always)]
+    fn walk_rows<const N: usize>(
+        &self,
+        first: usize,
+        out: &mut [[f32; N]],
+        row: impl Fn(&[u32], &[f32]) -> [f32; N],
+    ) {
+        let offs = &self.offsets[first..=first + out.len()];
+        let (lo, hi) = (offs[0] as usize, offs[out.len()] as usize);
+        let (idx, wts) = (&self.indices[lo..hi], &self.weights[lo..hi]);
+        let mut j = 0;
         for (o, w2) in out.iter_mut().zip(offs.windows(2)) {
             let n = (w2[1] - w2[0]) as usize;
             let (ri, rw) = (&idx[j..j + n], &wts[j..j + n]);
