@@ -6,7 +6,9 @@
 //! and its rings close (as many faces as edges), at a valence of at most 32; an edge row when
 //! the edge is smooth (sharpness `<= 0`) with two faces, neither a triangle under the smooth
 //! triangle rule. Those are exactly the rows [`super::masks::LevelRows`] forms with the smooth
-//! weights; every other row is formed by `LevelRows` itself and kept whole. So applying the
+//! weights (the plan asks it, `LevelRows::smooth_valence` and `LevelRows::quarter_edge`, the
+//! tests the masks themselves take); every other row is formed by `LevelRows` itself and kept
+//! whole. So applying the
 //! plan gives the stored tables' bits (the smooth-plan tests in `smooth_frame.rs` and
 //! `tests/refine_positions_into.rs` on every shape).
 //!
@@ -20,8 +22,7 @@ use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
 use super::par;
 use super::smooth_frame::{OwnRows, StepPlan, MAX_VALENCE};
 use super::stencil::StencilTable;
-use crate::options::{Scheme, TriangleSubdivision};
-use crate::topology::tags::rule;
+use crate::options::Scheme;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
@@ -84,14 +85,11 @@ impl StepPlan {
         let inputs = nv + nf;
         let quad_faces = (0..nf).all(|f| p.face_size(f) == 4);
         let fp = |f: u32| nv as u32 + f;
-        // Vertex rows: a smooth row of valence n has 2n + 1 entries, a kept one none here.
-        let smooth_valence = |v: usize| -> Option<usize> {
-            let pr = p.vert_rule[v];
-            let n = p.vertex_faces(v).len();
-            ((pr == rule::SMOOTH || pr == rule::DART)
-                && n == p.valence(v)
-                && (1..=MAX_VALENCE).contains(&n))
-            .then_some(n)
+        // Vertex rows: a smooth row of valence n (1..=MAX_VALENCE: the plan's weight table)
+        // has 2n + 1 entries, a kept one none here.
+        let smooth_valence = |v: usize| {
+            rows.smooth_valence(v)
+                .filter(|n| (1..=MAX_VALENCE).contains(n))
         };
         let vb = par::bounds(nv);
         let mut voffsets = super::alloc::zeroed(nv + 1, 0u32);
@@ -119,10 +117,13 @@ impl StepPlan {
                 let mut scratch = Scratch::<f32>::default();
                 let base = vstart(r.start);
                 for v in r {
-                    let Some(n) = smooth_valence(v) else {
+                    // The class found by the sizing pass: a smooth row has 2n + 1 entries.
+                    let len = vstart(v + 1) - vstart(v);
+                    if len == 0 {
                         kept.push(v, |add| rows.vertex(v, &mut scratch, &mut |x, w| add(x, w)));
                         continue;
-                    };
+                    }
+                    let n = len / 2;
                     let o = &mut out[vstart(v) - base..vstart(v + 1) - base];
                     for (o, &f) in o.iter_mut().zip(p.vertex_faces(v)) {
                         *o = fp(f);
@@ -139,7 +140,6 @@ impl StepPlan {
             })
             .collect();
         // Edge rows: four entries each (zero where kept whole).
-        let tri_rule = p.options.triangle_subdivision == TriangleSubdivision::Smooth;
         let eb = par::bounds(ne);
         let mut eindices = super::alloc::zeroed(4 * ne, 0u32);
         let eparts: Vec<Kept> = par::ranges(&eb)
@@ -149,14 +149,8 @@ impl StepPlan {
                 let mut kept = Kept::default();
                 let base = 4 * r.start;
                 for e in r {
-                    let faces = p.edge_faces(e);
-                    let smooth = p.edge_sharpness[e] <= 0.0
-                        && faces.len() == 2
-                        && !(tri_rule
-                            && (p.face_size(faces[0] as usize) == 3
-                                || p.face_size(faces[1] as usize) == 3));
-                    if smooth {
-                        let ev = p.edge_verts[e];
+                    if rows.quarter_edge(e) {
+                        let (faces, ev) = (p.edge_faces(e), p.edge_verts[e]);
                         out[4 * e - base..4 * e - base + 4].copy_from_slice(&[
                             fp(faces[0]),
                             fp(faces[1]),

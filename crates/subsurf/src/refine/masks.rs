@@ -288,36 +288,10 @@ impl LevelStencils {
             self.face.apply_serial(src, fd);
         }
         let fd: &[[f32; N]] = fd;
+        // A Loop step has no face points: every input is a parent vertex.
         let p = self.num_parent_vertices;
-        fn run<'s, const N: usize>(
-            t: &StencilTable,
-            out: &mut [[f32; N]],
-            x: impl Fn(usize) -> &'s [f32; N] + Sync + Copy,
-            parallel: bool,
-        ) {
-            if parallel {
-                const CHUNK: usize = 4096;
-                out.par_chunks_mut(CHUNK)
-                    .enumerate()
-                    .for_each(|(c, o)| t.eval_rows(c * CHUNK, o, x));
-            } else {
-                t.eval_rows(0, out, x);
-            }
-        }
-        if fd.is_empty() {
-            // No face points (a Loop step): every input is a parent vertex.
-            if parallel {
-                self.vertex.apply(src, vd);
-                self.edge.apply(src, ed);
-            } else {
-                self.vertex.apply_serial(src, vd);
-                self.edge.apply_serial(src, ed);
-            }
-        } else {
-            let x = |k: usize| if k < p { &src[k] } else { &fd[k - p] };
-            run(&self.vertex, vd, x, parallel);
-            run(&self.edge, ed, x, parallel);
-        }
+        self.vertex.apply_split(src, fd, p, vd, parallel);
+        self.edge.apply_split(src, fd, p, ed, parallel);
     }
 
     /// The same step as one table over the parent vertices only (face points expanded and
@@ -417,17 +391,39 @@ impl<'a> LevelRows<'a> {
         }
     }
 
+    /// The valence `n` of vertex `v` where its child follows the smooth rule (a smooth or
+    /// dart vertex whose rings close, as many faces as edges): its row is then its `n` face
+    /// points and its `n` neighbours, `1/n²` each, and itself, `(n - 2)/n`.
+    #[inline]
+    pub(crate) fn smooth_valence(&self, v: usize) -> Option<usize> {
+        let p = self.p;
+        let (pr, n) = (p.vert_rule[v], p.vertex_faces(v).len());
+        (!self.bilinear && (pr == rule::SMOOTH || pr == rule::DART) && n == p.valence(v))
+            .then_some(n)
+    }
+
+    /// Whether the edge point of edge `e` is the smooth two-face point: its two face points,
+    /// then its two ends, `1/4` each (a smooth edge with two faces, neither a triangle under
+    /// the smooth triangle rule, which weighs them otherwise).
+    #[inline]
+    pub(crate) fn quarter_edge(&self, e: usize) -> bool {
+        let p = self.p;
+        let faces = p.edge_faces(e);
+        let tri = |i: usize| p.face_size(faces[i] as usize) == 3;
+        !self.bilinear
+            && p.edge_sharpness[e] <= 0.0
+            && faces.len() == 2
+            && !(p.options.triangle_subdivision == TriangleSubdivision::Smooth
+                && (tri(0) || tri(1)))
+    }
+
     /// Length of the row of vertex `v` where it is known without forming it.
     #[inline]
     pub(crate) fn vertex_len(&self, v: usize) -> Option<usize> {
-        let p = self.p;
-        let (pr, nfc, nec) = (p.vert_rule[v], p.vertex_faces(v).len(), p.valence(v));
         if self.bilinear {
             Some(1)
-        } else if (pr == rule::SMOOTH || pr == rule::DART) && nfc == nec {
-            Some(2 * nfc + 1)
         } else {
-            None
+            self.smooth_valence(v).map(|n| 2 * n + 1)
         }
     }
 
@@ -446,10 +442,8 @@ impl<'a> LevelRows<'a> {
         }
         let pe = p.vertex_edges(v);
         let faces = p.vertex_faces(v);
-        let pr = p.vert_rule[v];
-        if (pr == rule::SMOOTH || pr == rule::DART) && faces.len() == pe.len() {
+        if let Some(n) = self.smooth_valence(v) {
             // Smooth rule (Catmull & Clark 1978): (n-2)/n v + 1/n^2 (edges + faces).
-            let n = faces.len();
             let w = W::ONE / W::from_f64((n * n) as f64);
             for &f in faces {
                 add(self.fp(f), w);

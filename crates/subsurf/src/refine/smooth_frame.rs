@@ -450,7 +450,7 @@ fn exception_row<const N: usize, A: Acc<N>>(
     fd: &[[f32; N]],
 ) -> [f32; N] {
     let (lo, hi) = (ex.offsets[q] as usize, ex.offsets[q + 1] as usize);
-    general_row::<N, A>(&ex.indices[lo..hi], &ex.weights[lo..hi], p, src, fd)
+    split_row::<N, A>(&ex.indices[lo..hi], &ex.weights[lo..hi], p, src, fd)
 }
 
 /// The tables a plan reads: its own ([`OwnRows`]) or a step's stored stencils.
@@ -464,8 +464,8 @@ struct Tables<'a> {
 }
 
 /// A stored row over parent vertices (`k < p`) and face points (`fd[k - p]`).
-#[inline]
-fn general_row<const N: usize, A: Acc<N>>(
+#[inline(always)]
+pub(super) fn split_row<const N: usize, A: Acc<N>>(
     idx: &[u32],
     w: &[f32],
     p: usize,

@@ -4,7 +4,7 @@
 //! `indices[offsets[i]..offsets[i + 1]]` and the matching `weights`. Applying a table computes
 //! `dst[i] = Σ_j weights[j] · src[indices[j]]`, accumulated in `f32` in index order.
 
-use super::smooth_frame::Acc;
+use super::smooth_frame::{split_row, Acc};
 use crate::real::Real;
 use rayon::prelude::*;
 
@@ -75,71 +75,67 @@ impl StencilTable {
     /// Applies the table to `N`-component values (positions: `N = 3`, UVs: `N = 2`),
     /// in parallel over rows.
     pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
-        assert_eq!(dst.len(), self.num_rows(), "destination length");
         assert!(src.len() >= self.num_inputs, "source length");
-        const CHUNK: usize = 4096;
-        dst.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.eval_rows_of(c * CHUNK, out, src);
-        });
+        self.apply_split(src, &[], src.len(), dst, true);
     }
 
     /// Applies the table on the calling thread only.
     pub fn apply_serial<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
+        self.apply_split(src, &[], src.len(), dst, false);
+    }
+
+    /// Applies the table to inputs held in two slices: input `k` is `src[k]` below `p`, else
+    /// `fd[k - p]` (a refinement step's parent vertices and face points), in parallel chunks
+    /// of rows or on the calling thread. Each row is `Σ w · x(k)` accumulated in `f32` in entry
+    /// order; three-component values are summed in one SSE register on x86-64
+    /// (`super::lanes`: the same products and sums, bit for bit).
+    pub(crate) fn apply_split<const N: usize>(
+        &self,
+        src: &[[f32; N]],
+        fd: &[[f32; N]],
+        p: usize,
+        dst: &mut [[f32; N]],
+        parallel: bool,
+    ) {
         assert_eq!(dst.len(), self.num_rows(), "destination length");
-        self.eval_rows_of(0, dst, src);
-    }
-
-    /// [`StencilTable::eval_rows`] over the values `src`: three-component values summed in
-    /// one SSE register on x86-64 (`super::lanes`: the same products and sums, bit for bit).
-    pub(crate) fn eval_rows_of<const N: usize>(
-        &self,
-        first: usize,
-        out: &mut [[f32; N]],
-        src: &[[f32; N]],
-    ) {
         #[cfg(target_arch = "x86_64")]
-        if let (Some(src), Some(out)) = (super::lanes::as3(src), super::lanes::as3_mut(out)) {
-            return self.eval_rows_acc::<3, super::lanes::Lanes3>(first, out, src);
+        if let (Some(src), Some(fd), Some(dst)) = (
+            super::lanes::as3(src),
+            super::lanes::as3(fd),
+            super::lanes::as3_mut(dst),
+        ) {
+            return self.apply_acc::<3, super::lanes::Lanes3>(src, fd, p, dst, parallel);
         }
-        self.eval_rows_acc::<N, [f32; N]>(first, out, src);
+        self.apply_acc::<N, [f32; N]>(src, fd, p, dst, parallel);
     }
 
-    /// [`StencilTable::eval_rows`] over `src`, each row summed in an `A`.
-    #[inline(always)]
-    fn eval_rows_acc<const N: usize, A: Acc<N>>(
+    /// [`StencilTable::apply_split`], each row summed in an `A`.
+    fn apply_acc<const N: usize, A: Acc<N>>(
         &self,
-        first: usize,
-        out: &mut [[f32; N]],
         src: &[[f32; N]],
+        fd: &[[f32; N]],
+        p: usize,
+        dst: &mut [[f32; N]],
+        parallel: bool,
     ) {
-        self.walk_rows(first, out, |ri, rw| {
-            let mut acc = A::zero();
-            for (&k, &w) in ri.iter().zip(rw) {
-                acc.add(w, src, k as usize);
+        const CHUNK: usize = 4096;
+        // Without face points every input is in `src`: no test of which slice per entry.
+        let rows = |first: usize, out: &mut [[f32; N]]| {
+            if fd.is_empty() {
+                self.walk_rows(first, out, |ri, rw| {
+                    split_row::<N, A>(ri, rw, usize::MAX, src, fd)
+                });
+            } else {
+                self.walk_rows(first, out, |ri, rw| split_row::<N, A>(ri, rw, p, src, fd));
             }
-            acc.get()
-        });
-    }
-
-    /// Rows `first..first + out.len()` into `out`, input `k` read as `x(k)`: each row is
-    /// `Σ w · x(k)` accumulated in `f32` in entry order.
-    #[inline(always)]
-    pub(crate) fn eval_rows<'s, const N: usize>(
-        &self,
-        first: usize,
-        out: &mut [[f32; N]],
-        x: impl Fn(usize) -> &'s [f32; N],
-    ) {
-        self.walk_rows(first, out, |ri, rw| {
-            let mut acc = [0.0f32; N];
-            for (&k, &w) in ri.iter().zip(rw) {
-                let v = x(k as usize);
-                for c in 0..N {
-                    acc[c] += w * v[c];
-                }
-            }
-            acc
-        });
+        };
+        if parallel {
+            dst.par_chunks_mut(CHUNK)
+                .enumerate()
+                .for_each(|(c, out)| rows(c * CHUNK, out));
+        } else {
+            rows(0, dst);
+        }
     }
 
     /// Rows `first..first + out.len()` into `out`, each `row(indices, weights)`. The rows'
