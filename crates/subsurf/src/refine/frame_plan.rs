@@ -17,6 +17,7 @@
 //! checks them against the masks' tables): a plan holds no weights and no copy of the face
 //! lists, which the stencils do.
 
+use super::alloc::{put, unwritten, written};
 use super::loop_masks::write_rows;
 use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
 use super::par;
@@ -77,6 +78,7 @@ impl StepPlan {
     /// The plan of the step from `p` whose rows are `rows` (see the module documentation).
     /// Bilinear steps and steps where most rows are exceptions take their stencil tables
     /// whole (as [`StepPlan::new`] applies them), so this returns `None` for them.
+    #[allow(unsafe_code)]
     pub(crate) fn from_topology(p: &Topology, rows: LevelRows<'_>) -> Option<StepPlan> {
         if p.options.scheme != Scheme::Catmark {
             return None;
@@ -92,26 +94,29 @@ impl StepPlan {
                 .filter(|n| (1..=MAX_VALENCE).contains(n))
         };
         let vb = par::bounds(nv);
-        let mut voffsets = super::alloc::zeroed(nv + 1, 0u32);
+        let mut voffsets = unwritten(nv + 1, u32::MAX);
+        voffsets[0].write(0);
         par::ranges(&vb)
             .into_par_iter()
-            .zip(par::split(&mut voffsets[1..], &vb, |v| v))
+            .zip(par::split_exact(&mut voffsets[1..], &vb, |v| v))
             .for_each(|(r, out)| {
                 let base = r.start;
                 for v in r {
-                    out[v - base] = smooth_valence(v).map_or(0, |n| 2 * n as u32 + 1);
+                    out[v - base].write(smooth_valence(v).map_or(0, |n| 2 * n as u32 + 1));
                 }
             });
+        // SAFETY: the first value and every vertex's (the chunks cover the rest) written.
+        let mut voffsets = unsafe { written(voffsets) };
         let mut acc = 0u32;
         for o in &mut voffsets[1..] {
             acc += *o;
             *o = acc;
         }
-        let mut vindices = super::alloc::zeroed(acc as usize, 0u32);
+        let mut vindices = unwritten(acc as usize, u32::MAX);
         let vstart = |v: usize| voffsets[v] as usize;
         let vparts: Vec<Kept> = par::ranges(&vb)
             .into_par_iter()
-            .zip(par::split(&mut vindices, &vb, vstart))
+            .zip(par::split_exact(&mut vindices, &vb, vstart))
             .map(|(r, out)| {
                 let mut kept = Kept::default();
                 let mut scratch = Scratch::<f32>::default();
@@ -125,13 +130,16 @@ impl StepPlan {
                     }
                     let n = len / 2;
                     let o = &mut out[vstart(v) - base..vstart(v + 1) - base];
-                    for (o, &f) in o.iter_mut().zip(p.vertex_faces(v)) {
-                        *o = fp(f);
+                    // `n` faces and `n` edges (`smooth_valence`), then the vertex.
+                    let (faces, edges) = (p.vertex_faces(v), p.vertex_edges(v));
+                    assert!(faces.len() == n && edges.len() == n);
+                    for (o, &f) in o.iter_mut().zip(faces) {
+                        o.write(fp(f));
                     }
-                    for (o, &e) in o[n..].iter_mut().zip(p.vertex_edges(v)) {
-                        *o = p.other_vertex(e as usize, v as u32);
+                    for (o, &e) in o[n..].iter_mut().zip(edges) {
+                        o.write(p.other_vertex(e as usize, v as u32));
                     }
-                    o[2 * n] = v as u32;
+                    o[2 * n].write(v as u32);
                     if n != 4 {
                         kept.odd.push(v as u32);
                     }
@@ -141,29 +149,29 @@ impl StepPlan {
             .collect();
         // Edge rows: four entries each (zero where kept whole).
         let eb = par::bounds(ne);
-        let mut eindices = super::alloc::zeroed(4 * ne, 0u32);
+        let mut eindices = unwritten(4 * ne, u32::MAX);
         let eparts: Vec<Kept> = par::ranges(&eb)
             .into_par_iter()
-            .zip(par::split(&mut eindices, &eb, |e| 4 * e))
+            .zip(par::split_exact(&mut eindices, &eb, |e| 4 * e))
             .map(|(r, out)| {
                 let mut kept = Kept::default();
                 let base = 4 * r.start;
                 for e in r {
+                    let o = &mut out[4 * e - base..4 * e - base + 4];
                     if rows.quarter_edge(e) {
                         let (faces, ev) = (p.edge_faces(e), p.edge_verts[e]);
-                        out[4 * e - base..4 * e - base + 4].copy_from_slice(&[
-                            fp(faces[0]),
-                            fp(faces[1]),
-                            ev[0],
-                            ev[1],
-                        ]);
+                        put(o, &[fp(faces[0]), fp(faces[1]), ev[0], ev[1]]);
                     } else {
+                        put(o, &[0; 4]);
                         kept.push(e, |add| rows.edge(e, &mut |x, w| add(x, w)));
                     }
                 }
                 kept
             })
             .collect();
+        // SAFETY: the chunks cover both tables; a smooth vertex row writes its `2n + 1` values
+        // (a kept one has none), every edge row its four.
+        let (vindices, eindices) = unsafe { (written(vindices), written(eindices)) };
         let (vertex_special, vex, vertex_odd) = join_kept(vparts, inputs);
         let (edge_special, eex, _) = join_kept(eparts, inputs);
         if 2 * (vertex_special.len() + edge_special.len()) > nv + ne {

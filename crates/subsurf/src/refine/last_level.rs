@@ -9,6 +9,7 @@
 //! even stored: each value is the parent's, decremented, when a stencil row asks for it
 //! (Chaikin's rule averages over neighbours, so it is computed once and stored).
 
+use super::alloc::put;
 use super::level::{
     child_edge_sharpness, child_end_at_vertex, edge_point_tags, iota, sharp_tag, vertex_child_tags,
 };
@@ -193,6 +194,7 @@ impl ChildSharpnessBuf {
 
 /// Refines `p` once keeping only the child's face lists, hole flags and vertex count: the
 /// face vertices are those of [`super::refine_topology`]; every other table is left empty.
+#[allow(unsafe_code)]
 pub(crate) fn refine_face_lists(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
         p.num_vertices(),
@@ -202,10 +204,10 @@ pub(crate) fn refine_face_lists(p: &Topology) -> Topology {
     );
     let fo = |f: usize| p.face_offsets[f] as usize;
     let fb = par::bounds(nf);
-    let mut face_verts = vec![0u32; 4 * nc];
+    let mut face_verts = super::alloc::unwritten(4 * nc, u32::MAX);
     par::ranges(&fb)
         .into_par_iter()
-        .zip(par::split(&mut face_verts, &fb, |f| 4 * fo(f)))
+        .zip(par::split_exact(&mut face_verts, &fb, |f| 4 * fo(f)))
         .for_each(|(r, cfv)| {
             let base = 4 * fo(r.start);
             for f in r {
@@ -218,21 +220,26 @@ pub(crate) fn refine_face_lists(p: &Topology) -> Topology {
                     // Child j keeps the parent's orientation: the child of corner j at corner j.
                     let e = [ep(0), ep(1), ep(2), ep(3)];
                     let c = &mut cfv[4 * s - base..4 * s - base + 16];
-                    c.copy_from_slice(&[
-                        fv[0], e[0], fp, e[3], // child 0
-                        e[0], fv[1], e[1], fp, // child 1
-                        fp, e[1], fv[2], e[2], // child 2
-                        e[3], fp, e[2], fv[3], // child 3
-                    ]);
+                    put(
+                        c,
+                        &[
+                            fv[0], e[0], fp, e[3], // child 0
+                            e[0], fv[1], e[1], fp, // child 1
+                            fp, e[1], fv[2], e[2], // child 2
+                            e[3], fp, e[2], fv[3], // child 3
+                        ],
+                    );
                 } else {
                     for j in 0..n {
                         let jp = if j == 0 { n - 1 } else { j - 1 };
                         let c = 4 * (s + j) - base;
-                        cfv[c..c + 4].copy_from_slice(&[fv[j], ep(j), fp, ep(jp)]);
+                        put(&mut cfv[c..c + 4], &[fv[j], ep(j), fp, ep(jp)]);
                     }
                 }
             }
         });
+    // SAFETY: the chunks cover the table, each parent face writing its `4n` values.
+    let face_verts = unsafe { super::alloc::written(face_verts) };
     let mut face_is_hole = vec![false; nc];
     for f in 0..nf {
         if p.face_is_hole[f] {

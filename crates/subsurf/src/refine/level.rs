@@ -18,6 +18,7 @@
 
 use super::super::topology::tags::{self, rule};
 use super::super::topology::Topology;
+use super::alloc::{self, put, unwritten, written, Slot};
 use super::par;
 use crate::options::CreaseMethod;
 use crate::rules::crease;
@@ -52,7 +53,10 @@ fn child_end(ev: [u32; 2], v: u32, next: bool) -> u32 {
 /// Every child table is filled in place: its row starts follow from the parent's offsets
 /// (a child of a vertex has the parent vertex's ring sizes, a face point as many faces and
 /// edges as its face has corners, an edge point `2k` faces and `2 + k` edges for `k` incident
-/// faces), so each table is allocated once at its exact size and filled in parallel chunks.
+/// faces), so each table is allocated once at its exact size, unwritten
+/// ([`alloc::unwritten`]), and filled in parallel chunks that cover it whole
+/// ([`par::split_exact`]), each row writing every value of its own.
+#[allow(unsafe_code)]
 pub fn refine_topology(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
         p.num_vertices(),
@@ -70,14 +74,14 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Faces: vertices and edges.
     let face_offsets = iota(cf + 1, |i| 4 * i as u32);
-    let mut face_verts = super::alloc::zeroed(4 * cf, 0u32);
-    let mut face_edges = super::alloc::zeroed(4 * cf, 0u32);
-    let mut edge_verts = super::alloc::zeroed(ce, [0u32; 2]);
+    let mut face_verts = unwritten(4 * cf, u32::MAX);
+    let mut face_edges = unwritten(4 * cf, u32::MAX);
+    let mut edge_verts = unwritten(ce, [u32::MAX; 2]);
     fr.clone()
         .into_par_iter()
-        .zip(par::split(&mut face_verts, &fb, |f| 4 * fo(f)))
-        .zip(par::split(&mut face_edges, &fb, |f| 4 * fo(f)))
-        .zip(par::split(&mut edge_verts[..nc], &fb, fo))
+        .zip(par::split_exact(&mut face_verts, &fb, |f| 4 * fo(f)))
+        .zip(par::split_exact(&mut face_edges, &fb, |f| 4 * fo(f)))
+        .zip(par::split_exact(&mut edge_verts[..nc], &fb, fo))
         .for_each(|(((r, cfv), cfe), cev)| {
             let base = fo(r.start);
             for f in r {
@@ -95,10 +99,10 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
     // children of parent edge e have as many as e.
-    let mut edge_face_offsets = super::alloc::zeroed(ce + 1, 0u32);
+    let mut edge_face_offsets = unwritten(ce + 1, u32::MAX);
     let total_ef = 2 * nc + 2 * efo(ne);
-    let mut edge_faces = super::alloc::zeroed(total_ef, 0u32);
-    let mut edge_face_local = super::alloc::zeroed(total_ef, 0u16);
+    let mut edge_faces = unwritten(total_ef, u32::MAX);
+    let mut edge_face_local = unwritten(total_ef, u16::MAX);
     {
         let (efo_f, efo_e) = edge_face_offsets.split_at_mut(nc + 1);
         efo_f
@@ -106,15 +110,15 @@ pub fn refine_topology(p: &Topology) -> Topology {
             .enumerate()
             .for_each(|(c, o)| {
                 for (i, x) in o.iter_mut().enumerate() {
-                    *x = 2 * ((c << 14) + i) as u32;
+                    x.set(2 * ((c << 14) + i) as u32);
                 }
             });
         let (ef_f, ef_e) = edge_faces.split_at_mut(2 * nc);
         let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
         fr.clone()
             .into_par_iter()
-            .zip(par::split(ef_f, &fb, |f| 2 * fo(f)))
-            .zip(par::split(el_f, &fb, |f| 2 * fo(f)))
+            .zip(par::split_exact(ef_f, &fb, |f| 2 * fo(f)))
+            .zip(par::split_exact(el_f, &fb, |f| 2 * fo(f)))
             .for_each(|((r, ef), el)| {
                 let base = 2 * fo(r.start);
                 for f in r {
@@ -131,51 +135,77 @@ pub fn refine_topology(p: &Topology) -> Topology {
         let (_, ev_e) = edge_verts.split_at_mut(nc);
         er.clone()
             .into_par_iter()
-            .zip(par::split(ev_e, &eb, |e| 2 * e))
-            .zip(par::split(efo_e, &eb, |e| 2 * e))
-            .zip(par::split(ef_e, &eb, |e| 2 * efo(e)))
-            .zip(par::split(el_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(ev_e, &eb, |e| 2 * e))
+            .zip(par::split_exact(efo_e, &eb, |e| 2 * e))
+            .zip(par::split_exact(ef_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(el_e, &eb, |e| 2 * efo(e)))
             .for_each(|((((r, cev), co), ef), el)| {
                 let (ebase, fbase) = (2 * r.start, 2 * efo(r.start));
                 for e in r {
                     let ev = p.edge_verts[e];
                     let i = 2 * e - ebase;
-                    cev[i] = [echild(e), ev[0]];
-                    cev[i + 1] = [echild(e), ev[1]];
+                    cev[i].set([echild(e), ev[0]]);
+                    cev[i + 1].set([echild(e), ev[1]]);
                     let k = efo(e + 1) - efo(e);
-                    co[i] = (2 * nc + 2 * efo(e) + k) as u32;
-                    co[i + 1] = (2 * nc + 2 * efo(e + 1)) as u32;
+                    co[i].set((2 * nc + 2 * efo(e) + k) as u32);
+                    co[i + 1].set((2 * nc + 2 * efo(e + 1)) as u32);
                     let mut fill = [2 * efo(e) - fbase, 2 * efo(e) + k - fbase];
                     for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
                         let (s, n) = (fo(f as usize), p.face_size(f as usize));
                         let k = k as usize;
                         let kn = if k + 1 == n { 0 } else { k + 1 };
                         let end = child_end(ev, p.face_verts[s + k], true) as usize;
-                        ef[fill[end]] = (s + k) as u32;
-                        el[fill[end]] = pos(n, k, 0);
+                        // Each face meets both ends once: each child gets `k` faces.
+                        ef[fill[end]].set((s + k) as u32);
+                        el[fill[end]].set(pos(n, k, 0));
                         fill[end] += 1;
                         let end = child_end(ev, p.face_verts[s + kn], false) as usize;
-                        ef[fill[end]] = (s + kn) as u32;
-                        el[fill[end]] = pos(n, kn, 3);
+                        ef[fill[end]].set((s + kn) as u32);
+                        el[fill[end]].set(pos(n, kn, 3));
                         fill[end] += 1;
                     }
                 }
             });
     }
+    // SAFETY: the face and edge passes above cover these tables whole (`split_exact`), each
+    // parent face writing its corners' four child face vertices and edges (every slot of a
+    // quad's rotation), its child edges' ends and two faces, and each parent edge its two
+    // children's ends, offsets and `k` faces each.
+    let (face_verts, face_edges, edge_verts) = unsafe {
+        (
+            written(face_verts),
+            written(face_edges),
+            written(edge_verts),
+        )
+    };
+    let (edge_face_offsets, edge_faces, edge_face_local) = unsafe {
+        (
+            written(edge_face_offsets),
+            written(edge_faces),
+            written(edge_face_local),
+        )
+    };
 
     // Edge sharpness and tags (children of faces are smooth).
-    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
-    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
+    let mut edge_sharpness = unwritten(ce, f32::NAN);
+    let mut edge_tags = unwritten(ce, u8::MAX);
+    alloc::fill(&mut edge_sharpness[..nc], 0.0);
+    alloc::fill(&mut edge_tags[..nc], 0);
     child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
+    // SAFETY: children of faces filled above, children of edges (two per parent edge) by
+    // `child_edge_sharpness`.
+    let (edge_sharpness, edge_tags) = unsafe { (written(edge_sharpness), written(edge_tags)) };
 
     let vert_sharpness = {
-        let mut s = super::alloc::zeroed(cv, 0.0f32);
+        let mut s = unwritten(cv, f32::NAN);
         s[..nv]
             .par_iter_mut()
             .zip(&p.vert_sharpness[..nv])
             .with_min_len(4096)
-            .for_each(|(c, &x)| *c = crease::decrement(x));
-        s
+            .for_each(|(c, &x)| c.set(crease::decrement(x)));
+        alloc::fill(&mut s[nv..], 0.0);
+        // SAFETY: children of vertices written, face and edge points filled.
+        unsafe { written(s) }
     };
 
     // Vertices: offsets. Children of vertices keep the parent's ring sizes.
@@ -190,11 +220,11 @@ pub fn refine_topology(p: &Topology) -> Topology {
     });
     let total_vf = vf0 + nc + 2 * efo(ne);
     let total_ve = ve0 + nc + 2 * ne + efo(ne);
-    let mut vert_faces = super::alloc::zeroed(total_vf, 0u32);
-    let mut vert_face_local = super::alloc::zeroed(total_vf, 0u16);
-    let mut vert_edges = super::alloc::zeroed(total_ve, 0u32);
-    let mut vert_tags = super::alloc::zeroed(cv, 0u16);
-    let mut vert_rule = super::alloc::filled(cv, rule::SMOOTH);
+    let mut vert_faces = unwritten(total_vf, u32::MAX);
+    let mut vert_face_local = unwritten(total_vf, u16::MAX);
+    let mut vert_edges = unwritten(total_ve, u32::MAX);
+    let mut vert_tags = unwritten(cv, u16::MAX);
+    let mut vert_rule = unwritten(cv, u8::MAX);
     let (vf_v, vf_rest) = vert_faces.split_at_mut(vf0);
     let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
     let (vl_v, vl_rest) = vert_face_local.split_at_mut(vf0);
@@ -203,7 +233,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
     let (ve_f, ve_e) = ve_rest.split_at_mut(nc);
     let (vt_v, vt_rest) = vert_tags.split_at_mut(nv);
     let (vt_f, vt_e) = vt_rest.split_at_mut(nf);
-    let (vr_v, vr_rest) = vert_rule.split_at_mut(nv + nf);
+    let (vr_v, vr_rest) = vert_rule.split_at_mut(nv);
+    let (vr_f, vr_e) = vr_rest.split_at_mut(nf);
 
     // Children of vertices: rings mapped to the children of the ring's faces and edges; tags
     // and rules inherited, recounted where semi-sharp features decayed.
@@ -211,11 +242,11 @@ pub fn refine_topology(p: &Topology) -> Topology {
     let pveo = |v: usize| p.vert_edge_offsets[v] as usize;
     vr.clone()
         .into_par_iter()
-        .zip(par::split(vf_v, &vb, pvfo))
-        .zip(par::split(vl_v, &vb, pvfo))
-        .zip(par::split(ve_v, &vb, pveo))
-        .zip(par::split(vt_v, &vb, |v| v))
-        .zip(par::split(&mut vr_v[..nv], &vb, |v| v))
+        .zip(par::split_exact(vf_v, &vb, pvfo))
+        .zip(par::split_exact(vl_v, &vb, pvfo))
+        .zip(par::split_exact(ve_v, &vb, pveo))
+        .zip(par::split_exact(vt_v, &vb, |v| v))
+        .zip(par::split_exact(vr_v, &vb, |v| v))
         .for_each(|(((((r, vf), vl), ve), vt), vru)| {
             let (fbase, ebase, vbase) = (pvfo(r.start), pveo(r.start), r.start);
             for v in r {
@@ -228,33 +259,34 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 for (((cf, cl), &f), &k) in ring {
                     let (f, k) = (f as usize, k as usize);
                     let s = fo(f);
-                    *cf = (s + k) as u32;
-                    *cl = pos(fo(f + 1) - s, k, 0);
+                    cf.set((s + k) as u32);
+                    cl.set(pos(fo(f + 1) - s, k, 0));
                 }
                 let pe = p.vertex_edges(v);
                 let (mut inf, mut semi) = (0usize, 0usize);
                 let out = &mut ve[pveo(v) - ebase..pveo(v + 1) - ebase];
                 for (i, (&e, o)) in pe.iter().zip(out).enumerate() {
                     let ce = (nc + 2 * e as usize) as u32 + child_end_at_vertex(p, pe, i, v);
-                    *o = ce;
+                    o.set(ce);
                     let et = edge_tags[ce as usize];
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
                 }
                 let (t, rl) = vertex_child_tags(p, v, vert_sharpness[v], inf, semi);
-                vt[v - vbase] = t;
-                vru[v - vbase] = rl;
+                vt[v - vbase].set(t);
+                vru[v - vbase].set(rl);
             }
         });
 
     // Face points: smooth, no sharp edges.
     fr.clone()
         .into_par_iter()
-        .zip(par::split(vf_f, &fb, fo))
-        .zip(par::split(vl_f, &fb, fo))
-        .zip(par::split(ve_f, &fb, fo))
-        .zip(par::split(vt_f, &fb, |f| f))
-        .for_each(|((((r, vf), vl), ve), vt)| {
+        .zip(par::split_exact(vf_f, &fb, fo))
+        .zip(par::split_exact(vl_f, &fb, fo))
+        .zip(par::split_exact(ve_f, &fb, fo))
+        .zip(par::split_exact(vt_f, &fb, |f| f))
+        .zip(par::split_exact(vr_f, &fb, |f| f))
+        .for_each(|(((((r, vf), vl), ve), vt), vru)| {
             let (base, fbase) = (fo(r.start), r.start);
             for f in r {
                 let (s, n) = (fo(f), fo(f + 1) - fo(f));
@@ -265,20 +297,19 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 } else {
                     face_point_ring(s, n, out);
                 }
-                if n != 4 {
-                    vt[f - fbase] = tags::V_XORDINARY;
-                }
+                vt[f - fbase].set(if n != 4 { tags::V_XORDINARY } else { 0 });
+                vru[f - fbase].set(rule::SMOOTH);
             }
         });
 
     // Edge points: only their two child edges can be sharp.
     er.clone()
         .into_par_iter()
-        .zip(par::split(vf_e, &eb, |e| 2 * efo(e)))
-        .zip(par::split(vl_e, &eb, |e| 2 * efo(e)))
-        .zip(par::split(ve_e, &eb, |e| 2 * e + efo(e)))
-        .zip(par::split(vt_e, &eb, |e| e))
-        .zip(par::split(vr_rest, &eb, |e| e))
+        .zip(par::split_exact(vf_e, &eb, |e| 2 * efo(e)))
+        .zip(par::split_exact(vl_e, &eb, |e| 2 * efo(e)))
+        .zip(par::split_exact(ve_e, &eb, |e| 2 * e + efo(e)))
+        .zip(par::split_exact(vt_e, &eb, |e| e))
+        .zip(par::split_exact(vr_e, &eb, |e| e))
         .for_each(|(((((r, vf), vl), ve), vt), vru)| {
             let (fbase, ebase, base) = (2 * efo(r.start), 2 * r.start + efo(r.start), r.start);
             for e in r {
@@ -292,10 +323,21 @@ pub fn refine_topology(p: &Topology) -> Topology {
                     &mut ve[oe..],
                     &edge_tags,
                 );
-                vt[e - base] = t;
-                vru[e - base] = rl;
+                vt[e - base].set(t);
+                vru[e - base].set(rl);
             }
         });
+    // SAFETY: the three passes above cover these tables whole (`split_exact`), each child
+    // vertex writing its whole ring (a vertex's parent ring sizes, a face point's `n`, an
+    // edge point's `2k` faces and `2 + k` edges), its tags and its rule.
+    let (vert_faces, vert_face_local, vert_edges) = unsafe {
+        (
+            written(vert_faces),
+            written(vert_face_local),
+            written(vert_edges),
+        )
+    };
+    let (mut vert_tags, vert_rule) = unsafe { (written(vert_tags), written(vert_rule)) };
 
     let mut face_is_hole = super::alloc::zeroed(nc, false);
     if p.face_is_hole.iter().any(|&h| h) {
@@ -344,7 +386,11 @@ fn face_children(
     s: usize,
     n: usize,
     base: usize,
-    (cfv, cfe, cev): (&mut [u32], &mut [u32], &mut [[u32; 2]]),
+    (cfv, cfe, cev): (
+        &mut [impl Slot<u32>],
+        &mut [impl Slot<u32>],
+        &mut [impl Slot<[u32; 2]>],
+    ),
 ) {
     let (nv, nf, nc) = (p.num_vertices(), p.num_faces(), p.num_corners());
     let fchild = (nv + f) as u32;
@@ -360,15 +406,15 @@ fn face_children(
         let a = if j + 1 == n { last } else { end_at(j) };
         let c = 4 * (s + j - base);
         let q = |slot| c + pos(n, j, slot) as usize;
-        cfv[q(0)] = fv[j];
-        cfv[q(1)] = echild(fe[j]);
-        cfv[q(2)] = fchild;
-        cfv[q(3)] = echild(fe[jp]);
-        cfe[q(0)] = (nc + 2 * fe[j] as usize) as u32 + a;
-        cfe[q(1)] = (s + j) as u32;
-        cfe[q(2)] = (s + jp) as u32;
-        cfe[q(3)] = (nc + 2 * fe[jp] as usize) as u32 + (1 - prev);
-        cev[s + j - base] = [fchild, echild(fe[j])];
+        cfv[q(0)].set(fv[j]);
+        cfv[q(1)].set(echild(fe[j]));
+        cfv[q(2)].set(fchild);
+        cfv[q(3)].set(echild(fe[jp]));
+        cfe[q(0)].set((nc + 2 * fe[j] as usize) as u32 + a);
+        cfe[q(1)].set((s + j) as u32);
+        cfe[q(2)].set((s + jp) as u32);
+        cfe[q(3)].set((nc + 2 * fe[jp] as usize) as u32 + (1 - prev));
+        cev[s + j - base].set([fchild, echild(fe[j])]);
         prev = a;
     }
 }
@@ -376,7 +422,11 @@ fn face_children(
 /// The two faces of each child edge from the face point of a parent face (corners `s..s + n`):
 /// child faces `j` and `j + 1`, into `ef`/`el` (two entries per corner).
 #[inline(always)]
-fn face_child_edge_faces(s: usize, n: usize, (ef, el): (&mut [u32], &mut [u16])) {
+fn face_child_edge_faces(
+    s: usize,
+    n: usize,
+    (ef, el): (&mut [impl Slot<u32>], &mut [impl Slot<u16>]),
+) {
     for (j, (ef, el)) in ef
         .chunks_exact_mut(2)
         .zip(el.chunks_exact_mut(2))
@@ -384,17 +434,25 @@ fn face_child_edge_faces(s: usize, n: usize, (ef, el): (&mut [u32], &mut [u16]))
         .take(n)
     {
         let jn = if j + 1 == n { 0 } else { j + 1 };
-        ef[0] = (s + j) as u32;
-        el[0] = pos(n, j, 1);
-        ef[1] = (s + jn) as u32;
-        el[1] = pos(n, jn, 2);
+        ef[0].set((s + j) as u32);
+        el[0].set(pos(n, j, 1));
+        ef[1].set((s + jn) as u32);
+        el[1].set(pos(n, jn, 2));
     }
 }
 
 /// The ring of the face point of a parent face (corners `s..s + n`): its child faces, its
 /// corner in each, and its child edges (one per corner, shifted by one).
 #[inline(always)]
-fn face_point_ring(s: usize, n: usize, (vf, vl, ve): (&mut [u32], &mut [u16], &mut [u32])) {
+fn face_point_ring(
+    s: usize,
+    n: usize,
+    (vf, vl, ve): (
+        &mut [impl Slot<u32>],
+        &mut [impl Slot<u16>],
+        &mut [impl Slot<u32>],
+    ),
+) {
     for (j, ((vf, vl), ve)) in vf
         .iter_mut()
         .zip(vl.iter_mut())
@@ -402,25 +460,28 @@ fn face_point_ring(s: usize, n: usize, (vf, vl, ve): (&mut [u32], &mut [u16], &m
         .enumerate()
         .take(n)
     {
-        *vf = (s + j) as u32;
-        *vl = pos(n, j, 2);
-        *ve = (s + if j == 0 { n - 1 } else { j - 1 }) as u32;
+        vf.set((s + j) as u32);
+        vl.set(pos(n, j, 2));
+        ve.set((s + if j == 0 { n - 1 } else { j - 1 }) as u32);
     }
 }
 
 /// `(0..len).map(f)`, filled in parallel.
+#[allow(unsafe_code)]
 pub(super) fn iota(len: usize, f: impl Fn(usize) -> u32 + Sync) -> Vec<u32> {
-    let mut out = super::alloc::zeroed(len, 0u32);
+    let mut out = unwritten(len, u32::MAX);
     out.par_chunks_mut(1 << 14).enumerate().for_each(|(c, o)| {
         for (i, x) in o.iter_mut().enumerate() {
-            *x = f((c << 14) + i);
+            x.write(f((c << 14) + i));
         }
     });
-    out
+    // SAFETY: the chunks cover `out`, every value of each written.
+    unsafe { written(out) }
 }
 
 /// Offsets of a child vertex table: the parent's for children of vertices, then `face_start +
 /// face_offsets[f]` for face points, then `edge_start(e)` for edge points (`e` in `0..=E`).
+#[allow(unsafe_code)]
 fn child_vertex_offsets(
     p: &Topology,
     parent: &[u32],
@@ -428,20 +489,21 @@ fn child_vertex_offsets(
     edge_start: impl Fn(usize) -> usize + Sync,
 ) -> Vec<u32> {
     let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
-    let mut out = super::alloc::zeroed(nv + nf + ne + 1, 0u32);
+    let mut out = unwritten(nv + nf + ne + 1, u32::MAX);
     let (a, rest) = out.split_at_mut(nv);
     let (b, c) = rest.split_at_mut(nf);
-    a.copy_from_slice(&parent[..nv]);
+    put(a, &parent[..nv]);
     let f0 = face_start - p.num_corners();
     b.par_iter_mut()
         .zip(&p.face_offsets[..nf])
         .with_min_len(4096)
-        .for_each(|(x, &o)| *x = (f0 + o as usize) as u32);
+        .for_each(|(x, &o)| x.set((f0 + o as usize) as u32));
     c.par_iter_mut()
         .enumerate()
         .with_min_len(4096)
-        .for_each(|(e, x)| *x = edge_start(e) as u32);
-    out
+        .for_each(|(e, x)| x.set(edge_start(e) as u32));
+    // SAFETY: the three parts written whole above (`c` holds `ne + 1` values).
+    unsafe { written(out) }
 }
 
 /// Writes the ring of the edge point of parent edge `e` (faces, their local corners, edges)
@@ -449,9 +511,9 @@ fn child_vertex_offsets(
 fn edge_point_ring(
     p: &Topology,
     e: usize,
-    vf: &mut [u32],
-    vl: &mut [u16],
-    ve: &mut [u32],
+    vf: &mut [impl Slot<u32>],
+    vl: &mut [impl Slot<u16>],
+    ve: &mut [impl Slot<u32>],
     child_edge_tags: &[u8],
 ) -> (u16, u8) {
     let nc = p.num_corners();
@@ -479,36 +541,42 @@ fn edge_point_ring(
         let (ia, ib) = if forward(0) { (0, 1) } else { (1, 0) };
         let (sa, na, ka, kan) = corner(ia);
         let (sb, nb, kb, kbn) = corner(ib);
-        vf[..4].copy_from_slice(&[
-            (sa + kan) as u32,
-            (sa + ka) as u32,
-            (sb + kbn) as u32,
-            (sb + kb) as u32,
-        ]);
-        vl[..4].copy_from_slice(&[
-            pos(na, kan, 3),
-            pos(na, ka, 1),
-            pos(nb, kbn, 3),
-            pos(nb, kb, 1),
-        ]);
-        ve[..4].copy_from_slice(&[c1, (sa + ka) as u32, c0, (sb + kb) as u32]);
+        put(
+            vf,
+            &[
+                (sa + kan) as u32,
+                (sa + ka) as u32,
+                (sb + kbn) as u32,
+                (sb + kb) as u32,
+            ],
+        );
+        put(
+            vl,
+            &[
+                pos(na, kan, 3),
+                pos(na, ka, 1),
+                pos(nb, kbn, 3),
+                pos(nb, kb, 1),
+            ],
+        );
+        put(ve, &[c1, (sa + ka) as u32, c0, (sb + kb) as u32]);
     } else if manifold && faces.len() == 1 {
         let (s, n, k, kn) = corner(0);
-        vf[..2].copy_from_slice(&[(s + kn) as u32, (s + k) as u32]);
-        vl[..2].copy_from_slice(&[pos(n, kn, 3), pos(n, k, 1)]);
+        put(vf, &[(s + kn) as u32, (s + k) as u32]);
+        put(vl, &[pos(n, kn, 3), pos(n, k, 1)]);
         let (first, last) = if forward(0) { (c1, c0) } else { (c0, c1) };
-        ve[..3].copy_from_slice(&[first, (s + k) as u32, last]);
+        put(ve, &[first, (s + k) as u32, last]);
     } else {
         vt |= tags::V_NON_MANIFOLD;
-        ve[0] = c0;
-        ve[1] = c1;
+        ve[0].set(c0);
+        ve[1].set(c1);
         for i in 0..faces.len() {
             let (s, n, k, kn) = corner(i);
-            vf[2 * i] = (s + k) as u32;
-            vl[2 * i] = pos(n, k, 1);
-            vf[2 * i + 1] = (s + kn) as u32;
-            vl[2 * i + 1] = pos(n, kn, 3);
-            ve[2 + i] = (s + k) as u32;
+            vf[2 * i].set((s + k) as u32);
+            vl[2 * i].set(pos(n, k, 1));
+            vf[2 * i + 1].set((s + kn) as u32);
+            vl[2 * i + 1].set(pos(n, kn, 3));
+            ve[2 + i].set((s + k) as u32);
         }
     }
     if et & tags::E_NON_MANIFOLD != 0 {
@@ -524,19 +592,25 @@ fn edge_point_ring(
 
 /// Sharpness and tags of the two children of every parent edge (`es`, `et`: two entries per
 /// parent edge, child `2e + end` touching end `end`), decayed by the crease method.
-pub(super) fn child_edge_sharpness(p: &Topology, es: &mut [f32], et: &mut [u8]) {
+pub(super) fn child_edge_sharpness(
+    p: &Topology,
+    es: &mut [impl Slot<f32>],
+    et: &mut [impl Slot<u8>],
+) {
     let eb = par::bounds(p.num_edges());
     par::ranges(&eb)
         .into_par_iter()
-        .zip(par::split(es, &eb, |e| 2 * e))
-        .zip(par::split(et, &eb, |e| 2 * e))
+        .zip(par::split_exact(es, &eb, |e| 2 * e))
+        .zip(par::split_exact(et, &eb, |e| 2 * e))
         .for_each(|((r, es), et_out)| {
             let base = 2 * r.start;
             let mut around: Vec<f32> = Vec::new();
             for e in r {
                 let o = 2 * e - base;
                 for end in 0..2 {
-                    (es[o + end], et_out[o + end]) = child_half(p, e, end, &mut around);
+                    let (cs, ct) = child_half(p, e, end, &mut around);
+                    es[o + end].set(cs);
+                    et_out[o + end].set(ct);
                 }
             }
         });

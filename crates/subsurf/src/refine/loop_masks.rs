@@ -4,6 +4,7 @@
 //! A Loop step has no face points, so its [`LevelStencils`] has an empty face table and its
 //! vertex and edge rows refer to parent vertices only.
 
+use super::alloc::{init, unwritten, written};
 use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::masks::{build_rows, LevelStencils, Scratch};
@@ -178,7 +179,10 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
 /// before the rows are formed: sized in one parallel pass, then each row written by `row(r,
 /// indices, weights)` into its own slices of tables allocated once at their exact size. Each
 /// pass over a chunk of rows starts with a state `state(first row)` (scratch buffers, a
-/// cursor) handed to `len` and `row` with each row, in order.
+/// cursor) handed to `len` and `row` with each row, in order. The tables are allocated
+/// unwritten ([`super::alloc::unwritten`]); each row's slices are zeroed just before `row`
+/// fills them.
+#[allow(unsafe_code)]
 pub(super) fn write_rows<S, L, R>(
     rows: usize,
     num_inputs: usize,
@@ -191,37 +195,42 @@ where
     R: Fn(usize, &mut S, &mut [u32], &mut [f32]) + Sync,
 {
     let b = par::bounds(rows);
-    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
+    let mut offsets = unwritten(rows + 1, u32::MAX);
+    offsets[0].write(0);
     par::ranges(&b)
         .into_par_iter()
-        .zip(par::split(&mut offsets[1..], &b, |r| r))
+        .zip(par::split_exact(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
             let mut s = state(r.start);
             let base = r.start;
             for i in r {
-                out[i - base] = len(i, &mut s) as u32;
+                out[i - base].write(len(i, &mut s) as u32);
             }
         });
+    // SAFETY: the first value above, the rest by the chunks, which cover them.
+    let mut offsets = unsafe { written(offsets) };
     let mut acc = 0u32;
     for o in &mut offsets[1..] {
         acc += *o;
         *o = acc;
     }
-    let mut indices = super::alloc::zeroed(acc as usize, 0u32);
-    let mut weights = super::alloc::zeroed(acc as usize, 0.0f32);
+    let mut indices = unwritten(acc as usize, u32::MAX);
+    let mut weights = unwritten(acc as usize, f32::NAN);
     let start = |r: usize| offsets[r] as usize;
     par::ranges(&b)
         .into_par_iter()
-        .zip(par::split(&mut indices, &b, start))
-        .zip(par::split(&mut weights, &b, start))
+        .zip(par::split_exact(&mut indices, &b, start))
+        .zip(par::split_exact(&mut weights, &b, start))
         .for_each(|((r, io), wo)| {
             let mut s = state(r.start);
             let base = start(r.start);
             for i in r {
                 let (a, b) = (start(i) - base, start(i + 1) - base);
-                row(i, &mut s, &mut io[a..b], &mut wo[a..b]);
+                row(i, &mut s, init(&mut io[a..b], 0), init(&mut wo[a..b], 0.0));
             }
         });
+    // SAFETY: the chunks cover both tables and every row's values are written (`init`).
+    let (indices, weights) = unsafe { (written(indices), written(weights)) };
     StencilTable {
         offsets,
         indices,

@@ -19,11 +19,12 @@
 //! faces (1 or 2 on a manifold level) has `3k` faces and `2 + 2k` edges; an interior child edge
 //! has two faces, a child of an edge as many as that edge.
 
+use super::alloc::{fill, put, unwritten, written, Slot};
 use super::level::{child_half, edge_point_tags, vertex_child_tags};
 use super::loop_level::child_triangles;
 use super::par;
 use crate::rules::crease;
-use crate::topology::tags::{self, rule};
+use crate::topology::tags;
 use crate::topology::Topology;
 use rayon::prelude::*;
 
@@ -50,7 +51,10 @@ fn faces_in_order(p: &Topology, e: usize) -> ([usize; 2], usize) {
 }
 
 /// Refines the manifold all-triangle level `p` ([`is_manifold`]) once; returns the child
-/// topology with its sharpness, tags and rules.
+/// topology with its sharpness, tags and rules. Every table is allocated unwritten
+/// ([`super::alloc::unwritten`]) and filled whole by chunks that cover it
+/// ([`par::split_exact`]), each row writing every value of its own.
+#[allow(unsafe_code)]
 pub(super) fn refine_manifold(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
         p.num_vertices(),
@@ -67,16 +71,18 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     // Faces and edges: four child faces and three interior edges per parent face, two child
     // edges per parent edge.
     let total_ef = 2 * nc + 2 * efo(ne);
-    let mut face_verts = super::alloc::zeroed(4 * nc, 0u32);
-    let mut face_edges = super::alloc::zeroed(4 * nc, 0u32);
-    let mut edge_verts = super::alloc::zeroed(ce, [0u32; 2]);
-    let mut edge_face_offsets = super::alloc::zeroed(ce + 1, 0u32);
-    let mut edge_faces = super::alloc::zeroed(total_ef, 0u32);
-    let mut edge_face_local = super::alloc::zeroed(total_ef, 0u16);
-    // Sharpness: interior edges smooth (left zero), children of edges decayed by the crease
+    let mut face_verts = unwritten(4 * nc, u32::MAX);
+    let mut face_edges = unwritten(4 * nc, u32::MAX);
+    let mut edge_verts = unwritten(ce, [u32::MAX; 2]);
+    let mut edge_face_offsets = unwritten(ce + 1, u32::MAX);
+    let mut edge_faces = unwritten(total_ef, u32::MAX);
+    let mut edge_face_local = unwritten(total_ef, u16::MAX);
+    // Sharpness: interior edges smooth (zero), children of edges decayed by the crease
     // method (in the edge pass, as `level::child_edge_sharpness` forms them).
-    let mut edge_sharpness = super::alloc::zeroed(ce, 0.0f32);
-    let mut edge_tags = super::alloc::zeroed(ce, 0u8);
+    let mut edge_sharpness = unwritten(ce, f32::NAN);
+    let mut edge_tags = unwritten(ce, u8::MAX);
+    fill(&mut edge_sharpness[..nc], 0.0);
+    fill(&mut edge_tags[..nc], 0);
     {
         let (ev_f, ev_e) = edge_verts.split_at_mut(nc);
         let (eo_f, eo_e) = edge_face_offsets.split_at_mut(nc);
@@ -84,12 +90,12 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
         let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
         fr.clone()
             .into_par_iter()
-            .zip(par::split(&mut face_verts, &fb, |f| 12 * f))
-            .zip(par::split(&mut face_edges, &fb, |f| 12 * f))
-            .zip(par::split(ev_f, &fb, |f| 3 * f))
-            .zip(par::split(eo_f, &fb, |f| 3 * f))
-            .zip(par::split(ef_f, &fb, |f| 6 * f))
-            .zip(par::split(el_f, &fb, |f| 6 * f))
+            .zip(par::split_exact(&mut face_verts, &fb, |f| 12 * f))
+            .zip(par::split_exact(&mut face_edges, &fb, |f| 12 * f))
+            .zip(par::split_exact(ev_f, &fb, |f| 3 * f))
+            .zip(par::split_exact(eo_f, &fb, |f| 3 * f))
+            .zip(par::split_exact(ef_f, &fb, |f| 6 * f))
+            .zip(par::split_exact(el_f, &fb, |f| 6 * f))
             .for_each(|((((((r, cfv), cfe), cev), ceo), cef), cel)| {
                 let base = r.start;
                 for f in r {
@@ -97,7 +103,7 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     let fv = &p.face_verts[3 * f..3 * f + 3];
                     let fe = &p.face_edges[3 * f..3 * f + 3];
                     let e = [ep(fe[0]), ep(fe[1]), ep(fe[2])];
-                    cfv[12 * i..12 * i + 12].copy_from_slice(&child_triangles(fv, e));
+                    put(&mut cfv[12 * i..12 * i + 12], &child_triangles(fv, e));
                     // pe[k] = [child of edge k at corner k, child at corner k + 1].
                     let pe: [[u32; 2]; 3] = std::array::from_fn(|k| {
                         let ev = p.edge_verts[fe[k] as usize];
@@ -106,40 +112,45 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                         [c + reversed, c + 1 - reversed]
                     });
                     let fc = (3 * f) as u32;
-                    cfe[12 * i..12 * i + 12].copy_from_slice(&[
-                        pe[0][0],
-                        fc,
-                        pe[2][1],
-                        pe[0][1],
-                        pe[1][0],
-                        fc + 1,
-                        fc + 2,
-                        pe[1][1],
-                        pe[2][0],
-                        fc + 2,
-                        fc,
-                        fc + 1,
-                    ]);
-                    cev[3 * i..3 * i + 3].copy_from_slice(&[
-                        [e[0], e[2]],
-                        [e[1], e[0]],
-                        [e[2], e[1]],
-                    ]);
+                    put(
+                        &mut cfe[12 * i..12 * i + 12],
+                        &[
+                            pe[0][0],
+                            fc,
+                            pe[2][1],
+                            pe[0][1],
+                            pe[1][0],
+                            fc + 1,
+                            fc + 2,
+                            pe[1][1],
+                            pe[2][0],
+                            fc + 2,
+                            fc,
+                            fc + 1,
+                        ],
+                    );
+                    put(
+                        &mut cev[3 * i..3 * i + 3],
+                        &[[e[0], e[2]], [e[1], e[0]], [e[2], e[1]]],
+                    );
                     let (o, c) = ((6 * f) as u32, (4 * f) as u32);
-                    ceo[3 * i..3 * i + 3].copy_from_slice(&[o, o + 2, o + 4]);
-                    cef[6 * i..6 * i + 6].copy_from_slice(&[c, c + 3, c + 1, c + 3, c + 2, c + 3]);
-                    cel[6 * i..6 * i + 6].copy_from_slice(&[1, 1, 2, 2, 0, 0]);
+                    put(&mut ceo[3 * i..3 * i + 3], &[o, o + 2, o + 4]);
+                    put(
+                        &mut cef[6 * i..6 * i + 6],
+                        &[c, c + 3, c + 1, c + 3, c + 2, c + 3],
+                    );
+                    put(&mut cel[6 * i..6 * i + 6], &[1, 1, 2, 2, 0, 0]);
                 }
             });
-        eo_e[2 * ne] = total_ef as u32;
+        eo_e[2 * ne].set(total_ef as u32);
         er.clone()
             .into_par_iter()
-            .zip(par::split(ev_e, &eb, |e| 2 * e))
-            .zip(par::split(&mut eo_e[..2 * ne], &eb, |e| 2 * e))
-            .zip(par::split(ef_e, &eb, |e| 2 * efo(e)))
-            .zip(par::split(el_e, &eb, |e| 2 * efo(e)))
-            .zip(par::split(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
-            .zip(par::split(&mut edge_tags[nc..], &eb, |e| 2 * e))
+            .zip(par::split_exact(ev_e, &eb, |e| 2 * e))
+            .zip(par::split_exact(&mut eo_e[..2 * ne], &eb, |e| 2 * e))
+            .zip(par::split_exact(ef_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(el_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
+            .zip(par::split_exact(&mut edge_tags[nc..], &eb, |e| 2 * e))
             .for_each(|((((((r, cev), ceo), cef), cel), ces), cet)| {
                 let (base, fbase) = (2 * r.start, 2 * efo(r.start));
                 let mut around: Vec<f32> = Vec::new();
@@ -150,31 +161,56 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     if sharp <= 0.0 || sharp.is_nan() {
                         // Smooth: both children smooth (what `child_half` gives).
                         let t = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
-                        (ces[i], ces[i + 1], cet[i], cet[i + 1]) = (0.0, 0.0, t, t);
+                        ces[i].set(0.0);
+                        ces[i + 1].set(0.0);
+                        cet[i].set(t);
+                        cet[i + 1].set(t);
                     } else {
                         for end in 0..2 {
-                            (ces[i + end], cet[i + end]) = child_half(p, e, end, &mut around);
+                            let (cs, ct) = child_half(p, e, end, &mut around);
+                            ces[i + end].set(cs);
+                            cet[i + end].set(ct);
                         }
                     }
-                    cev[i] = [ep(e as u32), ev[0]];
-                    cev[i + 1] = [ep(e as u32), ev[1]];
+                    cev[i].set([ep(e as u32), ev[0]]);
+                    cev[i + 1].set([ep(e as u32), ev[1]]);
                     let (order, k) = faces_in_order(p, e);
                     let s = 2 * efo(e);
-                    ceo[i] = (2 * nc + s) as u32;
-                    ceo[i + 1] = (2 * nc + s + k) as u32;
+                    ceo[i].set((2 * nc + s) as u32);
+                    ceo[i + 1].set((2 * nc + s + k) as u32);
                     let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
                     let o = s - fbase;
                     for (slot, &j) in order[..k].iter().enumerate() {
                         let (f, kl) = (faces[j], locals[j]);
                         let at_k = (p.face_verts[3 * f as usize + kl as usize] != ev[0]) as usize;
-                        cef[o + at_k * k + slot] = 4 * f + kl as u32;
-                        cef[o + (1 - at_k) * k + slot] = 4 * f + (kl as u32 + 1) % 3;
-                        cel[o + at_k * k + slot] = kl;
-                        cel[o + (1 - at_k) * k + slot] = kl;
+                        cef[o + at_k * k + slot].set(4 * f + kl as u32);
+                        cef[o + (1 - at_k) * k + slot].set(4 * f + (kl as u32 + 1) % 3);
+                        cel[o + at_k * k + slot].set(kl);
+                        cel[o + (1 - at_k) * k + slot].set(kl);
                     }
                 }
             });
     }
+    // SAFETY: the face and edge passes cover these tables whole (`split_exact`; the interior
+    // edges' sharpness and tags filled before, the offsets' last value above): each parent
+    // face writes its 12 child face vertices and edges, its three interior edges' ends,
+    // offsets and two faces each; each parent edge its two children's ends, offsets,
+    // sharpness, tags and `k` faces each.
+    let (face_verts, face_edges, edge_verts) = unsafe {
+        (
+            written(face_verts),
+            written(face_edges),
+            written(edge_verts),
+        )
+    };
+    let (edge_face_offsets, edge_faces, edge_face_local) = unsafe {
+        (
+            written(edge_face_offsets),
+            written(edge_faces),
+            written(edge_face_local),
+        )
+    };
+    let (edge_sharpness, edge_tags) = unsafe { (written(edge_sharpness), written(edge_tags)) };
 
     // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
     let (pvf, pve) = (
@@ -197,12 +233,13 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             .map(|(&o, e)| pve as u32 + 2 * e + 2 * o),
     );
     let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
-    let mut vert_faces = super::alloc::zeroed(total_vf, 0u32);
-    let mut vert_face_local = super::alloc::zeroed(total_vf, 0u16);
-    let mut vert_edges = super::alloc::zeroed(total_ve, 0u32);
-    let mut vert_sharpness = super::alloc::zeroed(cv, 0.0f32);
-    let mut vert_tags = super::alloc::zeroed(cv, 0u16);
-    let mut vert_rule = super::alloc::filled(cv, rule::SMOOTH);
+    let mut vert_faces = unwritten(total_vf, u32::MAX);
+    let mut vert_face_local = unwritten(total_vf, u16::MAX);
+    let mut vert_edges = unwritten(total_ve, u32::MAX);
+    let mut vert_sharpness = unwritten(cv, f32::NAN);
+    fill(&mut vert_sharpness[nv..], 0.0);
+    let mut vert_tags = unwritten(cv, u16::MAX);
+    let mut vert_rule = unwritten(cv, u8::MAX);
     let (vf_v, vf_e) = vert_faces.split_at_mut(pvf);
     let (vl_v, vl_e) = vert_face_local.split_at_mut(pvf);
     let (ve_v, ve_e) = vert_edges.split_at_mut(pve);
@@ -215,12 +252,12 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     let pveo = |v: usize| p.vert_edge_offsets[v] as usize;
     let etags = &edge_tags;
     vr.into_par_iter()
-        .zip(par::split(vf_v, &vb, pvfo))
-        .zip(par::split(vl_v, &vb, pvfo))
-        .zip(par::split(ve_v, &vb, pveo))
-        .zip(par::split(&mut vert_sharpness[..nv], &vb, |v| v))
-        .zip(par::split(vt_v, &vb, |v| v))
-        .zip(par::split(vr_v, &vb, |v| v))
+        .zip(par::split_exact(vf_v, &vb, pvfo))
+        .zip(par::split_exact(vl_v, &vb, pvfo))
+        .zip(par::split_exact(ve_v, &vb, pveo))
+        .zip(par::split_exact(&mut vert_sharpness[..nv], &vb, |v| v))
+        .zip(par::split_exact(vt_v, &vb, |v| v))
+        .zip(par::split_exact(vr_v, &vb, |v| v))
         .for_each(|((((((r, cvf), cvl), cve), cvs), cvt), cvr)| {
             let (fbase, ebase, base) = (pvfo(r.start), pveo(r.start), r.start);
             for v in r {
@@ -231,35 +268,35 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     .zip(&p.vert_faces[a..b])
                     .zip(&p.vert_face_local[a..b]);
                 for (((cf, cl), &f), &k) in ring {
-                    *cf = 4 * f + k as u32;
-                    *cl = k;
+                    cf.set(4 * f + k as u32);
+                    cl.set(k);
                 }
                 let (mut inf, mut semi) = (0usize, 0usize);
                 let out = &mut cve[pveo(v) - ebase..pveo(v + 1) - ebase];
                 for (&e, o) in p.vertex_edges(v).iter().zip(out) {
                     let end = (p.edge_verts[e as usize][0] != v as u32) as u32;
                     let c = (nc + 2 * e as usize) as u32 + end;
-                    *o = c;
+                    o.set(c);
                     let et = etags[c as usize];
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
                 }
                 let s = crease::decrement(p.vert_sharpness[v]);
                 let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
-                cvs[v - base] = s;
-                cvt[v - base] = t & !tags::V_INCIDENT_HOLE;
-                cvr[v - base] = rl;
+                cvs[v - base].set(s);
+                cvt[v - base].set(t & !tags::V_INCIDENT_HOLE);
+                cvr[v - base].set(rl);
             }
         });
 
     // Edge points: three faces per incident face, the forward face (edge in its direction)
     // first, so an interior ring starts with the child at end 1.
     er.into_par_iter()
-        .zip(par::split(vf_e, &eb, |e| 3 * efo(e)))
-        .zip(par::split(vl_e, &eb, |e| 3 * efo(e)))
-        .zip(par::split(ve_e, &eb, |e| 2 * e + 2 * efo(e)))
-        .zip(par::split(vt_e, &eb, |e| e))
-        .zip(par::split(vr_e, &eb, |e| e))
+        .zip(par::split_exact(vf_e, &eb, |e| 3 * efo(e)))
+        .zip(par::split_exact(vl_e, &eb, |e| 3 * efo(e)))
+        .zip(par::split_exact(ve_e, &eb, |e| 2 * e + 2 * efo(e)))
+        .zip(par::split_exact(vt_e, &eb, |e| e))
+        .zip(par::split_exact(vr_e, &eb, |e| e))
         .for_each(|(((((r, cvf), cvl), cve), cvt), cvr)| {
             let (fbase, ebase, base) = (3 * efo(r.start), 2 * r.start + 2 * efo(r.start), r.start);
             for e in r {
@@ -278,8 +315,8 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     let f = faces[i];
                     let k = locals[i] as u32;
                     let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
-                    cvf[of..of + 3].copy_from_slice(&[4 * f + k1, 4 * f + 3, 4 * f + k]);
-                    cvl[of..of + 3].copy_from_slice(&[k as u16, k2 as u16, k1 as u16]);
+                    put(&mut cvf[of..of + 3], &[4 * f + k1, 4 * f + 3, 4 * f + k]);
+                    put(&mut cvl[of..of + 3], &[k as u16, k2 as u16, k1 as u16]);
                     of += 3;
                     // The child at corner k + 1 of this face: end 1 where the face runs forward.
                     let (far, near) = if forward(i) {
@@ -287,10 +324,10 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     } else {
                         (c0, c0 + 1)
                     };
-                    cve[oe..oe + 3].copy_from_slice(&[far, 3 * f + k1, 3 * f + k]);
+                    put(&mut cve[oe..oe + 3], &[far, 3 * f + k1, 3 * f + k]);
                     oe += 3;
                     if faces.len() == 1 {
-                        cve[oe] = near;
+                        cve[oe].set(near);
                         oe += 1;
                     }
                 }
@@ -300,11 +337,28 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                 if et & tags::E_BOUNDARY != 0 {
                     t |= tags::V_BOUNDARY;
                 }
-                cvt[e - base] = t;
-                cvr[e - base] = rl;
+                cvt[e - base].set(t);
+                cvr[e - base].set(rl);
             }
         });
 
+    // SAFETY: the two passes above cover these tables whole (`split_exact`; the edge points'
+    // sharpness filled before): each child of a vertex writes its parent's rings, sharpness,
+    // tags and rule, each edge point its `3k` faces, `2 + 2k` edges, tags and rule.
+    let (vert_faces, vert_face_local, vert_edges) = unsafe {
+        (
+            written(vert_faces),
+            written(vert_face_local),
+            written(vert_edges),
+        )
+    };
+    let (vert_sharpness, mut vert_tags, vert_rule) = unsafe {
+        (
+            written(vert_sharpness),
+            written(vert_tags),
+            written(vert_rule),
+        )
+    };
     let face_is_hole =
         super::loop_level::child_holes(&p.face_is_hole, &face_verts, Some(&mut vert_tags));
 

@@ -4,6 +4,7 @@
 //! face's vertices), so each row refers to parent vertices only and one sparse table maps a
 //! level's vertex data to the next level's.
 
+use super::alloc::{init, unwritten, written};
 use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::par;
@@ -121,44 +122,52 @@ impl<W: Real> Scratch<W> {
 ///
 /// Rows are sized first (`rows.len(r)` where the size is known without forming the row, else
 /// the row is formed once to count it), then written in parallel, entry by entry, into
-/// disjoint slices of tables allocated once at their exact size.
+/// disjoint slices of tables allocated once at their exact size, unwritten
+/// ([`super::alloc::unwritten`]): each row's slices are zeroed just before it is written.
+#[allow(unsafe_code)]
 fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> StencilTable<W> {
     let b = par::bounds(rows);
-    let mut offsets = super::alloc::zeroed(rows + 1, 0u32);
+    let mut offsets = unwritten(rows + 1, u32::MAX);
+    offsets[0].write(0);
     par::ranges(&b)
         .into_par_iter()
-        .zip(par::split(&mut offsets[1..], &b, |r| r))
+        .zip(par::split_exact(&mut offsets[1..], &b, |r| r))
         .for_each(|(r, out)| {
             let mut scratch = Scratch::<W>::default();
             let base = r.start;
             for i in r {
-                out[i - base] = match kind.len(i) {
+                out[i - base].write(match kind.len(i) {
                     Some(n) => n as u32,
                     None => {
                         let mut n = 0u32;
                         kind.row(i, &mut scratch, &mut |_, _: W| n += 1);
                         n
                     }
-                };
+                });
             }
         });
+    // SAFETY: the first value above, the rest by the chunks, which cover them.
+    let mut offsets = unsafe { written(offsets) };
     let mut acc = 0u32;
     for o in &mut offsets[1..] {
         acc += *o;
         *o = acc;
     }
     let total = acc as usize;
-    let mut indices = super::alloc::zeroed(total, 0u32);
-    let mut weights = super::alloc::zeroed(total, W::ZERO);
+    let mut indices = unwritten(total, u32::MAX);
+    let mut weights = unwritten(total, W::ZERO);
     let start = |r: usize| offsets[r] as usize;
     par::ranges(&b)
         .into_par_iter()
-        .zip(par::split(&mut indices, &b, start))
-        .zip(par::split(&mut weights, &b, start))
+        .zip(par::split_exact(&mut indices, &b, start))
+        .zip(par::split_exact(&mut weights, &b, start))
         .for_each(|((r, io), wo)| {
             let mut scratch = Scratch::default();
-            let mut k = 0;
+            let base = start(r.start);
             for i in r {
+                let (a, b) = (start(i) - base, start(i + 1) - base);
+                let (io, wo) = (init(&mut io[a..b], 0), init(&mut wo[a..b], W::ZERO));
+                let mut k = 0;
                 kind.row(i, &mut scratch, &mut |x, w| {
                     io[k] = x;
                     wo[k] = w;
@@ -166,6 +175,8 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
                 });
             }
         });
+    // SAFETY: the chunks cover both tables and every row's values are written (`init`).
+    let (indices, weights) = unsafe { (written(indices), written(weights)) };
     StencilTable {
         offsets,
         indices,
@@ -177,21 +188,27 @@ fn build_direct<W: Real>(rows: usize, num_inputs: usize, kind: RowKind<'_>) -> S
 /// The face-point table: row `f` is the vertices of face `f` in order, each of weight
 /// `1 / n` ([`LevelRows::face`]), so its offsets and indices are the parent's face lists,
 /// copied rather than formed row by row.
+#[allow(unsafe_code)]
 pub(super) fn face_table<W: Real>(p: &Topology) -> StencilTable<W> {
     let nf = p.num_faces();
     let b = par::bounds(nf);
-    let mut weights = super::alloc::zeroed(p.num_corners(), W::ZERO);
+    let mut weights = unwritten(p.num_corners(), W::ZERO);
     let start = |f: usize| p.face_offsets[f] as usize;
     par::ranges(&b)
         .into_par_iter()
-        .zip(par::split(&mut weights, &b, start))
+        .zip(par::split_exact(&mut weights, &b, start))
         .for_each(|(r, wo)| {
             let base = start(r.start);
             for f in r {
                 let (s, e) = (start(f), start(f + 1));
-                wo[s - base..e - base].fill(W::ONE / W::from_f64((e - s) as f64));
+                init(
+                    &mut wo[s - base..e - base],
+                    W::ONE / W::from_f64((e - s) as f64),
+                );
             }
         });
+    // SAFETY: the chunks cover the table, each face writing its corners' values.
+    let weights = unsafe { written(weights) };
     StencilTable {
         offsets: p.face_offsets.clone(),
         indices: p.face_verts.clone(),

@@ -37,3 +37,19 @@ pub(crate) fn split<'a, T>(
     }
     out
 }
+
+/// As [`split`], for a table the chunks must cover whole (one that is written value by value,
+/// [`super::alloc::unwritten`]): panics unless the last row ends at `data.len()`.
+pub(crate) fn split_exact<'a, T>(
+    data: &'a mut [T],
+    bounds: &[usize],
+    start: impl Fn(usize) -> usize,
+) -> Vec<&'a mut [T]> {
+    let (first, last) = (bounds[0], bounds[bounds.len() - 1]);
+    assert_eq!(
+        start(last) - start(first),
+        data.len(),
+        "chunks cover the whole table"
+    );
+    split(data, bounds, start)
+}
