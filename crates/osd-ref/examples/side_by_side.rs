@@ -20,7 +20,9 @@
 //! (b) positions only, tables prebuilt: `PrimvarRefiner::Interpolate` (and `StencilTable::
 //!     UpdateValues`) versus applying subsurf's per-level stencils (and its composed table).
 //!
-//! subsurf runs single-threaded (a one-thread rayon pool) and on all cores. `--memory` runs one
+//! subsurf runs single-threaded (a one-thread rayon pool, where OpenSubdiv's (a) runs too) and
+//! on all cores (workers bound one per core, `osd_ref::bind_to_cpu`); every thread allocates
+//! from one malloc arena (`osd_ref::one_malloc_arena`). `--memory` runs one
 //! side once (subsurf single-threaded) in this fresh process and prints its time and the
 //! process's peak resident memory: run alternately from a shell, it times cold one-shot
 //! refinements, whose pages are all new, free of the allocator state one side leaves the other. `--cpu` times the single-threaded
@@ -87,6 +89,11 @@ fn peak_rss_mib() -> f64 {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    osd_ref::one_malloc_arena();
+    // The all-core runs' workers one per core (see `osd_ref::bind_to_cpu`).
+    rayon::ThreadPoolBuilder::new()
+        .start_handler(osd_ref::bind_to_cpu)
+        .build_global()?;
     let args: Vec<String> = std::env::args().skip(1).collect();
     let default_mesh = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -227,9 +234,12 @@ fn table(
         let (mut sc, mut pc) = (Vec::new(), Vec::new());
         let mut nverts = 0;
         for _ in 0..runs {
-            let (t, p) = ms(|| {
-                let r = OsdRefiner::with_last_level(osd_mesh, level, !lean).unwrap();
-                r.interpolate(&mesh.positions).unwrap()
+            // On the same worker as subsurf 1T, allocating from the same heap.
+            let (t, p) = one.install(|| {
+                ms(|| {
+                    let r = OsdRefiner::with_last_level(osd_mesh, level, !lean).unwrap();
+                    r.interpolate(&mesh.positions).unwrap()
+                })
             });
             oa.push(t);
             nverts = p.len();

@@ -62,6 +62,55 @@ pub fn available() -> bool {
     !cfg!(osd_missing)
 }
 
+/// One malloc arena for every thread of the process (glibc's `M_ARENA_MAX`, as
+/// `GLIBC_TUNABLES=glibc.malloc.arena_max=1` sets it), for the side-by-side benchmarks; call it
+/// first in `main`, before any other thread exists. A no-op elsewhere than glibc.
+///
+/// A benchmark that runs one library on the main thread and another on a rayon worker, or a
+/// two-thread pool after a one-thread one, would otherwise compare allocators: each thread
+/// allocates from an arena of its own, a worker's arena gives its freed pages back to the
+/// kernel (`MADV_DONTNEED`) and faults them in anew, and no side reuses the pages the other
+/// freed. With one arena every side allocates from the same heap.
+pub fn one_malloc_arena() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        extern "C" {
+            fn mallopt(param: i32, value: i32) -> i32;
+        }
+        /// `M_ARENA_MAX` of glibc's `malloc.h`.
+        const M_ARENA_MAX: i32 = -8;
+        // SAFETY: `mallopt` only sets an allocator parameter.
+        unsafe {
+            mallopt(M_ARENA_MAX, 1);
+        }
+    }
+}
+
+/// Binds the calling thread to CPU `cpu` (Linux `sched_setaffinity`; a no-op elsewhere or
+/// where `cpu` does not exist), for a benchmark's thread pool: call it from a rayon pool's
+/// `start_handler` to give each worker a core of its own, as `OMP_PROC_BIND` does.
+///
+/// Measured in `peer-bench` on this 2-core machine: unbound, the kernel often ran both workers
+/// of the two-thread pool on one core (the one the single-threaded runs had just left idle,
+/// about 40 involuntary context switches per worker per car level-4 setup), and subsurf's
+/// two-thread setup read 18–31 ms; bound, 15.0–15.6 ms with none.
+pub fn bind_to_cpu(cpu: usize) {
+    #[cfg(target_os = "linux")]
+    {
+        if cpu >= libc::CPU_SETSIZE as usize {
+            return;
+        }
+        // SAFETY: `cpu_set_t` is plain bits (all zero is the empty set), `CPU_SET` writes
+        // one bit of it inside its size (checked above), and `sched_setaffinity` of thread 0
+        // (the caller) only reads it; a CPU that is not online makes the call fail, ignored.
+        unsafe {
+            let mut set: libc::cpu_set_t = std::mem::zeroed();
+            libc::CPU_SET(cpu, &mut set);
+            libc::sched_setaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &set);
+        }
+    }
+}
+
 /// For tests that compare with OpenSubdiv: true when it is available; otherwise prints a loud
 /// SKIPPED line naming `test` (straight to stderr, past the harness's capture) and returns
 /// false — or panics when the `CI` environment variable is set, since CI must run them.

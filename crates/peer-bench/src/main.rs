@@ -17,9 +17,9 @@
 //! peak resident memory. A last table gives subsurf's per-frame bytes per output vertex (a
 //! lower bound), its frame against the same frame through every stored row, and memcpy's
 //! bandwidth. OpenSubdiv, opensubdiv-rs and subdiv-kernels run on the calling
-//! thread only; subsurf runs in a one-thread and a two-thread rayon pool. Every thread
-//! allocates from one malloc arena (glibc), so no peer and no pool starts from fresh pages
-//! that another reuses.
+//! thread only; subsurf runs in a one-thread and a two-thread rayon pool, the latter's workers
+//! bound one per core. Every thread allocates from one malloc arena (glibc), so no peer and no
+//! pool starts from fresh pages that another reuses.
 
 mod cold;
 mod error;
@@ -104,33 +104,12 @@ struct Row {
     frame2: Vec<f64>,
 }
 
-/// One malloc arena for every thread of the process (glibc's `M_ARENA_MAX`, as
-/// `GLIBC_TUNABLES=glibc.malloc.arena_max=1` sets it).
-///
-/// The single-threaded peers all run on one worker thread so that they allocate from one arena
-/// and reuse each other's freed pages alike; without this the two-thread pool's workers would
-/// allocate from arenas of their own, and subsurf's two-thread setup alone would fault in every
-/// page anew (at car level 3 it read 25.5 ms against 11.2 ms for one thread, 10.9 ms with one
-/// arena).
-#[cfg(all(target_os = "linux", target_env = "gnu"))]
-fn one_malloc_arena() {
-    extern "C" {
-        fn mallopt(param: i32, value: i32) -> i32;
-    }
-    /// `M_ARENA_MAX` of glibc's `malloc.h`.
-    const M_ARENA_MAX: i32 = -8;
-    // SAFETY: `mallopt` only sets an allocator parameter; it is called before any other
-    // thread exists.
-    unsafe {
-        mallopt(M_ARENA_MAX, 1);
-    }
-}
-
-#[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-fn one_malloc_arena() {}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    one_malloc_arena();
+    // One malloc arena (see `osd_ref::one_malloc_arena`): without it the two-thread pool's
+    // workers allocated from arenas of their own, and subsurf's two-thread setup alone faulted
+    // in every page anew (at car level 3 it read 25.5 ms against 11.2 ms for one thread,
+    // 10.9 ms with one arena).
+    osd_ref::one_malloc_arena();
     let all: Vec<String> = std::env::args().skip(1).collect();
     CPU_TIME.get_or_init(|| all.iter().any(|a| a == "--cpu"));
     if let Some(i) = all.iter().position(|a| a == "--cold") {
@@ -161,7 +140,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mesh = subsurf::io::read_path(path)?;
     let osd_mesh = OsdMesh::from(&mesh);
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let two = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
+    // Each worker of the two-thread pool on a core of its own (see `osd_ref::bind_to_cpu`).
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .start_handler(osd_ref::bind_to_cpu)
+        .build()?;
     let diag = subsurf::mesh::bbox_diagonal(&mesh.positions) as f64;
     println!(
         "{path}: {} faces, {} vertices; medians of {runs} alternating runs, {}; \
