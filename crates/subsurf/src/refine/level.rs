@@ -53,9 +53,8 @@ fn child_end(ev: [u32; 2], v: u32, next: bool) -> u32 {
 /// Every child table is filled in place: its row starts follow from the parent's offsets
 /// (a child of a vertex has the parent vertex's ring sizes, a face point as many faces and
 /// edges as its face has corners, an edge point `2k` faces and `2 + k` edges for `k` incident
-/// faces), so each table is allocated once at its exact size, unwritten
-/// ([`alloc::unwritten`]), and filled in parallel chunks that cover it whole
-/// ([`par::split_exact`]), each row writing every value of its own.
+/// faces), so each table is allocated once at its exact size, unwritten (no zero pass), and
+/// filled in parallel chunks that cover it whole, each row writing every value of its own.
 #[allow(unsafe_code)]
 pub fn refine_topology(p: &Topology) -> Topology {
     let (nv, nf, ne, nc) = (
