@@ -202,6 +202,7 @@ impl StepPlan {
                 vertex,
                 edge,
             }),
+            loop_plan: None,
         })
     }
 }

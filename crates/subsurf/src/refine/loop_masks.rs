@@ -27,7 +27,7 @@ pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
 pub(crate) fn loop_level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
     let nv = p.num_vertices();
     let (vertex, edge) = if super::loop_rings::is_manifold(p) {
-        manifold_tables(p, c)
+        manifold_tables(p, c, None)
     } else {
         merged_tables(p, c)
     };
@@ -50,20 +50,24 @@ pub(crate) fn loop_level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> L
 /// opposite vertices of an edge can coincide (two triangles on the same three vertices), so
 /// every row's length is known before it is formed and only that pair is merged (in `f64`, as
 /// [`merged_tables`] merges it). Same entries, order and weights as [`merged_tables`].
-fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, StencilTable) {
+///
+/// With `only = Some((vertices, edges))` the tables hold those rows alone, in that order (the
+/// exceptions of a per-frame plan, [`super::loop_frame::LoopPlan`]).
+pub(super) fn manifold_tables(
+    p: &Topology,
+    c: ChildSharpness<'_>,
+    only: Option<(&[u32], &[u32])>,
+) -> (StencilTable, StencilTable) {
     let (nv, ne) = (p.num_vertices(), p.num_edges());
-    // The smooth rule applies the same weight to every neighbour; that weight
-    // `(5/8 - beta^2) / n` is positive (beta <= 5/8), so no entry is dropped.
-    let smooth = |v: usize| {
-        let nfaces = p.vertex_faces(v).len();
-        let pr = p.vert_rule[v];
-        (pr == rule::SMOOTH || pr == rule::DART) && nfaces == p.valence(v)
-    };
+    let vrow = |i: usize| only.map_or(i, |o| o.0[i] as usize);
+    let erow = |i: usize| only.map_or(i, |o| o.1[i] as usize);
+    let smooth = |v: usize| smooth_vertex(p, v);
     let vertex = write_rows(
-        nv,
+        only.map_or(nv, |o| o.0.len()),
         nv,
         |_| Scratch::default(),
         |v, s| {
+            let v = vrow(v);
             let n = p.valence(v);
             if n == 0 {
                 1
@@ -75,6 +79,7 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
             }
         },
         |v, s, idx, wts| {
+            let v = vrow(v);
             let pe = p.vertex_edges(v);
             if pe.is_empty() {
                 (idx[0], wts[0]) = (v as u32, 1.0);
@@ -103,11 +108,7 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
     // The edge mask and the opposite vertices of edge `e` (the second `u32::MAX` where the
     // edge has one face or both opposite vertices are one). A smooth edge's mask needs no
     // child rule (`edge_mask` reads it only for a sharp edge), so none is looked up there.
-    let opposite = |e: usize, i: usize| {
-        let o = p.edge_face_offsets[e] as usize + i;
-        let (f, k) = (p.edge_faces[o] as usize, p.edge_face_local[o] as usize);
-        p.face_verts[3 * f + if k == 0 { 2 } else { k - 1 }]
-    };
+    let opposite = |e: usize, i: usize| opposite(p, e, i);
     let edge_row = |e: usize| {
         let nfaces = (p.edge_face_offsets[e + 1] - p.edge_face_offsets[e]) as usize;
         let s = p.edge_sharpness[e];
@@ -124,11 +125,12 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
     };
     let smooth2 = edge_mask(0.0, rule::SMOOTH, 2);
     let edge = write_rows(
-        ne,
+        only.map_or(ne, |o| o.1.len()),
         nv,
         |_| (),
         |e, _| {
-            if p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2 {
+            let e = erow(e);
+            if smooth_edge(p, e) {
                 // Smooth: both opposite vertices, merged where they are one.
                 3 + (opposite(e, 0) != opposite(e, 1)) as usize
             } else {
@@ -141,8 +143,9 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
             }
         },
         |e, _, idx, wts| {
+            let e = erow(e);
             let ev = p.edge_verts[e];
-            if p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2 {
+            if smooth_edge(p, e) {
                 // Smooth, two faces (what `edge_row` gives there, without the general mask).
                 let (o0, o1) = (opposite(e, 0), opposite(e, 1));
                 (idx[0], wts[0]) = (ev[0], smooth2.vertex);
@@ -173,6 +176,30 @@ fn manifold_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, Stenci
         },
     );
     (vertex, edge)
+}
+
+/// Whether vertex `v` of a manifold triangle level follows the smooth rule (smooth or dart,
+/// as many faces as edges): its row is then its `n` neighbours, `(5/8 - beta^2) / n` each
+/// (positive, as beta <= 5/8, so no entry is dropped), and itself.
+#[inline]
+pub(super) fn smooth_vertex(p: &Topology, v: usize) -> bool {
+    let pr = p.vert_rule[v];
+    (pr == rule::SMOOTH || pr == rule::DART) && p.vertex_faces(v).len() == p.valence(v)
+}
+
+/// Whether edge `e` is a smooth edge of two faces: its row is its two ends and the two
+/// opposite vertices (one, merged, where they coincide).
+#[inline]
+pub(super) fn smooth_edge(p: &Topology, e: usize) -> bool {
+    p.edge_sharpness[e] <= 0.0 && p.edge_faces(e).len() == 2
+}
+
+/// The vertex opposite edge `e` in its `i`-th face (a triangle).
+#[inline]
+pub(super) fn opposite(p: &Topology, e: usize, i: usize) -> u32 {
+    let o = p.edge_face_offsets[e] as usize + i;
+    let (f, k) = (p.edge_faces[o] as usize, p.edge_face_local[o] as usize);
+    p.face_verts[3 * f + if k == 0 { 2 } else { k - 1 }]
 }
 
 /// Builds a table of `rows` rows over `num_inputs` inputs whose lengths `len(r)` are known
@@ -337,10 +364,13 @@ pub fn loop_limit_stencils(t: &Topology) -> StencilTable {
 impl super::Refiner {
     /// The Loop refinement of `base` (all triangles, checked by the caller), every level with
     /// its full topology but a lean last one where `options` say
-    /// ([`super::RefineOptions::lean`]: its face lists only, its stencils reading the child's
-    /// sharpness and rules derived from the parent). The next level's topology is built while
-    /// the stencils of the step to the current one are: both read only that level, so they run
-    /// side by side (`rayon::join`; one after the other on one thread, with the same results).
+    /// ([`super::RefineOptions::lean`]: its face lists only, its rows reading the child's
+    /// sharpness and rules derived from the parent). Each step keeps its per-frame plan made
+    /// from the topology ([`super::loop_frame::LoopPlan`]; the stencil tables are then built on
+    /// first use), or, where a level is not manifold or mostly exceptions, every step keeps its
+    /// stencil tables. The next level's topology is built while the plan of the step to the
+    /// current one is: both read only that level, so they run side by side (`rayon::join`; one
+    /// after the other on one thread, with the same results).
     pub(super) fn new_loop(
         base: Topology,
         level: usize,
@@ -358,44 +388,58 @@ impl super::Refiner {
         options: super::RefineOptions,
     ) -> (super::Refiner, Option<super::last_level::ChildSharpnessBuf>) {
         use super::last_level::ChildSharpnessBuf;
+        use super::loop_frame::LoopPlan;
         use super::loop_level::{refine_tri, refine_tri_face_lists};
         let full = |k: usize| k + 1 < level || options.full_topology_in_last_level;
         let mut levels = vec![base];
-        let mut stencils = Vec::with_capacity(level);
+        let mut plans = Vec::with_capacity(level);
         let mut ahead = None;
         let mut lean_sharpness = None;
         for k in 0..level {
             let parent = &levels[k];
             if !full(k) {
-                let ((s, sharpness), child) = rayon::join(
+                let ((plan, sharpness), child) = rayon::join(
                     || {
                         let sharpness = ChildSharpnessBuf::new(parent);
-                        let s = loop_level_stencils_with(parent, sharpness.view(parent));
-                        (s, sharpness)
+                        let plan = LoopPlan::from_topology(parent, sharpness.view(parent));
+                        (plan, sharpness)
                     },
                     || refine_tri_face_lists(parent),
                 );
-                stencils.push(s);
+                plans.push(plan);
                 levels.push(child);
                 lean_sharpness = Some(sharpness);
                 continue;
             }
             let child = ahead.take().unwrap_or_else(|| refine_tri(parent));
-            let (s, next) = rayon::join(
-                || loop_level_stencils(parent, &child),
+            let (plan, next) = rayon::join(
+                || LoopPlan::from_topology(parent, ChildSharpness::of_child(parent, &child)),
                 || (k + 1 < level && full(k + 1)).then(|| refine_tri(&child)),
             );
             ahead = next;
-            stencils.push(s);
+            plans.push(plan);
             levels.push(child);
         }
-        let refiner = super::Refiner {
+        let mut refiner = super::Refiner {
             levels,
-            stencils: stencils.into(),
+            stencils: std::sync::OnceLock::new(),
             limit_table: std::sync::OnceLock::new(),
             frame_plans: std::sync::OnceLock::new(),
             options,
         };
+        match plans.into_iter().collect::<Option<Vec<LoopPlan>>>() {
+            Some(plans) => {
+                let plans: Vec<_> = plans
+                    .into_iter()
+                    .map(|lp| super::smooth_frame::StepPlan {
+                        loop_plan: Some(lp),
+                        ..Default::default()
+                    })
+                    .collect();
+                refiner.frame_plans = std::sync::OnceLock::from(plans);
+            }
+            None => refiner.stencils = std::sync::OnceLock::from(refiner.build_stencils()),
+        }
         (refiner, lean_sharpness)
     }
 }

@@ -32,6 +32,7 @@ mod lanes;
 mod last_level;
 mod level;
 mod level_tags;
+mod loop_frame;
 mod loop_level;
 mod loop_masks;
 mod loop_nonmanifold;
@@ -290,6 +291,13 @@ impl Refiner {
                 let parent = &self.levels[k];
                 if let Some(s) = plans.and_then(|p| p[k].stencils(parent)) {
                     s
+                } else if parent.options.scheme == Scheme::Loop {
+                    if self.is_full(k + 1) {
+                        loop_level_stencils(parent, &self.levels[k + 1])
+                    } else {
+                        let sharpness = ChildSharpnessBuf::new(parent);
+                        loop_masks::loop_level_stencils_with(parent, sharpness.view(parent))
+                    }
                 } else if self.is_full(k + 1) {
                     level_stencils(parent, &self.levels[k + 1])
                 } else {

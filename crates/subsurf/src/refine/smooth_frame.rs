@@ -52,6 +52,8 @@ pub(crate) struct StepPlan {
     /// The smooth rows' indices, where the plan was made from the topology
     /// ([`StepPlan::from_topology`]) rather than from stored tables.
     pub(super) own: Option<OwnRows>,
+    /// A Loop step's plan, made from the topology; the fields above are then unused.
+    pub(super) loop_plan: Option<super::loop_frame::LoopPlan>,
 }
 
 /// A plan's own tables ([`StepPlan::from_topology`]): offsets and indices of the smooth rows
@@ -166,6 +168,7 @@ impl StepPlan {
             valence_weights,
             exceptions,
             own: None,
+            loop_plan: None,
         }
     }
 
@@ -186,6 +189,10 @@ impl StepPlan {
         src: &[[f32; N]],
         dst: &mut [[f32; N]],
     ) {
+        if let Some(lp) = &self.loop_plan {
+            lp.apply(p, src, dst);
+            return;
+        }
         let stored = if self.own.is_none() { s() } else { None };
         if self.stencils_only {
             let s = stored.expect("a plan made from stored tables");

@@ -1,0 +1,264 @@
+//! The per-frame plan of a Loop step from a manifold triangle level, made from the topology:
+//! no stencil table is built during setup.
+//!
+//! Most rows of a Loop step follow the smooth rules, whose weights depend on a class alone: a
+//! child of a smooth vertex of valence `n` is its `n` neighbours, `(5/8 - beta^2) / n` each,
+//! and itself, `1 - n` times that ([`crate::rules::r#loop::smooth_weights`]); the edge point
+//! of a smooth two-face edge is its two ends, `3/8` each, and the two opposite vertices, `1/8`
+//! each (one vertex, `1/4`, where they coincide). The plan keeps those rows' input indices
+//! only, read once from the parent's vertex-edge, edge-vertex and edge-face lists in the order
+//! the stencil rows store them ([`super::loop_masks::manifold_tables`]), and the other rows
+//! (creases, corners, boundaries, isolated vertices) whole, formed once by the masks. A frame
+//! weighs the indices by class. Every row is summed in the stored entry order from zero, so a frame is
+//! bit-identical to applying the step's stencil table (tested for every `loop_*` shape in
+//! `tests/refine_positions_into.rs`); [`super::Refiner::stencils`] builds that table on first
+//! use.
+
+use super::alloc::{unwritten, written, Slot};
+#[cfg(target_arch = "x86_64")]
+use super::lanes;
+use super::last_level::ChildSharpness;
+use super::loop_masks::{manifold_tables, opposite, smooth_edge, smooth_vertex};
+use super::loop_rings::is_manifold;
+use super::par;
+use super::smooth_frame::Acc;
+use super::stencil::StencilTable;
+use crate::rules::r#loop::{edge_mask, smooth_weights};
+use crate::topology::tags::rule;
+use crate::topology::Topology;
+use rayon::prelude::*;
+
+/// Rows per parallel chunk.
+const CHUNK: usize = 4096;
+
+/// A Loop step's per-frame plan (see the module documentation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct LoopPlan {
+    /// Vertex rows that are not the smooth rule, ascending.
+    vertex_special: Vec<u32>,
+    /// Edge rows that are not the smooth two-face rule, ascending.
+    edge_special: Vec<u32>,
+    /// The exceptions' rows, in the order of `vertex_special` and of `edge_special`.
+    exceptions: [StencilTable; 2],
+    /// Per vertex `v` of valence `n`, from `vert_edge_offsets[v] + v`: its `n` neighbours and
+    /// itself (zeros for an exception).
+    vertex_inputs: Vec<u32>,
+    /// Per edge, four values: its two ends and its two opposite vertices (the second
+    /// `u32::MAX` where they coincide; zeros for an exception).
+    edge_inputs: Vec<[u32; 4]>,
+    /// `[itself, each neighbour]` weights of a smooth vertex of valence `n`, up to the level's
+    /// largest valence.
+    vertex_weights: Vec<[f32; 2]>,
+    /// A smooth edge's weights: each end, each opposite vertex, the one merged opposite vertex.
+    edge_weights: [f32; 3],
+}
+
+impl LoopPlan {
+    /// The plan of the Loop step from `p` to a child with sharpness and rules `c`; `None` where
+    /// `p` is not manifold (its rows can meet a vertex twice: the stored tables merge those) or
+    /// most rows are exceptions (the stored tables are then applied as they are).
+    pub(crate) fn from_topology(p: &Topology, c: ChildSharpness<'_>) -> Option<LoopPlan> {
+        if !is_manifold(p) {
+            return None;
+        }
+        let (nv, ne) = (p.num_vertices(), p.num_edges());
+        let vertex_special: Vec<u32> = (0..nv as u32)
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .filter(|&v| p.valence(v as usize) == 0 || !smooth_vertex(p, v as usize))
+            .collect();
+        let edge_special: Vec<u32> = (0..ne as u32)
+            .into_par_iter()
+            .with_min_len(CHUNK)
+            .filter(|&e| !smooth_edge(p, e as usize))
+            .collect();
+        if 2 * (vertex_special.len() + edge_special.len()) > nv + ne {
+            return None;
+        }
+        let ((vex, eex), (vertex_inputs, edge_inputs)) = rayon::join(
+            || manifold_tables(p, c, Some((&vertex_special, &edge_special))),
+            || (vertex_inputs(p), edge_inputs(p)),
+        );
+        let max_valence = p
+            .vert_edge_offsets
+            .par_windows(2)
+            .with_min_len(CHUNK)
+            .map(|w| (w[1] - w[0]) as usize)
+            .max()
+            .unwrap_or(0);
+        let vertex_weights = (0..=max_valence)
+            .map(|n| {
+                if n == 0 {
+                    [0.0; 2]
+                } else {
+                    let (vw, ew) = smooth_weights(n);
+                    [vw, ew]
+                }
+            })
+            .collect();
+        let m = edge_mask(0.0, rule::SMOOTH, 2);
+        let merged = (m.opposite as f64 + m.opposite as f64) as f32;
+        Some(LoopPlan {
+            vertex_special,
+            edge_special,
+            exceptions: [vex, eex],
+            vertex_inputs,
+            edge_inputs,
+            vertex_weights,
+            edge_weights: [m.vertex, m.opposite, merged],
+        })
+    }
+
+    /// One step of `N`-component values from parent `p` (children of vertices, then edge
+    /// points into `dst`), bit-identical to applying the step's stencil table.
+    pub(crate) fn apply<const N: usize>(
+        &self,
+        p: &Topology,
+        src: &[[f32; N]],
+        dst: &mut [[f32; N]],
+    ) {
+        assert_eq!(
+            dst.len(),
+            p.num_vertices() + p.num_edges(),
+            "destination length"
+        );
+        #[cfg(target_arch = "x86_64")]
+        if let (Some(src), Some(dst)) = (lanes::as3(src), lanes::as3_mut(dst)) {
+            return self.apply_acc::<3, lanes::Lanes3>(p, src, dst);
+        }
+        self.apply_acc::<N, [f32; N]>(p, src, dst);
+    }
+
+    /// [`LoopPlan::apply`], each row summed in an `A`.
+    fn apply_acc<const N: usize, A: Acc<N>>(
+        &self,
+        p: &Topology,
+        src: &[[f32; N]],
+        dst: &mut [[f32; N]],
+    ) {
+        let (dv, de) = dst.split_at_mut(p.num_vertices());
+        let (vw, vi, veo) = (
+            &self.vertex_weights,
+            &self.vertex_inputs,
+            &p.vert_edge_offsets,
+        );
+        // Valence 6 (the regular vertex) with its length known, so the row unrolls.
+        let row_sum = |row: &[u32], [wv, we]: [f32; 2]| {
+            let (last, nb) = row.split_last().expect("n + 1 inputs");
+            let mut acc = A::zero();
+            for &x in nb {
+                acc.add(we, src, x as usize);
+            }
+            acc.add(wv, src, *last as usize);
+            acc.get()
+        };
+        let w6 = vw.get(6).copied().unwrap_or_default();
+        chunks::<N, A>(dv, &self.vertex_special, &self.exceptions[0], src, |v| {
+            let (a, b) = (veo[v] as usize, veo[v + 1] as usize);
+            if b - a == 6 {
+                row_sum(&vi[a + v..a + v + 7], w6)
+            } else {
+                row_sum(&vi[a + v..b + v + 1], vw[b - a])
+            }
+        });
+        let [wv, wo, wm] = self.edge_weights;
+        let ei = &self.edge_inputs;
+        chunks::<N, A>(de, &self.edge_special, &self.exceptions[1], src, |e| {
+            let [e0, e1, o0, o1] = ei[e];
+            let mut acc = A::zero();
+            acc.add(wv, src, e0 as usize);
+            acc.add(wv, src, e1 as usize);
+            if o1 != u32::MAX {
+                acc.add(wo, src, o0 as usize);
+                acc.add(wo, src, o1 as usize);
+            } else {
+                acc.add(wm, src, o0 as usize);
+            }
+            acc.get()
+        });
+    }
+}
+
+/// The smooth vertex rows' inputs of [`LoopPlan`] (`vertex_inputs`).
+#[allow(unsafe_code)]
+fn vertex_inputs(p: &Topology) -> Vec<u32> {
+    let nv = p.num_vertices();
+    let veo = &p.vert_edge_offsets;
+    let mut out = unwritten(veo[nv] as usize + nv, u32::MAX);
+    let b = par::bounds(nv);
+    par::ranges(&b)
+        .into_par_iter()
+        .zip(par::split_exact(&mut out, &b, |v| veo[v] as usize + v))
+        .for_each(|(r, out)| {
+            let base = veo[r.start] as usize + r.start;
+            for v in r {
+                let o = &mut out[veo[v] as usize + v - base..veo[v + 1] as usize + v + 1 - base];
+                if p.valence(v) > 0 && smooth_vertex(p, v) {
+                    let (last, nb) = o.split_last_mut().expect("n + 1 values");
+                    for (o, &e) in nb.iter_mut().zip(p.vertex_edges(v)) {
+                        o.set(p.other_vertex(e as usize, v as u32));
+                    }
+                    last.set(v as u32);
+                } else {
+                    for o in o {
+                        o.set(0);
+                    }
+                }
+            }
+        });
+    // SAFETY: the chunks cover the table, each vertex writing its `n + 1` values (its `n`
+    // edges give its `n` neighbours).
+    unsafe { written(out) }
+}
+
+/// The smooth edge rows' inputs of [`LoopPlan`] (`edge_inputs`).
+fn edge_inputs(p: &Topology) -> Vec<[u32; 4]> {
+    (0..p.num_edges())
+        .into_par_iter()
+        .with_min_len(CHUNK)
+        .map(|e| {
+            if !smooth_edge(p, e) {
+                return [0; 4];
+            }
+            let ev = p.edge_verts[e];
+            let (o0, o1) = (opposite(p, e, 0), opposite(p, e, 1));
+            [ev[0], ev[1], o0, if o1 != o0 { o1 } else { u32::MAX }]
+        })
+        .collect()
+}
+
+/// Fills `out` (one value per row) in parallel chunks: row `r` is `smooth(r)` unless it is in
+/// `special` (ascending), whose `k`-th row is row `k` of `rows`.
+fn chunks<const N: usize, A: Acc<N>>(
+    out: &mut [[f32; N]],
+    special: &[u32],
+    rows: &StencilTable,
+    src: &[[f32; N]],
+    smooth: impl Fn(usize) -> [f32; N] + Sync,
+) {
+    out.par_chunks_mut(CHUNK)
+        .enumerate()
+        .for_each(|(c, out): (usize, &mut [[f32; N]])| {
+            let (first, end) = (c * CHUNK, c * CHUNK + out.len());
+            let mut k = special.partition_point(|&r| (r as usize) < first);
+            let mut r = first;
+            // Runs of smooth rows, each up to the next exception.
+            while r < end {
+                let next = special.get(k).map_or(end, |&x| (x as usize).min(end));
+                for (o, q) in out[r - first..next - first].iter_mut().zip(r..next) {
+                    *o = smooth(q);
+                }
+                if next == end {
+                    break;
+                }
+                let (lo, hi) = (rows.offsets[k] as usize, rows.offsets[k + 1] as usize);
+                let mut acc = A::zero();
+                for (&x, &w) in rows.indices[lo..hi].iter().zip(&rows.weights[lo..hi]) {
+                    acc.add(w, src, x as usize);
+                }
+                out[next - first] = acc.get();
+                k += 1;
+                r = next + 1;
+            }
+        });
+}
