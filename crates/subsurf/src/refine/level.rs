@@ -158,7 +158,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
                         ef[fill[end]].set((s + k) as u32);
                         el[fill[end]].set(pos(n, k, 0));
                         fill[end] += 1;
-                        let end = child_end(ev, p.face_verts[s + kn], false) as usize;
+                        // Corner `kn` is the edge's other end (`child_end` of it, unread).
+                        let end = if ev[0] != ev[1] { 1 - end } else { 1 };
                         ef[fill[end]].set((s + kn) as u32);
                         el[fill[end]].set(pos(n, kn, 3));
                         fill[end] += 1;
