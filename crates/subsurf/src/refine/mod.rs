@@ -309,10 +309,10 @@ impl Refiner {
     }
 
     /// `stencils()[k]` maps vertex data of level `k` to level `k + 1`: one sparse table per
-    /// step, what the GPU backend uploads and [`Refiner::refine_positions`] applies. A
-    /// Catmull-Clark refiner builds them on first use (its per-frame path,
+    /// step, what the GPU backend uploads. A Catmull-Clark refiner, and a Loop refiner whose
+    /// levels are manifold, builds them on first use (its per-frame path,
     /// [`Refiner::refine_positions_into`], reads plans made from the topology instead), and
-    /// keeps them.
+    /// keeps them; other refiners build them during setup.
     pub fn stencils(&self) -> &[LevelStencils] {
         self.stencils.get_or_init(|| self.build_stencils())
     }
