@@ -114,9 +114,7 @@ pub(crate) fn init<T: Copy>(dst: &mut [MaybeUninit<T>], x: T) -> &mut [T] {
 pub(crate) fn fill<T: Copy + Send + Sync>(dst: &mut [MaybeUninit<T>], x: T) {
     use rayon::prelude::*;
     dst.par_chunks_mut(1 << 16).for_each(|c| {
-        for d in c {
-            d.write(x);
-        }
+        init(c, x);
     });
 }
 
@@ -204,7 +202,11 @@ mod tests {
         }
         // Neighbours written before the advice, sharing pages with the table.
         let before: Vec<u32> = (0..1000).collect();
-        let mut v = vec![5u32; 3 * HUGE_PAGE / 4 + 1];
+        let mut v = unwritten(3 * HUGE_PAGE / 4 + 1, 0u32);
+        fill(&mut v, 5);
+        // SAFETY: `fill` wrote every value.
+        #[allow(unsafe_code)]
+        let mut v = unsafe { written(v) };
         let after: Vec<u32> = (0..1000).rev().collect();
         let mut w = vec![0u8; 3 * HUGE_PAGE];
         assert!(advise_huge(&w));

@@ -24,6 +24,168 @@ use crate::options::CreaseMethod;
 use crate::rules::crease;
 use crate::SHARPNESS_INFINITE;
 use rayon::prelude::*;
+use std::mem::MaybeUninit;
+
+/// The face and edge tables of a child level, laid out alike by the quad and the triangle
+/// (Loop) split: the child edges of faces first (`interior` of them, smooth: their sharpness
+/// and tags are filled here), then two children per parent edge. Allocated unwritten
+/// ([`alloc::unwritten`]) for a step's face and edge passes to fill.
+pub(super) struct ChildEdges {
+    pub(super) face_verts: Box<[MaybeUninit<u32>]>,
+    pub(super) face_edges: Box<[MaybeUninit<u32>]>,
+    pub(super) edge_verts: Box<[MaybeUninit<[u32; 2]>]>,
+    pub(super) edge_face_offsets: Box<[MaybeUninit<u32>]>,
+    pub(super) edge_faces: Box<[MaybeUninit<u32>]>,
+    pub(super) edge_face_local: Box<[MaybeUninit<u16>]>,
+    pub(super) edge_sharpness: Box<[MaybeUninit<f32>]>,
+    pub(super) edge_tags: Box<[MaybeUninit<u8>]>,
+}
+
+/// [`ChildEdges`] once written.
+pub(super) struct ChildEdgesWritten {
+    pub(super) face_verts: Vec<u32>,
+    pub(super) face_edges: Vec<u32>,
+    pub(super) edge_verts: Vec<[u32; 2]>,
+    pub(super) edge_face_offsets: Vec<u32>,
+    pub(super) edge_faces: Vec<u32>,
+    pub(super) edge_face_local: Vec<u16>,
+    pub(super) edge_sharpness: Vec<f32>,
+    pub(super) edge_tags: Vec<u8>,
+}
+
+impl ChildEdges {
+    /// Tables of `face_values` face vertices (and as many face edges), `edges` child edges of
+    /// which the first `interior` are children of faces, and `edge_faces` edge-face incidences.
+    pub(super) fn new(
+        face_values: usize,
+        interior: usize,
+        edges: usize,
+        edge_faces: usize,
+    ) -> Self {
+        let mut t = ChildEdges {
+            face_verts: unwritten(face_values, u32::MAX),
+            face_edges: unwritten(face_values, u32::MAX),
+            edge_verts: unwritten(edges, [u32::MAX; 2]),
+            edge_face_offsets: unwritten(edges + 1, u32::MAX),
+            edge_faces: unwritten(edge_faces, u32::MAX),
+            edge_face_local: unwritten(edge_faces, u16::MAX),
+            edge_sharpness: unwritten(edges, f32::NAN),
+            edge_tags: unwritten(edges, u8::MAX),
+        };
+        alloc::fill(&mut t.edge_sharpness[..interior], 0.0);
+        alloc::fill(&mut t.edge_tags[..interior], 0);
+        t
+    }
+
+    /// The tables as `Vec`s.
+    ///
+    /// # Safety
+    /// Every value of every table has been written.
+    #[allow(unsafe_code)]
+    pub(super) unsafe fn written(self) -> ChildEdgesWritten {
+        // SAFETY: every value written (the caller's promise).
+        unsafe {
+            ChildEdgesWritten {
+                face_verts: written(self.face_verts),
+                face_edges: written(self.face_edges),
+                edge_verts: written(self.edge_verts),
+                edge_face_offsets: written(self.edge_face_offsets),
+                edge_faces: written(self.edge_faces),
+                edge_face_local: written(self.edge_face_local),
+                edge_sharpness: written(self.edge_sharpness),
+                edge_tags: written(self.edge_tags),
+            }
+        }
+    }
+}
+
+/// The vertex tables of a child level (rings, tags, rules), allocated unwritten
+/// ([`alloc::unwritten`]) for a step's vertex passes to fill.
+pub(super) struct ChildRings {
+    pub(super) vert_faces: Box<[MaybeUninit<u32>]>,
+    pub(super) vert_face_local: Box<[MaybeUninit<u16>]>,
+    pub(super) vert_edges: Box<[MaybeUninit<u32>]>,
+    pub(super) vert_tags: Box<[MaybeUninit<u16>]>,
+    pub(super) vert_rule: Box<[MaybeUninit<u8>]>,
+}
+
+/// [`ChildRings`] once written.
+pub(super) struct ChildRingsWritten {
+    pub(super) vert_faces: Vec<u32>,
+    pub(super) vert_face_local: Vec<u16>,
+    pub(super) vert_edges: Vec<u32>,
+    pub(super) vert_tags: Vec<u16>,
+    pub(super) vert_rule: Vec<u8>,
+}
+
+impl ChildRings {
+    /// Tables of `faces` vertex-face and `edges` vertex-edge incidences of `vertices` vertices.
+    pub(super) fn new(faces: usize, edges: usize, vertices: usize) -> Self {
+        ChildRings {
+            vert_faces: unwritten(faces, u32::MAX),
+            vert_face_local: unwritten(faces, u16::MAX),
+            vert_edges: unwritten(edges, u32::MAX),
+            vert_tags: unwritten(vertices, u16::MAX),
+            vert_rule: unwritten(vertices, u8::MAX),
+        }
+    }
+
+    /// The tables as `Vec`s.
+    ///
+    /// # Safety
+    /// Every value of every table has been written.
+    #[allow(unsafe_code)]
+    pub(super) unsafe fn written(self) -> ChildRingsWritten {
+        // SAFETY: every value written (the caller's promise).
+        unsafe {
+            ChildRingsWritten {
+                vert_faces: written(self.vert_faces),
+                vert_face_local: written(self.vert_face_local),
+                vert_edges: written(self.vert_edges),
+                vert_tags: written(self.vert_tags),
+                vert_rule: written(self.vert_rule),
+            }
+        }
+    }
+}
+
+/// A child level of `p` from its parts: its face and edge tables, its vertex rings, tags and
+/// rules, and the rest.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn assemble(
+    p: &Topology,
+    num_vertices: usize,
+    face_offsets: Vec<u32>,
+    edges: ChildEdgesWritten,
+    vert_face_offsets: Vec<u32>,
+    vert_edge_offsets: Vec<u32>,
+    rings: ChildRingsWritten,
+    vert_sharpness: Vec<f32>,
+    face_is_hole: Vec<bool>,
+) -> Topology {
+    Topology {
+        options: p.options,
+        num_vertices,
+        face_offsets,
+        face_verts: edges.face_verts,
+        face_edges: edges.face_edges,
+        edge_verts: edges.edge_verts,
+        edge_face_offsets: edges.edge_face_offsets,
+        edge_faces: edges.edge_faces,
+        edge_face_local: edges.edge_face_local,
+        vert_face_offsets,
+        vert_faces: rings.vert_faces,
+        vert_face_local: rings.vert_face_local,
+        vert_edge_offsets,
+        vert_edges: rings.vert_edges,
+        edge_sharpness: edges.edge_sharpness,
+        vert_sharpness,
+        face_is_hole,
+        edge_tags: edges.edge_tags,
+        vert_tags: rings.vert_tags,
+        vert_rule: rings.vert_rule,
+    }
+}
 
 /// Position in child face `j` of a parent face of size `n` of the given slot (0..4).
 #[inline]
@@ -73,14 +235,13 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Faces: vertices and edges.
     let face_offsets = iota(cf + 1, |i| 4 * i as u32);
-    let mut face_verts = unwritten(4 * cf, u32::MAX);
-    let mut face_edges = unwritten(4 * cf, u32::MAX);
-    let mut edge_verts = unwritten(ce, [u32::MAX; 2]);
+    let total_ef = 2 * nc + 2 * efo(ne);
+    let mut tables = ChildEdges::new(4 * cf, nc, ce, total_ef);
     fr.clone()
         .into_par_iter()
-        .zip(par::split_exact(&mut face_verts, &fb, |f| 4 * fo(f)))
-        .zip(par::split_exact(&mut face_edges, &fb, |f| 4 * fo(f)))
-        .zip(par::split_exact(&mut edge_verts[..nc], &fb, fo))
+        .zip(par::split_exact(&mut tables.face_verts, &fb, |f| 4 * fo(f)))
+        .zip(par::split_exact(&mut tables.face_edges, &fb, |f| 4 * fo(f)))
+        .zip(par::split_exact(&mut tables.edge_verts[..nc], &fb, fo))
         .for_each(|(((r, cfv), cfe), cev)| {
             let base = fo(r.start);
             for f in r {
@@ -98,12 +259,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
 
     // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
     // children of parent edge e have as many as e.
-    let mut edge_face_offsets = unwritten(ce + 1, u32::MAX);
-    let total_ef = 2 * nc + 2 * efo(ne);
-    let mut edge_faces = unwritten(total_ef, u32::MAX);
-    let mut edge_face_local = unwritten(total_ef, u16::MAX);
     {
-        let (efo_f, efo_e) = edge_face_offsets.split_at_mut(nc + 1);
+        let (efo_f, efo_e) = tables.edge_face_offsets.split_at_mut(nc + 1);
         efo_f
             .par_chunks_mut(1 << 14)
             .enumerate()
@@ -112,8 +269,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
                     x.set(2 * ((c << 14) + i) as u32);
                 }
             });
-        let (ef_f, ef_e) = edge_faces.split_at_mut(2 * nc);
-        let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
+        let (ef_f, ef_e) = tables.edge_faces.split_at_mut(2 * nc);
+        let (el_f, el_e) = tables.edge_face_local.split_at_mut(2 * nc);
         fr.clone()
             .into_par_iter()
             .zip(par::split_exact(ef_f, &fb, |f| 2 * fo(f)))
@@ -131,7 +288,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
                     }
                 }
             });
-        let (_, ev_e) = edge_verts.split_at_mut(nc);
+        let (_, ev_e) = tables.edge_verts.split_at_mut(nc);
         er.clone()
             .into_par_iter()
             .zip(par::split_exact(ev_e, &eb, |e| 2 * e))
@@ -167,34 +324,17 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 }
             });
     }
+    // Sharpness and tags of the children of edges (those of faces are smooth, filled).
+    child_edge_sharpness(
+        p,
+        &mut tables.edge_sharpness[nc..],
+        &mut tables.edge_tags[nc..],
+    );
     // SAFETY: the face and edge passes above cover these tables whole (`split_exact`), each
     // parent face writing its corners' four child face vertices and edges (every slot of a
     // quad's rotation), its child edges' ends and two faces, and each parent edge its two
-    // children's ends, offsets and `k` faces each.
-    let (face_verts, face_edges, edge_verts) = unsafe {
-        (
-            written(face_verts),
-            written(face_edges),
-            written(edge_verts),
-        )
-    };
-    let (edge_face_offsets, edge_faces, edge_face_local) = unsafe {
-        (
-            written(edge_face_offsets),
-            written(edge_faces),
-            written(edge_face_local),
-        )
-    };
-
-    // Edge sharpness and tags (children of faces are smooth).
-    let mut edge_sharpness = unwritten(ce, f32::NAN);
-    let mut edge_tags = unwritten(ce, u8::MAX);
-    alloc::fill(&mut edge_sharpness[..nc], 0.0);
-    alloc::fill(&mut edge_tags[..nc], 0);
-    child_edge_sharpness(p, &mut edge_sharpness[nc..], &mut edge_tags[nc..]);
-    // SAFETY: children of faces filled above, children of edges (two per parent edge) by
-    // `child_edge_sharpness`.
-    let (edge_sharpness, edge_tags) = unsafe { (written(edge_sharpness), written(edge_tags)) };
+    // children's ends, offsets and `k` faces each; their sharpness and tags just above.
+    let edges = unsafe { tables.written() };
 
     let vert_sharpness = {
         let mut s = unwritten(cv, f32::NAN);
@@ -220,20 +360,16 @@ pub fn refine_topology(p: &Topology) -> Topology {
     });
     let total_vf = vf0 + nc + 2 * efo(ne);
     let total_ve = ve0 + nc + 2 * ne + efo(ne);
-    let mut vert_faces = unwritten(total_vf, u32::MAX);
-    let mut vert_face_local = unwritten(total_vf, u16::MAX);
-    let mut vert_edges = unwritten(total_ve, u32::MAX);
-    let mut vert_tags = unwritten(cv, u16::MAX);
-    let mut vert_rule = unwritten(cv, u8::MAX);
-    let (vf_v, vf_rest) = vert_faces.split_at_mut(vf0);
+    let mut rings = ChildRings::new(total_vf, total_ve, cv);
+    let (vf_v, vf_rest) = rings.vert_faces.split_at_mut(vf0);
     let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
-    let (vl_v, vl_rest) = vert_face_local.split_at_mut(vf0);
+    let (vl_v, vl_rest) = rings.vert_face_local.split_at_mut(vf0);
     let (vl_f, vl_e) = vl_rest.split_at_mut(nc);
-    let (ve_v, ve_rest) = vert_edges.split_at_mut(ve0);
+    let (ve_v, ve_rest) = rings.vert_edges.split_at_mut(ve0);
     let (ve_f, ve_e) = ve_rest.split_at_mut(nc);
-    let (vt_v, vt_rest) = vert_tags.split_at_mut(nv);
+    let (vt_v, vt_rest) = rings.vert_tags.split_at_mut(nv);
     let (vt_f, vt_e) = vt_rest.split_at_mut(nf);
-    let (vr_v, vr_rest) = vert_rule.split_at_mut(nv);
+    let (vr_v, vr_rest) = rings.vert_rule.split_at_mut(nv);
     let (vr_f, vr_e) = vr_rest.split_at_mut(nf);
 
     // Children of vertices: rings mapped to the children of the ring's faces and edges; tags
@@ -268,7 +404,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 for (i, (&e, o)) in pe.iter().zip(out).enumerate() {
                     let ce = (nc + 2 * e as usize) as u32 + child_end_at_vertex(p, pe, i, v);
                     o.set(ce);
-                    let et = edge_tags[ce as usize];
+                    let et = edges.edge_tags[ce as usize];
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
                 }
@@ -321,7 +457,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
                     &mut vf[of..],
                     &mut vl[of..],
                     &mut ve[oe..],
-                    &edge_tags,
+                    &edges.edge_tags,
                 );
                 vt[e - base].set(t);
                 vru[e - base].set(rl);
@@ -330,14 +466,7 @@ pub fn refine_topology(p: &Topology) -> Topology {
     // SAFETY: the three passes above cover these tables whole (`split_exact`), each child
     // vertex writing its whole ring (a vertex's parent ring sizes, a face point's `n`, an
     // edge point's `2k` faces and `2 + k` edges), its tags and its rule.
-    let (vert_faces, vert_face_local, vert_edges) = unsafe {
-        (
-            written(vert_faces),
-            written(vert_face_local),
-            written(vert_edges),
-        )
-    };
-    let (mut vert_tags, vert_rule) = unsafe { (written(vert_tags), written(vert_rule)) };
+    let mut rings = unsafe { rings.written() };
 
     let mut face_is_hole = super::alloc::zeroed(nc, false);
     if p.face_is_hole.iter().any(|&h| h) {
@@ -345,36 +474,25 @@ pub fn refine_topology(p: &Topology) -> Topology {
             if p.face_is_hole[f] {
                 face_is_hole[fo(f)..fo(f + 1)].fill(true);
                 for i in fo(f)..fo(f + 1) {
-                    for &v in &face_verts[4 * i..4 * i + 4] {
-                        vert_tags[v as usize] |= tags::V_INCIDENT_HOLE;
+                    for &v in &edges.face_verts[4 * i..4 * i + 4] {
+                        rings.vert_tags[v as usize] |= tags::V_INCIDENT_HOLE;
                     }
                 }
             }
         }
     }
 
-    Topology {
-        options: p.options,
-        num_vertices: cv,
+    assemble(
+        p,
+        cv,
         face_offsets,
-        face_verts,
-        face_edges,
-        edge_verts,
-        edge_face_offsets,
-        edge_faces,
-        edge_face_local,
+        edges,
         vert_face_offsets,
-        vert_faces,
-        vert_face_local,
         vert_edge_offsets,
-        vert_edges,
-        edge_sharpness,
+        rings,
         vert_sharpness,
         face_is_hole,
-        edge_tags,
-        vert_tags,
-        vert_rule,
-    }
+    )
 }
 
 /// Child face vertices and edges of parent face `f` (corners `s..s + n`), and the child

@@ -21,7 +21,7 @@ use super::last_level::ChildSharpness;
 use super::loop_masks::{manifold_tables, opposite, smooth_edge, smooth_vertex};
 use super::loop_rings::is_manifold;
 use super::par;
-use super::smooth_frame::Acc;
+use super::smooth_frame::{runs_between, Acc};
 use super::stencil::StencilTable;
 use crate::rules::r#loop::{edge_mask, smooth_weights};
 use crate::topology::tags::rule;
@@ -226,7 +226,7 @@ fn edge_inputs(p: &Topology) -> Vec<[u32; 4]> {
 }
 
 /// Fills `out` (one value per row) in parallel chunks: row `r` is `smooth(r)` unless it is in
-/// `special` (ascending), whose `k`-th row is row `k` of `rows`.
+/// `special` (ascending), whose `k`-th row is row `k` of `rows` (over parent vertices only).
 fn chunks<const N: usize, A: Acc<N>>(
     out: &mut [[f32; N]],
     special: &[u32],
@@ -237,27 +237,20 @@ fn chunks<const N: usize, A: Acc<N>>(
     out.par_chunks_mut(CHUNK)
         .enumerate()
         .for_each(|(c, out): (usize, &mut [[f32; N]])| {
-            let (first, end) = (c * CHUNK, c * CHUNK + out.len());
-            let mut k = special.partition_point(|&r| (r as usize) < first);
-            let mut r = first;
-            // Runs of smooth rows, each up to the next exception.
-            while r < end {
-                let next = special.get(k).map_or(end, |&x| (x as usize).min(end));
-                for (o, q) in out[r - first..next - first].iter_mut().zip(r..next) {
-                    *o = smooth(q);
-                }
-                if next == end {
-                    break;
-                }
-                let (lo, hi) = (rows.offsets[k] as usize, rows.offsets[k + 1] as usize);
-                let mut acc = A::zero();
-                for (&x, &w) in rows.indices[lo..hi].iter().zip(&rows.weights[lo..hi]) {
-                    acc.add(w, src, x as usize);
-                }
-                out[next - first] = acc.get();
-                k += 1;
-                r = next + 1;
-            }
+            runs_between::<N, A>(
+                special,
+                rows,
+                src.len(),
+                src,
+                &[],
+                c * CHUNK,
+                out,
+                |r, run| {
+                    for (o, q) in run.iter_mut().zip(r..) {
+                        *o = smooth(q);
+                    }
+                },
+            );
         });
 }
 

@@ -367,8 +367,7 @@ impl super::Refiner {
     /// ([`super::RefineOptions::lean`]: its face lists only, its rows reading the child's
     /// sharpness and rules derived from the parent). Each step keeps its per-frame plan made
     /// from the topology ([`super::loop_frame::LoopPlan`]; the stencil tables are then built on
-    /// first use), or, where a level is not manifold or mostly exceptions, every step keeps its
-    /// stencil tables. The next level's topology is built while the plan of the step to the
+    /// first use), or, where a level is not manifold, every step keeps its stencil tables. The next level's topology is built while the plan of the step to the
     /// current one is: both read only that level, so they run side by side (`rayon::join`; one
     /// after the other on one thread, with the same results).
     pub(super) fn new_loop(

@@ -20,7 +20,9 @@
 //! has two faces, a child of an edge as many as that edge.
 
 use super::alloc::{fill, put, unwritten, written, Slot};
-use super::level::{child_half, edge_point_tags, vertex_child_tags};
+use super::level::{
+    assemble, child_half, edge_point_tags, iota, vertex_child_tags, ChildEdges, ChildRings,
+};
 use super::loop_level::child_triangles;
 use super::par;
 use crate::rules::crease;
@@ -69,29 +71,20 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     let (fr, er, vr) = (par::ranges(&fb), par::ranges(&eb), par::ranges(&vb));
 
     // Faces and edges: four child faces and three interior edges per parent face, two child
-    // edges per parent edge.
+    // edges per parent edge. Sharpness: interior edges smooth (`ChildEdges` fills them),
+    // children of edges decayed by the crease method (in the edge pass, as
+    // `level::child_edge_sharpness` forms them).
     let total_ef = 2 * nc + 2 * efo(ne);
-    let mut face_verts = unwritten(4 * nc, u32::MAX);
-    let mut face_edges = unwritten(4 * nc, u32::MAX);
-    let mut edge_verts = unwritten(ce, [u32::MAX; 2]);
-    let mut edge_face_offsets = unwritten(ce + 1, u32::MAX);
-    let mut edge_faces = unwritten(total_ef, u32::MAX);
-    let mut edge_face_local = unwritten(total_ef, u16::MAX);
-    // Sharpness: interior edges smooth (zero), children of edges decayed by the crease
-    // method (in the edge pass, as `level::child_edge_sharpness` forms them).
-    let mut edge_sharpness = unwritten(ce, f32::NAN);
-    let mut edge_tags = unwritten(ce, u8::MAX);
-    fill(&mut edge_sharpness[..nc], 0.0);
-    fill(&mut edge_tags[..nc], 0);
+    let mut tables = ChildEdges::new(4 * nc, nc, ce, total_ef);
     {
-        let (ev_f, ev_e) = edge_verts.split_at_mut(nc);
-        let (eo_f, eo_e) = edge_face_offsets.split_at_mut(nc);
-        let (ef_f, ef_e) = edge_faces.split_at_mut(2 * nc);
-        let (el_f, el_e) = edge_face_local.split_at_mut(2 * nc);
+        let (ev_f, ev_e) = tables.edge_verts.split_at_mut(nc);
+        let (eo_f, eo_e) = tables.edge_face_offsets.split_at_mut(nc);
+        let (ef_f, ef_e) = tables.edge_faces.split_at_mut(2 * nc);
+        let (el_f, el_e) = tables.edge_face_local.split_at_mut(2 * nc);
         fr.clone()
             .into_par_iter()
-            .zip(par::split_exact(&mut face_verts, &fb, |f| 12 * f))
-            .zip(par::split_exact(&mut face_edges, &fb, |f| 12 * f))
+            .zip(par::split_exact(&mut tables.face_verts, &fb, |f| 12 * f))
+            .zip(par::split_exact(&mut tables.face_edges, &fb, |f| 12 * f))
             .zip(par::split_exact(ev_f, &fb, |f| 3 * f))
             .zip(par::split_exact(eo_f, &fb, |f| 3 * f))
             .zip(par::split_exact(ef_f, &fb, |f| 6 * f))
@@ -149,8 +142,14 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             .zip(par::split_exact(&mut eo_e[..2 * ne], &eb, |e| 2 * e))
             .zip(par::split_exact(ef_e, &eb, |e| 2 * efo(e)))
             .zip(par::split_exact(el_e, &eb, |e| 2 * efo(e)))
-            .zip(par::split_exact(&mut edge_sharpness[nc..], &eb, |e| 2 * e))
-            .zip(par::split_exact(&mut edge_tags[nc..], &eb, |e| 2 * e))
+            .zip(par::split_exact(
+                &mut tables.edge_sharpness[nc..],
+                &eb,
+                |e| 2 * e,
+            ))
+            .zip(par::split_exact(&mut tables.edge_tags[nc..], &eb, |e| {
+                2 * e
+            }))
             .for_each(|((((((r, cev), ceo), cef), cel), ces), cet)| {
                 let (base, fbase) = (2 * r.start, 2 * efo(r.start));
                 let mut around: Vec<f32> = Vec::new();
@@ -192,25 +191,11 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             });
     }
     // SAFETY: the face and edge passes cover these tables whole (`split_exact`; the interior
-    // edges' sharpness and tags filled before, the offsets' last value above): each parent
+    // edges' sharpness and tags filled by `ChildEdges::new`, the offsets' last value above): each parent
     // face writes its 12 child face vertices and edges, its three interior edges' ends,
     // offsets and two faces each; each parent edge its two children's ends, offsets,
     // sharpness, tags and `k` faces each.
-    let (face_verts, face_edges, edge_verts) = unsafe {
-        (
-            written(face_verts),
-            written(face_edges),
-            written(edge_verts),
-        )
-    };
-    let (edge_face_offsets, edge_faces, edge_face_local) = unsafe {
-        (
-            written(edge_face_offsets),
-            written(edge_faces),
-            written(edge_face_local),
-        )
-    };
-    let (edge_sharpness, edge_tags) = unsafe { (written(edge_sharpness), written(edge_tags)) };
+    let edges = unsafe { tables.written() };
 
     // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
     let (pvf, pve) = (
@@ -233,24 +218,20 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             .map(|(&o, e)| pve as u32 + 2 * e + 2 * o),
     );
     let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
-    let mut vert_faces = unwritten(total_vf, u32::MAX);
-    let mut vert_face_local = unwritten(total_vf, u16::MAX);
-    let mut vert_edges = unwritten(total_ve, u32::MAX);
+    let mut rings = ChildRings::new(total_vf, total_ve, cv);
     let mut vert_sharpness = unwritten(cv, f32::NAN);
     fill(&mut vert_sharpness[nv..], 0.0);
-    let mut vert_tags = unwritten(cv, u16::MAX);
-    let mut vert_rule = unwritten(cv, u8::MAX);
-    let (vf_v, vf_e) = vert_faces.split_at_mut(pvf);
-    let (vl_v, vl_e) = vert_face_local.split_at_mut(pvf);
-    let (ve_v, ve_e) = vert_edges.split_at_mut(pve);
-    let (vt_v, vt_e) = vert_tags.split_at_mut(nv);
-    let (vr_v, vr_e) = vert_rule.split_at_mut(nv);
+    let (vf_v, vf_e) = rings.vert_faces.split_at_mut(pvf);
+    let (vl_v, vl_e) = rings.vert_face_local.split_at_mut(pvf);
+    let (ve_v, ve_e) = rings.vert_edges.split_at_mut(pve);
+    let (vt_v, vt_e) = rings.vert_tags.split_at_mut(nv);
+    let (vr_v, vr_e) = rings.vert_rule.split_at_mut(nv);
 
     // Children of vertices: the parent's rings, face by face and edge by edge; tags and rules
     // inherited, recounted where semi-sharp features decayed.
     let pvfo = |v: usize| p.vert_face_offsets[v] as usize;
     let pveo = |v: usize| p.vert_edge_offsets[v] as usize;
-    let etags = &edge_tags;
+    let etags = &edges.edge_tags;
     vr.into_par_iter()
         .zip(par::split_exact(vf_v, &vb, pvfo))
         .zip(par::split_exact(vl_v, &vb, pvfo))
@@ -345,47 +326,22 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     // SAFETY: the two passes above cover these tables whole (`split_exact`; the edge points'
     // sharpness filled before): each child of a vertex writes its parent's rings, sharpness,
     // tags and rule, each edge point its `3k` faces, `2 + 2k` edges, tags and rule.
-    let (vert_faces, vert_face_local, vert_edges) = unsafe {
-        (
-            written(vert_faces),
-            written(vert_face_local),
-            written(vert_edges),
-        )
-    };
-    let (vert_sharpness, mut vert_tags, vert_rule) = unsafe {
-        (
-            written(vert_sharpness),
-            written(vert_tags),
-            written(vert_rule),
-        )
-    };
-    let face_is_hole =
-        super::loop_level::child_holes(&p.face_is_hole, &face_verts, Some(&mut vert_tags));
+    let (mut rings, vert_sharpness) = unsafe { (rings.written(), written(vert_sharpness)) };
+    let face_is_hole = super::loop_level::child_holes(
+        &p.face_is_hole,
+        &edges.face_verts,
+        Some(&mut rings.vert_tags),
+    );
 
-    Topology {
-        options: p.options,
-        num_vertices: cv,
-        face_offsets: {
-            let mut o = super::alloc::empty(cf + 1);
-            o.extend((0..=cf as u32).map(|f| 3 * f));
-            o
-        },
-        face_verts,
-        face_edges,
-        edge_verts,
-        edge_face_offsets,
-        edge_faces,
-        edge_face_local,
+    assemble(
+        p,
+        cv,
+        iota(cf + 1, |f| 3 * f as u32),
+        edges,
         vert_face_offsets,
-        vert_faces,
-        vert_face_local,
         vert_edge_offsets,
-        vert_edges,
-        edge_sharpness,
+        rings,
         vert_sharpness,
         face_is_hole,
-        edge_tags,
-        vert_tags,
-        vert_rule,
-    }
+    )
 }

@@ -401,27 +401,46 @@ fn edge_rows<const N: usize, A: Acc<N>>(
     src: &[[f32; N]],
     fd: &[[f32; N]],
 ) {
+    runs_between::<N, A>(special, ex, p, src, fd, first, out, |r, run| {
+        // An exception's row is empty here, so a run's indices start at its first offset.
+        let j = t.offsets[r] as usize;
+        edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, p, src, fd);
+    });
+}
+
+/// Rows `first..first + out.len()` of a table whose exceptions are the rows `special`
+/// (ascending; exception `q` is row `q` of `ex`, over parent vertices below `p` and face points
+/// `fd`): each run of rows between two exceptions handed to `run(its first row, its outputs)`,
+/// each exception summed from its stored row.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn runs_between<const N: usize, A: Acc<N>>(
+    special: &[u32],
+    ex: &StencilTable,
+    p: usize,
+    src: &[[f32; N]],
+    fd: &[[f32; N]],
+    first: usize,
+    out: &mut [[f32; N]],
+    mut run: impl FnMut(usize, &mut [[f32; N]]),
+) {
     let end = first + out.len();
     // Exception `q` of the chunk is row `q0 + q` of `ex`.
     let q0 = special.partition_point(|&r| (r as usize) < first);
     let mut out = out;
     let mut r = first;
-    let mut j = t.offsets[first] as usize;
     for (q, e) in in_range(special, first, out.len())
         .iter()
         .map(|&e| e as usize)
         .chain([end])
         .enumerate()
     {
-        let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
-        edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, p, src, fd);
+        let (rows, rest) = std::mem::take(&mut out).split_at_mut(e - r);
+        run(r, rows);
         let Some((o, rest)) = rest.split_first_mut() else {
             break;
         };
         *o = exception_row::<N, A>(ex, q0 + q, p, src, fd);
-        let hi = t.offsets[e + 1] as usize;
         out = rest;
-        j = hi;
         r = e + 1;
     }
 }
