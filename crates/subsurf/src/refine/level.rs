@@ -725,13 +725,26 @@ pub(super) fn child_edge_sharpness(
             let mut around: Vec<f32> = Vec::new();
             for e in r {
                 let o = 2 * e - base;
-                for end in 0..2 {
-                    let (cs, ct) = child_half(p, e, end, &mut around);
-                    es[o + end].set(cs);
-                    et_out[o + end].set(ct);
-                }
+                let [(s0, t0), (s1, t1)] = child_halves(p, e, &mut around);
+                es[o].set(s0);
+                es[o + 1].set(s1);
+                et_out[o].set(t0);
+                et_out[o + 1].set(t1);
             }
         });
+}
+
+/// Sharpness and tag of both children of parent edge `e` (`around`: scratch): a smooth edge's
+/// (most edges) inline, without [`child_half`]'s call.
+#[inline(always)]
+pub(super) fn child_halves(p: &Topology, e: usize, around: &mut Vec<f32>) -> [(f32, u8); 2] {
+    let s = p.edge_sharpness[e];
+    if s <= 0.0 || s.is_nan() {
+        let t = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+        return [(0.0, t); 2];
+    }
+    let first = child_half(p, e, 0, around);
+    [first, child_half(p, e, 1, around)]
 }
 
 /// Sharpness and tag of child `end` of parent edge `e` (`around`: scratch).
