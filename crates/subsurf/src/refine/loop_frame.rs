@@ -62,28 +62,9 @@ impl LoopPlan {
         if !is_manifold(p) {
             return None;
         }
-        let (nv, ne) = (p.num_vertices(), p.num_edges());
-        let vertex_special: Vec<u32> = (0..nv as u32)
-            .into_par_iter()
-            .with_min_len(CHUNK)
-            .filter(|&v| p.valence(v as usize) == 0 || !smooth_vertex(p, v as usize))
-            .collect();
-        let edge_special: Vec<u32> = (0..ne as u32)
-            .into_par_iter()
-            .with_min_len(CHUNK)
-            .filter(|&e| !smooth_edge(p, e as usize))
-            .collect();
-        let ((vex, eex), (vertex_inputs, edge_inputs)) = rayon::join(
-            || manifold_tables(p, c, Some((&vertex_special, &edge_special))),
-            || (vertex_inputs(p), edge_inputs(p)),
-        );
-        let max_valence = p
-            .vert_edge_offsets
-            .par_windows(2)
-            .with_min_len(CHUNK)
-            .map(|w| (w[1] - w[0]) as usize)
-            .max()
-            .unwrap_or(0);
+        let ((vertex_inputs, vertex_special, max_valence), (edge_inputs, edge_special)) =
+            rayon::join(|| vertex_inputs(p), || edge_inputs(p));
+        let (vex, eex) = manifold_tables(p, c, Some((&vertex_special, &edge_special)));
         let vertex_weights = (0..=max_valence)
             .map(|n| {
                 if n == 0 {
@@ -177,52 +158,78 @@ impl LoopPlan {
     }
 }
 
-/// The smooth vertex rows' inputs of [`LoopPlan`] (`vertex_inputs`).
+/// The smooth vertex rows' inputs of [`LoopPlan`] (`vertex_inputs`), the other vertex rows
+/// (`vertex_special`, ascending) and the largest valence, in one pass of parallel chunks
+/// (each chunk's exceptions listed in a vector of its own, joined in order: rayon's per-item
+/// `filter`/`collect` took twice the time of the pass itself here).
 #[allow(unsafe_code)]
-fn vertex_inputs(p: &Topology) -> Vec<u32> {
+fn vertex_inputs(p: &Topology) -> (Vec<u32>, Vec<u32>, usize) {
     let nv = p.num_vertices();
     let veo = &p.vert_edge_offsets;
     let mut out = unwritten(veo[nv] as usize + nv, u32::MAX);
     let b = par::bounds(nv);
-    par::ranges(&b)
+    let parts: Vec<(Vec<u32>, usize)> = par::ranges(&b)
         .into_par_iter()
         .zip(par::split_exact(&mut out, &b, |v| veo[v] as usize + v))
-        .for_each(|(r, out)| {
+        .map(|(r, out)| {
+            let (mut special, mut max_valence) = (Vec::new(), 0);
             let base = veo[r.start] as usize + r.start;
             for v in r {
                 let o = &mut out[veo[v] as usize + v - base..veo[v + 1] as usize + v + 1 - base];
-                if p.valence(v) > 0 && smooth_vertex(p, v) {
+                let n = o.len() - 1;
+                max_valence = max_valence.max(n);
+                if n > 0 && smooth_vertex(p, v) {
                     let (last, nb) = o.split_last_mut().expect("n + 1 values");
                     for (o, &e) in nb.iter_mut().zip(p.vertex_edges(v)) {
                         o.set(p.other_vertex(e as usize, v as u32));
                     }
                     last.set(v as u32);
                 } else {
+                    special.push(v as u32);
                     for o in o {
                         o.set(0);
                     }
                 }
             }
-        });
+            (special, max_valence)
+        })
+        .collect();
     // SAFETY: the chunks cover the table, each vertex writing its `n + 1` values (its `n`
     // edges give its `n` neighbours).
-    unsafe { written(out) }
+    let out = unsafe { written(out) };
+    let max_valence = parts.iter().map(|(_, n)| *n).max().unwrap_or(0);
+    let special = parts.into_iter().flat_map(|(s, _)| s).collect();
+    (out, special, max_valence)
 }
 
-/// The smooth edge rows' inputs of [`LoopPlan`] (`edge_inputs`).
-fn edge_inputs(p: &Topology) -> Vec<[u32; 4]> {
-    (0..p.num_edges())
+/// The smooth edge rows' inputs of [`LoopPlan`] (`edge_inputs`) and the other edge rows
+/// (`edge_special`, ascending), as [`vertex_inputs`] finds them.
+#[allow(unsafe_code)]
+fn edge_inputs(p: &Topology) -> (Vec<[u32; 4]>, Vec<u32>) {
+    let ne = p.num_edges();
+    let mut out = unwritten(ne, [u32::MAX; 4]);
+    let b = par::bounds(ne);
+    let parts: Vec<Vec<u32>> = par::ranges(&b)
         .into_par_iter()
-        .with_min_len(CHUNK)
-        .map(|e| {
-            if !smooth_edge(p, e) {
-                return [0; 4];
+        .zip(par::split_exact(&mut out, &b, |e| e))
+        .map(|(r, out)| {
+            let mut special = Vec::new();
+            let base = r.start;
+            for e in r {
+                out[e - base].set(if smooth_edge(p, e) {
+                    let ev = p.edge_verts[e];
+                    let (o0, o1) = (opposite(p, e, 0), opposite(p, e, 1));
+                    [ev[0], ev[1], o0, if o1 != o0 { o1 } else { u32::MAX }]
+                } else {
+                    special.push(e as u32);
+                    [0; 4]
+                });
             }
-            let ev = p.edge_verts[e];
-            let (o0, o1) = (opposite(p, e, 0), opposite(p, e, 1));
-            [ev[0], ev[1], o0, if o1 != o0 { o1 } else { u32::MAX }]
+            special
         })
-        .collect()
+        .collect();
+    // SAFETY: the chunks cover the table, each edge writing its four values.
+    (unsafe { written(out) }, parts.concat())
 }
 
 /// Fills `out` (one value per row) in parallel chunks: row `r` is `smooth(r)` unless it is in
