@@ -40,18 +40,6 @@ pub(super) fn is_manifold(p: &Topology) -> bool {
             .all(|w| matches!(w[1] - w[0], 1 | 2))
 }
 
-/// The incident faces of edge `e` of `p` (one or two) as indices into `p.edge_faces(e)`, in
-/// increasing face order.
-#[inline]
-fn faces_in_order(p: &Topology, e: usize) -> ([usize; 2], usize) {
-    let faces = p.edge_faces(e);
-    if faces.len() == 2 && faces[1] < faces[0] {
-        ([1, 0], 2)
-    } else {
-        ([0, 1], faces.len())
-    }
-}
-
 /// Refines the manifold all-triangle level `p` ([`is_manifold`]) once; returns the child
 /// topology with its sharpness, tags and rules. Every table is allocated unwritten
 /// ([`super::alloc::unwritten`]) and filled whole by chunks that cover it
@@ -69,6 +57,36 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     let ep = |e: u32| nv as u32 + e;
     let (fb, eb, vb) = (par::bounds(nf), par::bounds(ne), par::bounds(nv));
     let (fr, er, vr) = (par::ranges(&fb), par::ranges(&eb), par::ranges(&vb));
+
+    // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
+    let (pvf, pve) = (
+        p.vert_face_offsets[nv] as usize,
+        p.vert_edge_offsets[nv] as usize,
+    );
+    let mut vert_face_offsets = super::alloc::empty(cv + 1);
+    vert_face_offsets.extend_from_slice(&p.vert_face_offsets[..=nv]);
+    vert_face_offsets.extend(
+        p.edge_face_offsets[1..=ne]
+            .iter()
+            .map(|&o| pvf as u32 + 3 * o),
+    );
+    let mut vert_edge_offsets = super::alloc::empty(cv + 1);
+    vert_edge_offsets.extend_from_slice(&p.vert_edge_offsets[..=nv]);
+    vert_edge_offsets.extend(
+        p.edge_face_offsets[1..=ne]
+            .iter()
+            .zip(1..=ne as u32)
+            .map(|(&o, e)| pve as u32 + 2 * e + 2 * o),
+    );
+    let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
+    let mut rings = ChildRings::new(total_vf, total_ve, cv);
+    let mut vert_sharpness = unwritten(cv, f32::NAN);
+    fill(&mut vert_sharpness[nv..], 0.0);
+    let (vf_v, vf_e) = rings.vert_faces.split_at_mut(pvf);
+    let (vl_v, vl_e) = rings.vert_face_local.split_at_mut(pvf);
+    let (ve_v, ve_e) = rings.vert_edges.split_at_mut(pve);
+    let (vt_v, vt_e) = rings.vert_tags.split_at_mut(nv);
+    let (vr_v, vr_e) = rings.vert_rule.split_at_mut(nv);
 
     // Faces and edges: four child faces and three interior edges per parent face, two child
     // edges per parent edge. Sharpness: interior edges smooth (`ChildEdges` fills them),
@@ -136,6 +154,9 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                 }
             });
         eo_e[2 * ne].set(total_ef as u32);
+        // One pass per parent edge: its two child edges and its edge point (three faces per
+        // incident face, the forward face (edge in its direction) first, so an interior ring
+        // starts with the child at end 1).
         er.clone()
             .into_par_iter()
             .zip(par::split_exact(ev_e, &eb, |e| 2 * e))
@@ -150,45 +171,105 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             .zip(par::split_exact(&mut tables.edge_tags[nc..], &eb, |e| {
                 2 * e
             }))
-            .for_each(|((((((r, cev), ceo), cef), cel), ces), cet)| {
-                let (base, fbase) = (2 * r.start, 2 * efo(r.start));
-                let mut around: Vec<f32> = Vec::new();
-                for e in r {
-                    let ev = p.edge_verts[e];
-                    let i = 2 * e - base;
-                    let sharp = p.edge_sharpness[e];
-                    if sharp <= 0.0 || sharp.is_nan() {
-                        // Smooth: both children smooth (what `child_half` gives).
-                        let t = p.edge_tags[e] & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
-                        ces[i].set(0.0);
-                        ces[i + 1].set(0.0);
-                        cet[i].set(t);
-                        cet[i + 1].set(t);
-                    } else {
-                        for end in 0..2 {
-                            let (cs, ct) = child_half(p, e, end, &mut around);
-                            ces[i + end].set(cs);
-                            cet[i + end].set(ct);
+            .zip(par::split_exact(vf_e, &eb, |e| 3 * efo(e)))
+            .zip(par::split_exact(vl_e, &eb, |e| 3 * efo(e)))
+            .zip(par::split_exact(ve_e, &eb, |e| 2 * e + 2 * efo(e)))
+            .zip(par::split_exact(vt_e, &eb, |e| e))
+            .zip(par::split_exact(vr_e, &eb, |e| e))
+            .for_each(
+                |(((((((((((r, cev), ceo), cef), cel), ces), cet), cvf), cvl), cve), cvt), cvr)| {
+                    let (base, fbase) = (2 * r.start, 2 * efo(r.start));
+                    let (vfbase, vebase) = (3 * efo(r.start), 2 * r.start + 2 * efo(r.start));
+                    let mut around: Vec<f32> = Vec::new();
+                    for e in r.clone() {
+                        let ev = p.edge_verts[e];
+                        let i = 2 * e - base;
+                        let sharp = p.edge_sharpness[e];
+                        let et = p.edge_tags[e];
+                        let (t0, t1) = if sharp <= 0.0 || sharp.is_nan() {
+                            // Smooth: both children smooth (what `child_half` gives).
+                            let t = et & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
+                            ces[i].set(0.0);
+                            ces[i + 1].set(0.0);
+                            (t, t)
+                        } else {
+                            let ((s0, t0), (s1, t1)) = (
+                                child_half(p, e, 0, &mut around),
+                                child_half(p, e, 1, &mut around),
+                            );
+                            ces[i].set(s0);
+                            ces[i + 1].set(s1);
+                            (t0, t1)
+                        };
+                        cet[i].set(t0);
+                        cet[i + 1].set(t1);
+                        cev[i].set([ep(e as u32), ev[0]]);
+                        cev[i + 1].set([ep(e as u32), ev[1]]);
+                        let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
+                        let k = faces.len();
+                        // Whether each face runs along the edge's direction.
+                        let forward: [bool; 2] = std::array::from_fn(|j| {
+                            j < k && {
+                                let (f, kl) = (faces[j] as usize, locals[j] as usize);
+                                p.face_verts[3 * f + kl] == ev[0]
+                            }
+                        });
+                        let s = 2 * efo(e);
+                        ceo[i].set((2 * nc + s) as u32);
+                        ceo[i + 1].set((2 * nc + s + k) as u32);
+                        let o = s - fbase;
+                        // The child edges' faces in increasing face order.
+                        let order = if k == 2 && faces[1] < faces[0] {
+                            [1, 0]
+                        } else {
+                            [0, 1]
+                        };
+                        for (slot, &j) in order[..k].iter().enumerate() {
+                            let (f, kl) = (faces[j], locals[j]);
+                            let at_k = !forward[j] as usize;
+                            cef[o + at_k * k + slot].set(4 * f + kl as u32);
+                            cef[o + (1 - at_k) * k + slot].set(4 * f + (kl as u32 + 1) % 3);
+                            cel[o + at_k * k + slot].set(kl);
+                            cel[o + (1 - at_k) * k + slot].set(kl);
                         }
+                        // The edge point's rings, the forward face first.
+                        let ring = if k == 2 && !forward[0] {
+                            [1, 0]
+                        } else {
+                            [0, 1]
+                        };
+                        let c0 = (nc + 2 * e) as u32;
+                        let (mut of, mut oe) = (3 * efo(e) - vfbase, 2 * e + 2 * efo(e) - vebase);
+                        for &j in &ring[..k] {
+                            let f = faces[j];
+                            let kl = locals[j] as u32;
+                            let (k1, k2) = ((kl + 1) % 3, (kl + 2) % 3);
+                            put(&mut cvf[of..of + 3], &[4 * f + k1, 4 * f + 3, 4 * f + kl]);
+                            put(&mut cvl[of..of + 3], &[kl as u16, k2 as u16, k1 as u16]);
+                            of += 3;
+                            // The child at corner kl + 1 of this face: end 1 where the face
+                            // runs forward.
+                            let (far, near) = if forward[j] {
+                                (c0 + 1, c0)
+                            } else {
+                                (c0, c0 + 1)
+                            };
+                            put(&mut cve[oe..oe + 3], &[far, 3 * f + k1, 3 * f + kl]);
+                            oe += 3;
+                            if k == 1 {
+                                cve[oe].set(near);
+                                oe += 1;
+                            }
+                        }
+                        let (mut t, rl) = edge_point_tags(et, t0, t1);
+                        if et & tags::E_BOUNDARY != 0 {
+                            t |= tags::V_BOUNDARY;
+                        }
+                        cvt[e - r.start].set(t);
+                        cvr[e - r.start].set(rl);
                     }
-                    cev[i].set([ep(e as u32), ev[0]]);
-                    cev[i + 1].set([ep(e as u32), ev[1]]);
-                    let (order, k) = faces_in_order(p, e);
-                    let s = 2 * efo(e);
-                    ceo[i].set((2 * nc + s) as u32);
-                    ceo[i + 1].set((2 * nc + s + k) as u32);
-                    let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
-                    let o = s - fbase;
-                    for (slot, &j) in order[..k].iter().enumerate() {
-                        let (f, kl) = (faces[j], locals[j]);
-                        let at_k = (p.face_verts[3 * f as usize + kl as usize] != ev[0]) as usize;
-                        cef[o + at_k * k + slot].set(4 * f + kl as u32);
-                        cef[o + (1 - at_k) * k + slot].set(4 * f + (kl as u32 + 1) % 3);
-                        cel[o + at_k * k + slot].set(kl);
-                        cel[o + (1 - at_k) * k + slot].set(kl);
-                    }
-                }
-            });
+                },
+            );
     }
     // SAFETY: the face and edge passes cover these tables whole (`split_exact`; the interior
     // edges' sharpness and tags filled by `ChildEdges::new`, the offsets' last value above): each parent
@@ -196,36 +277,6 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
     // offsets and two faces each; each parent edge its two children's ends, offsets,
     // sharpness, tags and `k` faces each.
     let edges = unsafe { tables.written() };
-
-    // Vertices: children of vertices keep the parent's ring sizes, edge points follow.
-    let (pvf, pve) = (
-        p.vert_face_offsets[nv] as usize,
-        p.vert_edge_offsets[nv] as usize,
-    );
-    let mut vert_face_offsets = super::alloc::empty(cv + 1);
-    vert_face_offsets.extend_from_slice(&p.vert_face_offsets[..=nv]);
-    vert_face_offsets.extend(
-        p.edge_face_offsets[1..=ne]
-            .iter()
-            .map(|&o| pvf as u32 + 3 * o),
-    );
-    let mut vert_edge_offsets = super::alloc::empty(cv + 1);
-    vert_edge_offsets.extend_from_slice(&p.vert_edge_offsets[..=nv]);
-    vert_edge_offsets.extend(
-        p.edge_face_offsets[1..=ne]
-            .iter()
-            .zip(1..=ne as u32)
-            .map(|(&o, e)| pve as u32 + 2 * e + 2 * o),
-    );
-    let (total_vf, total_ve) = (pvf + 3 * efo(ne), pve + 2 * ne + 2 * efo(ne));
-    let mut rings = ChildRings::new(total_vf, total_ve, cv);
-    let mut vert_sharpness = unwritten(cv, f32::NAN);
-    fill(&mut vert_sharpness[nv..], 0.0);
-    let (vf_v, vf_e) = rings.vert_faces.split_at_mut(pvf);
-    let (vl_v, vl_e) = rings.vert_face_local.split_at_mut(pvf);
-    let (ve_v, ve_e) = rings.vert_edges.split_at_mut(pve);
-    let (vt_v, vt_e) = rings.vert_tags.split_at_mut(nv);
-    let (vr_v, vr_e) = rings.vert_rule.split_at_mut(nv);
 
     // Children of vertices: the parent's rings, face by face and edge by edge; tags and rules
     // inherited, recounted where semi-sharp features decayed.
@@ -267,59 +318,6 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                 cvs[v - base].set(s);
                 cvt[v - base].set(t & !tags::V_INCIDENT_HOLE);
                 cvr[v - base].set(rl);
-            }
-        });
-
-    // Edge points: three faces per incident face, the forward face (edge in its direction)
-    // first, so an interior ring starts with the child at end 1.
-    er.into_par_iter()
-        .zip(par::split_exact(vf_e, &eb, |e| 3 * efo(e)))
-        .zip(par::split_exact(vl_e, &eb, |e| 3 * efo(e)))
-        .zip(par::split_exact(ve_e, &eb, |e| 2 * e + 2 * efo(e)))
-        .zip(par::split_exact(vt_e, &eb, |e| e))
-        .zip(par::split_exact(vr_e, &eb, |e| e))
-        .for_each(|(((((r, cvf), cvl), cve), cvt), cvr)| {
-            let (fbase, ebase, base) = (3 * efo(r.start), 2 * r.start + 2 * efo(r.start), r.start);
-            for e in r {
-                let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
-                let ev = p.edge_verts[e];
-                let forward =
-                    |i: usize| p.face_verts[3 * faces[i] as usize + locals[i] as usize] == ev[0];
-                let order: [usize; 2] = if faces.len() == 2 && !forward(0) {
-                    [1, 0]
-                } else {
-                    [0, 1]
-                };
-                let c0 = (nc + 2 * e) as u32;
-                let (mut of, mut oe) = (3 * efo(e) - fbase, 2 * e + 2 * efo(e) - ebase);
-                for &i in order.iter().take(faces.len()) {
-                    let f = faces[i];
-                    let k = locals[i] as u32;
-                    let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
-                    put(&mut cvf[of..of + 3], &[4 * f + k1, 4 * f + 3, 4 * f + k]);
-                    put(&mut cvl[of..of + 3], &[k as u16, k2 as u16, k1 as u16]);
-                    of += 3;
-                    // The child at corner k + 1 of this face: end 1 where the face runs forward.
-                    let (far, near) = if forward(i) {
-                        (c0 + 1, c0)
-                    } else {
-                        (c0, c0 + 1)
-                    };
-                    put(&mut cve[oe..oe + 3], &[far, 3 * f + k1, 3 * f + k]);
-                    oe += 3;
-                    if faces.len() == 1 {
-                        cve[oe].set(near);
-                        oe += 1;
-                    }
-                }
-                let et = p.edge_tags[e];
-                let (t0, t1) = (etags[nc + 2 * e], etags[nc + 2 * e + 1]);
-                let (mut t, rl) = edge_point_tags(et, t0, t1);
-                if et & tags::E_BOUNDARY != 0 {
-                    t |= tags::V_BOUNDARY;
-                }
-                cvt[e - base].set(t);
-                cvr[e - base].set(rl);
             }
         });
 
