@@ -257,6 +257,30 @@ pub fn refine_topology(p: &Topology) -> Topology {
             }
         });
 
+    // Vertices: offsets. Children of vertices keep the parent's ring sizes.
+    let (vf0, ve0) = (
+        p.vert_face_offsets[nv] as usize,
+        p.vert_edge_offsets[nv] as usize,
+    );
+    let vert_face_offsets =
+        child_vertex_offsets(p, &p.vert_face_offsets, vf0 + nc, |e| vf0 + nc + 2 * efo(e));
+    let vert_edge_offsets = child_vertex_offsets(p, &p.vert_edge_offsets, ve0 + nc, |e| {
+        ve0 + nc + 2 * e + efo(e)
+    });
+    let total_vf = vf0 + nc + 2 * efo(ne);
+    let total_ve = ve0 + nc + 2 * ne + efo(ne);
+    let mut rings = ChildRings::new(total_vf, total_ve, cv);
+    let (vf_v, vf_rest) = rings.vert_faces.split_at_mut(vf0);
+    let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
+    let (vl_v, vl_rest) = rings.vert_face_local.split_at_mut(vf0);
+    let (vl_f, vl_e) = vl_rest.split_at_mut(nc);
+    let (ve_v, ve_rest) = rings.vert_edges.split_at_mut(ve0);
+    let (ve_f, ve_e) = ve_rest.split_at_mut(nc);
+    let (vt_v, vt_rest) = rings.vert_tags.split_at_mut(nv);
+    let (vt_f, vt_e) = vt_rest.split_at_mut(nf);
+    let (vr_v, vr_rest) = rings.vert_rule.split_at_mut(nv);
+    let (vr_f, vr_e) = vr_rest.split_at_mut(nf);
+
     // Edges: vertices and incident faces. Child edges of faces have two faces each; the two
     // children of parent edge e have as many as e.
     {
@@ -289,51 +313,80 @@ pub fn refine_topology(p: &Topology) -> Topology {
                 }
             });
         let (_, ev_e) = tables.edge_verts.split_at_mut(nc);
+        let (es_e, et_e) = (
+            &mut tables.edge_sharpness[nc..],
+            &mut tables.edge_tags[nc..],
+        );
+        // One pass per parent edge: its two children (ends, offsets, faces, sharpness and
+        // tags, decayed by the crease method) and its edge point (rings, tags, rule; only its
+        // two child edges can be sharp).
         er.clone()
             .into_par_iter()
             .zip(par::split_exact(ev_e, &eb, |e| 2 * e))
             .zip(par::split_exact(efo_e, &eb, |e| 2 * e))
             .zip(par::split_exact(ef_e, &eb, |e| 2 * efo(e)))
             .zip(par::split_exact(el_e, &eb, |e| 2 * efo(e)))
-            .for_each(|((((r, cev), co), ef), el)| {
-                let (ebase, fbase) = (2 * r.start, 2 * efo(r.start));
-                for e in r {
-                    let ev = p.edge_verts[e];
-                    let i = 2 * e - ebase;
-                    cev[i].set([echild(e), ev[0]]);
-                    cev[i + 1].set([echild(e), ev[1]]);
-                    let k = efo(e + 1) - efo(e);
-                    co[i].set((2 * nc + 2 * efo(e) + k) as u32);
-                    co[i + 1].set((2 * nc + 2 * efo(e + 1)) as u32);
-                    let mut fill = [2 * efo(e) - fbase, 2 * efo(e) + k - fbase];
-                    for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
-                        let (s, n) = (fo(f as usize), p.face_size(f as usize));
-                        let k = k as usize;
-                        let kn = if k + 1 == n { 0 } else { k + 1 };
-                        let end = child_end(ev, p.face_verts[s + k], true) as usize;
-                        // Each face meets both ends once: each child gets `k` faces.
-                        ef[fill[end]].set((s + k) as u32);
-                        el[fill[end]].set(pos(n, k, 0));
-                        fill[end] += 1;
-                        // Corner `kn` is the edge's other end (`child_end` of it, unread).
-                        let end = if ev[0] != ev[1] { 1 - end } else { 1 };
-                        ef[fill[end]].set((s + kn) as u32);
-                        el[fill[end]].set(pos(n, kn, 3));
-                        fill[end] += 1;
+            .zip(par::split_exact(es_e, &eb, |e| 2 * e))
+            .zip(par::split_exact(et_e, &eb, |e| 2 * e))
+            .zip(par::split_exact(vf_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(vl_e, &eb, |e| 2 * efo(e)))
+            .zip(par::split_exact(ve_e, &eb, |e| 2 * e + efo(e)))
+            .zip(par::split_exact(vt_e, &eb, |e| e))
+            .zip(par::split_exact(vr_e, &eb, |e| e))
+            .for_each(
+                |(((((((((((r, cev), co), ef), el), ces), cet), vf), vl), ve), vt), vru)| {
+                    let (ebase, fbase) = (2 * r.start, 2 * efo(r.start));
+                    let (vebase, base) = (2 * r.start + efo(r.start), r.start);
+                    let mut around: Vec<f32> = Vec::new();
+                    for e in r {
+                        let ev = p.edge_verts[e];
+                        let i = 2 * e - ebase;
+                        let [(s0, t0), (s1, t1)] = child_halves(p, e, &mut around);
+                        ces[i].set(s0);
+                        ces[i + 1].set(s1);
+                        cet[i].set(t0);
+                        cet[i + 1].set(t1);
+                        cev[i].set([echild(e), ev[0]]);
+                        cev[i + 1].set([echild(e), ev[1]]);
+                        let k = efo(e + 1) - efo(e);
+                        co[i].set((2 * nc + 2 * efo(e) + k) as u32);
+                        co[i + 1].set((2 * nc + 2 * efo(e + 1)) as u32);
+                        let mut fill = [2 * efo(e) - fbase, 2 * efo(e) + k - fbase];
+                        for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
+                            let (s, n) = (fo(f as usize), p.face_size(f as usize));
+                            let k = k as usize;
+                            let kn = if k + 1 == n { 0 } else { k + 1 };
+                            let end = child_end(ev, p.face_verts[s + k], true) as usize;
+                            // Each face meets both ends once: each child gets `k` faces.
+                            ef[fill[end]].set((s + k) as u32);
+                            el[fill[end]].set(pos(n, k, 0));
+                            fill[end] += 1;
+                            // Corner `kn` is the edge's other end (`child_end` of it, unread).
+                            let end = if ev[0] != ev[1] { 1 - end } else { 1 };
+                            ef[fill[end]].set((s + kn) as u32);
+                            el[fill[end]].set(pos(n, kn, 3));
+                            fill[end] += 1;
+                        }
+                        let of = 2 * efo(e) - fbase;
+                        let oe = 2 * e + efo(e) - vebase;
+                        let (t, rl) = edge_point_ring(
+                            p,
+                            e,
+                            &mut vf[of..],
+                            &mut vl[of..],
+                            &mut ve[oe..],
+                            (t0, t1),
+                        );
+                        vt[e - base].set(t);
+                        vru[e - base].set(rl);
                     }
-                }
-            });
+                },
+            );
     }
-    // Sharpness and tags of the children of edges (those of faces are smooth, filled).
-    child_edge_sharpness(
-        p,
-        &mut tables.edge_sharpness[nc..],
-        &mut tables.edge_tags[nc..],
-    );
     // SAFETY: the face and edge passes above cover these tables whole (`split_exact`), each
     // parent face writing its corners' four child face vertices and edges (every slot of a
     // quad's rotation), its child edges' ends and two faces, and each parent edge its two
-    // children's ends, offsets and `k` faces each; their sharpness and tags just above.
+    // children's ends, offsets, `k` faces, sharpness and tags each.
     let edges = unsafe { tables.written() };
 
     let vert_sharpness = {
@@ -347,30 +400,6 @@ pub fn refine_topology(p: &Topology) -> Topology {
         // SAFETY: children of vertices written, face and edge points filled.
         unsafe { written(s) }
     };
-
-    // Vertices: offsets. Children of vertices keep the parent's ring sizes.
-    let (vf0, ve0) = (
-        p.vert_face_offsets[nv] as usize,
-        p.vert_edge_offsets[nv] as usize,
-    );
-    let vert_face_offsets =
-        child_vertex_offsets(p, &p.vert_face_offsets, vf0 + nc, |e| vf0 + nc + 2 * efo(e));
-    let vert_edge_offsets = child_vertex_offsets(p, &p.vert_edge_offsets, ve0 + nc, |e| {
-        ve0 + nc + 2 * e + efo(e)
-    });
-    let total_vf = vf0 + nc + 2 * efo(ne);
-    let total_ve = ve0 + nc + 2 * ne + efo(ne);
-    let mut rings = ChildRings::new(total_vf, total_ve, cv);
-    let (vf_v, vf_rest) = rings.vert_faces.split_at_mut(vf0);
-    let (vf_f, vf_e) = vf_rest.split_at_mut(nc);
-    let (vl_v, vl_rest) = rings.vert_face_local.split_at_mut(vf0);
-    let (vl_f, vl_e) = vl_rest.split_at_mut(nc);
-    let (ve_v, ve_rest) = rings.vert_edges.split_at_mut(ve0);
-    let (ve_f, ve_e) = ve_rest.split_at_mut(nc);
-    let (vt_v, vt_rest) = rings.vert_tags.split_at_mut(nv);
-    let (vt_f, vt_e) = vt_rest.split_at_mut(nf);
-    let (vr_v, vr_rest) = rings.vert_rule.split_at_mut(nv);
-    let (vr_f, vr_e) = vr_rest.split_at_mut(nf);
 
     // Children of vertices: rings mapped to the children of the ring's faces and edges; tags
     // and rules inherited, recounted where semi-sharp features decayed.
@@ -438,34 +467,10 @@ pub fn refine_topology(p: &Topology) -> Topology {
             }
         });
 
-    // Edge points: only their two child edges can be sharp.
-    er.clone()
-        .into_par_iter()
-        .zip(par::split_exact(vf_e, &eb, |e| 2 * efo(e)))
-        .zip(par::split_exact(vl_e, &eb, |e| 2 * efo(e)))
-        .zip(par::split_exact(ve_e, &eb, |e| 2 * e + efo(e)))
-        .zip(par::split_exact(vt_e, &eb, |e| e))
-        .zip(par::split_exact(vr_e, &eb, |e| e))
-        .for_each(|(((((r, vf), vl), ve), vt), vru)| {
-            let (fbase, ebase, base) = (2 * efo(r.start), 2 * r.start + efo(r.start), r.start);
-            for e in r {
-                let of = 2 * efo(e) - fbase;
-                let oe = 2 * e + efo(e) - ebase;
-                let (t, rl) = edge_point_ring(
-                    p,
-                    e,
-                    &mut vf[of..],
-                    &mut vl[of..],
-                    &mut ve[oe..],
-                    &edges.edge_tags,
-                );
-                vt[e - base].set(t);
-                vru[e - base].set(rl);
-            }
-        });
-    // SAFETY: the three passes above cover these tables whole (`split_exact`), each child
-    // vertex writing its whole ring (a vertex's parent ring sizes, a face point's `n`, an
-    // edge point's `2k` faces and `2 + k` edges), its tags and its rule.
+    // SAFETY: the vertex and face-point passes above and the edge pass cover these tables
+    // whole (`split_exact`), each child vertex writing its whole ring (a vertex's parent ring
+    // sizes, a face point's `n`, an edge point's `2k` faces and `2 + k` edges), its tags and
+    // its rule.
     let mut rings = unsafe { rings.written() };
 
     let mut face_is_hole = super::alloc::zeroed(nc, false);
@@ -632,7 +637,7 @@ fn edge_point_ring(
     vf: &mut [impl Slot<u32>],
     vl: &mut [impl Slot<u16>],
     ve: &mut [impl Slot<u32>],
-    child_edge_tags: &[u8],
+    (t0, t1): (u8, u8),
 ) -> (u16, u8) {
     let nc = p.num_corners();
     let ev = p.edge_verts[e];
@@ -700,11 +705,7 @@ fn edge_point_ring(
     if et & tags::E_NON_MANIFOLD != 0 {
         vt |= tags::V_NON_MANIFOLD;
     }
-    let (t, rl) = edge_point_tags(
-        et,
-        child_edge_tags[c0 as usize],
-        child_edge_tags[c1 as usize],
-    );
+    let (t, rl) = edge_point_tags(et, t0, t1);
     (vt | t, rl)
 }
 
