@@ -77,7 +77,7 @@ pub fn child_level_bytes(sub: &Topology) -> u64 {
 }
 
 /// Memory available for new allocations, from `/proc/meminfo` where present.
-fn available_memory() -> Option<u64> {
+pub(crate) fn available_memory() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
