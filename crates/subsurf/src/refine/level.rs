@@ -342,10 +342,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
                         let ev = p.edge_verts[e];
                         let i = 2 * e - ebase;
                         let [(s0, t0), (s1, t1)] = child_halves(p, e, &mut around);
-                        ces[i].set(s0);
-                        ces[i + 1].set(s1);
-                        cet[i].set(t0);
-                        cet[i + 1].set(t1);
+                        put(&mut ces[i..], &[s0, s1]);
+                        put(&mut cet[i..], &[t0, t1]);
                         cev[i].set([echild(e), ev[0]]);
                         cev[i + 1].set([echild(e), ev[1]]);
                         let k = efo(e + 1) - efo(e);
@@ -727,10 +725,8 @@ pub(super) fn child_edge_sharpness(
             for e in r {
                 let o = 2 * e - base;
                 let [(s0, t0), (s1, t1)] = child_halves(p, e, &mut around);
-                es[o].set(s0);
-                es[o + 1].set(s1);
-                et_out[o].set(t0);
-                et_out[o + 1].set(t1);
+                put(&mut es[o..], &[s0, s1]);
+                put(&mut et_out[o..], &[t0, t1]);
             }
         });
 }
