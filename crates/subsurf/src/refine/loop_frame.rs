@@ -161,7 +161,8 @@ impl LoopPlan {
 /// The smooth vertex rows' inputs of [`LoopPlan`] (`vertex_inputs`), the other vertex rows
 /// (`vertex_special`, ascending) and the largest valence, in one pass of parallel chunks
 /// (each chunk's exceptions listed in a vector of its own, joined in order: rayon's per-item
-/// `filter`/`collect` took twice the time of the pass itself here).
+/// `filter`/`collect` of the two lists took 0.9 ms at `loop_pole64` level 5, this whole pass
+/// 0.4 ms).
 #[allow(unsafe_code)]
 fn vertex_inputs(p: &Topology) -> (Vec<u32>, Vec<u32>, usize) {
     let nv = p.num_vertices();
