@@ -350,20 +350,31 @@ pub fn refine_topology(p: &Topology) -> Topology {
                         co[i].set((2 * nc + 2 * efo(e) + k) as u32);
                         co[i + 1].set((2 * nc + 2 * efo(e + 1)) as u32);
                         let mut fill = [2 * efo(e) - fbase, 2 * efo(e) + k - fbase];
-                        for (&f, &k) in p.edge_faces(e).iter().zip(p.edge_faces_local(e)) {
+                        let faces = p.edge_faces(e).iter().zip(p.edge_faces_local(e));
+                        for (slot, (&f, &k)) in faces.enumerate() {
                             let (s, n) = (fo(f as usize), p.face_size(f as usize));
                             let k = k as usize;
                             let kn = if k + 1 == n { 0 } else { k + 1 };
                             let end = child_end(ev, p.face_verts[s + k], true) as usize;
-                            // Each face meets both ends once: each child gets `k` faces.
-                            ef[fill[end]].set((s + k) as u32);
-                            el[fill[end]].set(pos(n, k, 0));
-                            fill[end] += 1;
+                            let at = ((s + k) as u32, pos(n, k, 0));
                             // Corner `kn` is the edge's other end (`child_end` of it, unread).
-                            let end = if ev[0] != ev[1] { 1 - end } else { 1 };
-                            ef[fill[end]].set((s + kn) as u32);
-                            el[fill[end]].set(pos(n, kn, 3));
-                            fill[end] += 1;
+                            let next = ((s + kn) as u32, pos(n, kn, 3));
+                            if ev[0] != ev[1] {
+                                // Each face meets both ends once: child `c` takes the face's
+                                // entry at slot `slot` of its list, whichever corner it is (no
+                                // store address waits on the orientation read).
+                                let [c0, c1] = if end == 0 { [at, next] } else { [next, at] };
+                                for (c, (x, l)) in [c0, c1].into_iter().enumerate() {
+                                    ef[fill[c] + slot].set(x);
+                                    el[fill[c] + slot].set(l);
+                                }
+                            } else {
+                                for ((x, l), end) in [(at, end), (next, 1)] {
+                                    ef[fill[end]].set(x);
+                                    el[fill[end]].set(l);
+                                    fill[end] += 1;
+                                }
+                            }
                         }
                         let of = 2 * efo(e) - fbase;
                         let oe = 2 * e + efo(e) - vebase;

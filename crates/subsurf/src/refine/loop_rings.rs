@@ -224,14 +224,21 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                         } else {
                             [0, 1]
                         };
+                        // Per slot, the child at the face's first corner along the edge
+                        // takes corner child `kl`, the other corner child `kl + 1`; both see
+                        // the edge as the face's edge `kl`. Formed in registers and written in
+                        // order (no store address waits on the orientation read).
+                        let (mut child, mut local) = ([[0u32; 2]; 2], [0u16; 2]);
                         for (slot, &j) in order[..k].iter().enumerate() {
                             let (f, kl) = (faces[j], locals[j]);
-                            let at_k = !forward[j] as usize;
-                            cef[o + at_k * k + slot].set(4 * f + kl as u32);
-                            cef[o + (1 - at_k) * k + slot].set(4 * f + (kl as u32 + 1) % 3);
-                            cel[o + at_k * k + slot].set(kl);
-                            cel[o + (1 - at_k) * k + slot].set(kl);
+                            let (x, y) = (4 * f + kl as u32, 4 * f + (kl as u32 + 1) % 3);
+                            let (c0, c1) = if forward[j] { (x, y) } else { (y, x) };
+                            (child[0][slot], child[1][slot], local[slot]) = (c0, c1, kl);
                         }
+                        put(&mut cef[o..], &child[0][..k]);
+                        put(&mut cef[o + k..], &child[1][..k]);
+                        put(&mut cel[o..], &local[..k]);
+                        put(&mut cel[o + k..], &local[..k]);
                         // The edge point's rings, the forward face first.
                         let ring = if k == 2 && !forward[0] {
                             [1, 0]
