@@ -670,9 +670,14 @@ fn edge_point_ring(
     };
     let manifold = et & tags::E_NON_MANIFOLD == 0 && ev[0] != ev[1];
     if manifold && faces.len() == 2 {
-        let (ia, ib) = if forward(0) { (0, 1) } else { (1, 0) };
-        let (sa, na, ka, kan) = corner(ia);
-        let (sb, nb, kb, kbn) = corner(ib);
+        // Both corners read before the orientation picks their order (no load address waits
+        // on the orientation read).
+        let (first, second) = (corner(0), corner(1));
+        let ((sa, na, ka, kan), (sb, nb, kb, kbn)) = if forward(0) {
+            (first, second)
+        } else {
+            (second, first)
+        };
         put(
             vf,
             &[
