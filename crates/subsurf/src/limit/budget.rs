@@ -14,33 +14,56 @@
 //! ```
 //!
 //! The limit is 80% of the memory the system reports available (`MemAvailable` in
-//! `/proc/meminfo`), the one [`crate::refine::Refiner::new`] applies; without that file there
-//! is none.
+//! `/proc/meminfo`), the one [`crate::refine::Refiner::new`] and the tessellations apply, read
+//! only once an estimate reaches 64 MiB; without that file there is none.
 
 use crate::error::MeshError;
 use crate::topology::Topology;
+
+/// Estimates below this many bytes are not checked against the available memory: reading it
+/// (`/proc/meminfo`) takes 20–30 µs here, a tenth of a small mesh's whole refinement, and every
+/// construction, refinement and tessellation would pay it.
+const CHECKED_BYTES: u64 = 64 << 20;
+
+/// The most bytes a construction estimated at `bytes` may take: 80% of the available memory,
+/// read only for estimates of 64 MiB and more (no limit below, and none where the system does
+/// not report it).
+pub(crate) fn memory_limit(bytes: u64) -> u64 {
+    if bytes < CHECKED_BYTES {
+        return u64::MAX;
+    }
+    available_memory().map_or(u64::MAX, |m| m / 10 * 8)
+}
 
 /// The running total of a construction's levels against a limit.
 #[derive(Debug, Clone)]
 pub struct Budget {
     /// Bytes of the levels counted so far.
     pub used: u64,
-    /// The most bytes allowed.
+    /// The most bytes allowed (for [`Budget::of_available_memory`], read once the total
+    /// reaches 64 MiB; no limit until then).
     pub limit: u64,
+    /// Whether `limit` is still to be read from the available memory.
+    unread: bool,
 }
 
 impl Budget {
-    /// A budget of 80% of the available memory.
+    /// A budget of 80% of the available memory, read once the total reaches 64 MiB.
     pub fn of_available_memory() -> Budget {
         Budget {
             used: 0,
-            limit: available_memory().map_or(u64::MAX, |m| m / 10 * 8),
+            limit: u64::MAX,
+            unread: true,
         }
     }
 
     /// A budget of `limit` bytes.
     pub fn with_limit(limit: u64) -> Budget {
-        Budget { used: 0, limit }
+        Budget {
+            used: 0,
+            limit,
+            unread: false,
+        }
     }
 
     /// Counts the level that refining `sub` makes, or refuses it (`what` names the step)
@@ -51,6 +74,9 @@ impl Budget {
         what: impl FnOnce() -> String,
     ) -> Result<(), MeshError> {
         let bytes = self.used.saturating_add(child_level_bytes(sub));
+        if self.unread && bytes >= CHECKED_BYTES {
+            (self.limit, self.unread) = (memory_limit(bytes), false);
+        }
         if bytes > self.limit {
             return Err(MeshError::TooLarge {
                 what: what(),
@@ -77,7 +103,7 @@ pub fn child_level_bytes(sub: &Topology) -> u64 {
 }
 
 /// Memory available for new allocations, from `/proc/meminfo` where present.
-pub(crate) fn available_memory() -> Option<u64> {
+fn available_memory() -> Option<u64> {
     let text = std::fs::read_to_string("/proc/meminfo").ok()?;
     let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
     let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;

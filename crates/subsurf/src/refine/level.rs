@@ -26,43 +26,51 @@ use crate::SHARPNESS_INFINITE;
 use rayon::prelude::*;
 use std::mem::MaybeUninit;
 
-/// The face and edge tables of a child level, laid out alike by the quad and the triangle
-/// (Loop) split: the child edges of faces first (`interior` of them, smooth: their sharpness
-/// and tags are filled here), then two children per parent edge. Allocated unwritten
-/// ([`alloc::unwritten`]) for a step's face and edge passes to fill.
-pub(super) struct ChildEdges {
-    pub(super) face_verts: Box<[MaybeUninit<u32>]>,
-    pub(super) face_edges: Box<[MaybeUninit<u32>]>,
-    pub(super) edge_verts: Box<[MaybeUninit<[u32; 2]>]>,
-    pub(super) edge_face_offsets: Box<[MaybeUninit<u32>]>,
-    pub(super) edge_faces: Box<[MaybeUninit<u32>]>,
-    pub(super) edge_face_local: Box<[MaybeUninit<u16>]>,
-    pub(super) edge_sharpness: Box<[MaybeUninit<f32>]>,
-    pub(super) edge_tags: Box<[MaybeUninit<u8>]>,
+/// How a child level's tables are held: [`Unwritten`] while a step's passes fill them,
+/// [`Written`] once every value is.
+pub(super) trait Form {
+    type Of<T>;
 }
 
-/// [`ChildEdges`] once written.
-pub(super) struct ChildEdgesWritten {
-    pub(super) face_verts: Vec<u32>,
-    pub(super) face_edges: Vec<u32>,
-    pub(super) edge_verts: Vec<[u32; 2]>,
-    pub(super) edge_face_offsets: Vec<u32>,
-    pub(super) edge_faces: Vec<u32>,
-    pub(super) edge_face_local: Vec<u16>,
-    pub(super) edge_sharpness: Vec<f32>,
-    pub(super) edge_tags: Vec<u8>,
+/// Tables allocated unwritten ([`alloc::unwritten`]).
+pub(super) struct Unwritten;
+
+/// Tables whose every value is written.
+pub(super) struct Written;
+
+impl Form for Unwritten {
+    type Of<T> = Box<[MaybeUninit<T>]>;
+}
+
+impl Form for Written {
+    type Of<T> = Vec<T>;
+}
+
+/// The face and edge tables of a child level, laid out alike by the quad and the triangle
+/// (Loop) split: the child edges of faces first (`interior` of them, smooth: their sharpness
+/// and tags are filled by [`ChildEdges::new`]), then two children per parent edge.
+pub(super) struct ChildEdges<F: Form = Unwritten> {
+    pub(super) face_verts: F::Of<u32>,
+    pub(super) face_edges: F::Of<u32>,
+    pub(super) edge_verts: F::Of<[u32; 2]>,
+    pub(super) edge_face_offsets: F::Of<u32>,
+    pub(super) edge_faces: F::Of<u32>,
+    pub(super) edge_face_local: F::Of<u16>,
+    pub(super) edge_sharpness: F::Of<f32>,
+    pub(super) edge_tags: F::Of<u8>,
 }
 
 impl ChildEdges {
     /// Tables of `face_values` face vertices (and as many face edges), `edges` child edges of
-    /// which the first `interior` are children of faces, and `edge_faces` edge-face incidences.
+    /// which the first `interior` are children of faces, and `edge_faces` edge-face incidences,
+    /// for a step's face and edge passes to fill.
     pub(super) fn new(
         face_values: usize,
         interior: usize,
         edges: usize,
         edge_faces: usize,
     ) -> Self {
-        let mut t = ChildEdges {
+        let mut t: Self = ChildEdges {
             face_verts: unwritten(face_values, u32::MAX),
             face_edges: unwritten(face_values, u32::MAX),
             edge_verts: unwritten(edges, [u32::MAX; 2]),
@@ -82,10 +90,10 @@ impl ChildEdges {
     /// # Safety
     /// Every value of every table has been written.
     #[allow(unsafe_code)]
-    pub(super) unsafe fn written(self) -> ChildEdgesWritten {
+    pub(super) unsafe fn written(self) -> ChildEdges<Written> {
         // SAFETY: every value written (the caller's promise).
         unsafe {
-            ChildEdgesWritten {
+            ChildEdges {
                 face_verts: written(self.face_verts),
                 face_edges: written(self.face_edges),
                 edge_verts: written(self.edge_verts),
@@ -99,27 +107,18 @@ impl ChildEdges {
     }
 }
 
-/// The vertex tables of a child level (rings, tags, rules), allocated unwritten
-/// ([`alloc::unwritten`]) for a step's vertex passes to fill.
-pub(super) struct ChildRings {
-    pub(super) vert_faces: Box<[MaybeUninit<u32>]>,
-    pub(super) vert_face_local: Box<[MaybeUninit<u16>]>,
-    pub(super) vert_edges: Box<[MaybeUninit<u32>]>,
-    pub(super) vert_tags: Box<[MaybeUninit<u16>]>,
-    pub(super) vert_rule: Box<[MaybeUninit<u8>]>,
-}
-
-/// [`ChildRings`] once written.
-pub(super) struct ChildRingsWritten {
-    pub(super) vert_faces: Vec<u32>,
-    pub(super) vert_face_local: Vec<u16>,
-    pub(super) vert_edges: Vec<u32>,
-    pub(super) vert_tags: Vec<u16>,
-    pub(super) vert_rule: Vec<u8>,
+/// The vertex tables of a child level (rings, tags, rules).
+pub(super) struct ChildRings<F: Form = Unwritten> {
+    pub(super) vert_faces: F::Of<u32>,
+    pub(super) vert_face_local: F::Of<u16>,
+    pub(super) vert_edges: F::Of<u32>,
+    pub(super) vert_tags: F::Of<u16>,
+    pub(super) vert_rule: F::Of<u8>,
 }
 
 impl ChildRings {
-    /// Tables of `faces` vertex-face and `edges` vertex-edge incidences of `vertices` vertices.
+    /// Tables of `faces` vertex-face and `edges` vertex-edge incidences of `vertices` vertices,
+    /// for a step's vertex passes to fill.
     pub(super) fn new(faces: usize, edges: usize, vertices: usize) -> Self {
         ChildRings {
             vert_faces: unwritten(faces, u32::MAX),
@@ -135,10 +134,10 @@ impl ChildRings {
     /// # Safety
     /// Every value of every table has been written.
     #[allow(unsafe_code)]
-    pub(super) unsafe fn written(self) -> ChildRingsWritten {
+    pub(super) unsafe fn written(self) -> ChildRings<Written> {
         // SAFETY: every value written (the caller's promise).
         unsafe {
-            ChildRingsWritten {
+            ChildRings {
                 vert_faces: written(self.vert_faces),
                 vert_face_local: written(self.vert_face_local),
                 vert_edges: written(self.vert_edges),
@@ -156,10 +155,10 @@ pub(super) fn assemble(
     p: &Topology,
     num_vertices: usize,
     face_offsets: Vec<u32>,
-    edges: ChildEdgesWritten,
+    edges: ChildEdges<Written>,
     vert_face_offsets: Vec<u32>,
     vert_edge_offsets: Vec<u32>,
-    rings: ChildRingsWritten,
+    rings: ChildRings<Written>,
     vert_sharpness: Vec<f32>,
     face_is_hole: Vec<bool>,
 ) -> Topology {
@@ -398,17 +397,9 @@ pub fn refine_topology(p: &Topology) -> Topology {
     // children's ends, offsets, `k` faces, sharpness and tags each.
     let edges = unsafe { tables.written() };
 
-    let vert_sharpness = {
-        let mut s = unwritten(cv, f32::NAN);
-        s[..nv]
-            .par_iter_mut()
-            .zip(&p.vert_sharpness[..nv])
-            .with_min_len(4096)
-            .for_each(|(c, &x)| c.set(crease::decrement(x)));
-        alloc::fill(&mut s[nv..], 0.0);
-        // SAFETY: children of vertices written, face and edge points filled.
-        unsafe { written(s) }
-    };
+    // Sharpness: children of vertices decayed in the vertex pass, face and edge points smooth.
+    let mut vert_sharpness = unwritten(cv, f32::NAN);
+    alloc::fill(&mut vert_sharpness[nv..], 0.0);
 
     // Children of vertices: rings mapped to the children of the ring's faces and edges; tags
     // and rules inherited, recounted where semi-sharp features decayed.
@@ -419,9 +410,10 @@ pub fn refine_topology(p: &Topology) -> Topology {
         .zip(par::split_exact(vf_v, &vb, pvfo))
         .zip(par::split_exact(vl_v, &vb, pvfo))
         .zip(par::split_exact(ve_v, &vb, pveo))
+        .zip(par::split_exact(&mut vert_sharpness[..nv], &vb, |v| v))
         .zip(par::split_exact(vt_v, &vb, |v| v))
         .zip(par::split_exact(vr_v, &vb, |v| v))
-        .for_each(|(((((r, vf), vl), ve), vt), vru)| {
+        .for_each(|((((((r, vf), vl), ve), vs), vt), vru)| {
             let (fbase, ebase, vbase) = (pvfo(r.start), pveo(r.start), r.start);
             for v in r {
                 let (a, b) = (pvfo(v), pvfo(v + 1));
@@ -446,7 +438,9 @@ pub fn refine_topology(p: &Topology) -> Topology {
                     inf += (et & tags::E_INF_SHARP != 0) as usize;
                     semi += (et & tags::E_SEMI_SHARP != 0) as usize;
                 }
-                let (t, rl) = vertex_child_tags(p, v, vert_sharpness[v], inf, semi);
+                let s = crease::decrement(p.vert_sharpness[v]);
+                let (t, rl) = vertex_child_tags(p, v, s, inf, semi);
+                vs[v - vbase].set(s);
                 vt[v - vbase].set(t);
                 vru[v - vbase].set(rl);
             }
@@ -479,8 +473,8 @@ pub fn refine_topology(p: &Topology) -> Topology {
     // SAFETY: the vertex and face-point passes above and the edge pass cover these tables
     // whole (`split_exact`), each child vertex writing its whole ring (a vertex's parent ring
     // sizes, a face point's `n`, an edge point's `2k` faces and `2 + k` edges), its tags and
-    // its rule.
-    let mut rings = unsafe { rings.written() };
+    // its rule; each child of a vertex its sharpness (the face and edge points' filled above).
+    let (mut rings, vert_sharpness) = unsafe { (rings.written(), written(vert_sharpness)) };
 
     let mut face_is_hole = super::alloc::zeroed(nc, false);
     if p.face_is_hole.iter().any(|&h| h) {

@@ -9,10 +9,10 @@
 //! only, read once from the parent's vertex-edge, edge-vertex and edge-face lists in the order
 //! the stencil rows store them ([`super::loop_masks::manifold_tables`]), and the other rows
 //! (creases, corners, boundaries, isolated vertices) whole, formed once by the masks. A frame
-//! weighs the indices by class. Every row is summed in the stored entry order from zero, so a frame is
-//! bit-identical to applying the step's stencil table (tested for every `loop_*` shape in
-//! `tests/refine_positions_into.rs`); [`super::Refiner::stencils`] builds that table on first
-//! use.
+//! weighs the indices by class. Every row is summed in the stored entry order from zero, so a
+//! frame is bit-identical to applying the step's stencil table (tested for every `loop_*`
+//! shape in `tests/refine_positions_into.rs`); [`super::Refiner::stencils`] builds that table
+//! on first use.
 
 use super::alloc::{unwritten, written, Slot};
 #[cfg(target_arch = "x86_64")]

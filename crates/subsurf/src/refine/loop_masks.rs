@@ -61,7 +61,6 @@ pub(super) fn manifold_tables(
     let (nv, ne) = (p.num_vertices(), p.num_edges());
     let vrow = |i: usize| only.map_or(i, |o| o.0[i] as usize);
     let erow = |i: usize| only.map_or(i, |o| o.1[i] as usize);
-    let smooth = |v: usize| smooth_vertex(p, v);
     let vertex = write_rows(
         only.map_or(nv, |o| o.0.len()),
         nv,
@@ -71,7 +70,7 @@ pub(super) fn manifold_tables(
             let n = p.valence(v);
             if n == 0 {
                 1
-            } else if smooth(v) {
+            } else if smooth_vertex(p, v) {
                 n + 1
             } else {
                 let mask = loop_vertex_mask(p, c, v, s);
@@ -86,7 +85,7 @@ pub(super) fn manifold_tables(
                 return;
             }
             let n = pe.len();
-            if smooth(v) {
+            if smooth_vertex(p, v) {
                 let (vw, ew) = smooth_weights(n);
                 for ((&e, i), w) in pe.iter().zip(&mut idx[..n]).zip(&mut wts[..n]) {
                     (*i, *w) = (p.other_vertex(e as usize, v as u32), ew);
@@ -108,7 +107,6 @@ pub(super) fn manifold_tables(
     // The edge mask and the opposite vertices of edge `e` (the second `u32::MAX` where the
     // edge has one face or both opposite vertices are one). A smooth edge's mask needs no
     // child rule (`edge_mask` reads it only for a sharp edge), so none is looked up there.
-    let opposite = |e: usize, i: usize| opposite(p, e, i);
     let edge_row = |e: usize| {
         let nfaces = (p.edge_face_offsets[e + 1] - p.edge_face_offsets[e]) as usize;
         let s = p.edge_sharpness[e];
@@ -118,8 +116,8 @@ pub(super) fn manifold_tables(
             rule::SMOOTH
         };
         let m = edge_mask(s, child_rule, nfaces);
-        let o0 = opposite(e, 0);
-        let o1 = if nfaces == 2 { opposite(e, 1) } else { o0 };
+        let o0 = opposite(p, e, 0);
+        let o1 = if nfaces == 2 { opposite(p, e, 1) } else { o0 };
         let o1 = if o1 != o0 { o1 } else { u32::MAX };
         (m, [o0, o1], nfaces == 2 && o1 == u32::MAX)
     };
@@ -132,7 +130,7 @@ pub(super) fn manifold_tables(
             let e = erow(e);
             if smooth_edge(p, e) {
                 // Smooth: both opposite vertices, merged where they are one.
-                3 + (opposite(e, 0) != opposite(e, 1)) as usize
+                3 + (opposite(p, e, 0) != opposite(p, e, 1)) as usize
             } else {
                 let (m, o, _) = edge_row(e);
                 if m.opposite == 0.0 {
@@ -147,7 +145,7 @@ pub(super) fn manifold_tables(
             let ev = p.edge_verts[e];
             if smooth_edge(p, e) {
                 // Smooth, two faces (what `edge_row` gives there, without the general mask).
-                let (o0, o1) = (opposite(e, 0), opposite(e, 1));
+                let (o0, o1) = (opposite(p, e, 0), opposite(p, e, 1));
                 (idx[0], wts[0]) = (ev[0], smooth2.vertex);
                 (idx[1], wts[1]) = (ev[1], smooth2.vertex);
                 if o0 != o1 {
@@ -367,9 +365,10 @@ impl super::Refiner {
     /// ([`super::RefineOptions::lean`]: its face lists only, its rows reading the child's
     /// sharpness and rules derived from the parent). Each step keeps its per-frame plan made
     /// from the topology ([`super::loop_frame::LoopPlan`]; the stencil tables are then built on
-    /// first use), or, where a level is not manifold, every step keeps its stencil tables. The next level's topology is built while the plan of the step to the
-    /// current one is: both read only that level, so they run side by side (`rayon::join`; one
-    /// after the other on one thread, with the same results).
+    /// first use), or, where a level is not manifold, every step keeps its stencil tables. The
+    /// next level's topology is built while the plan of the step to the current one is: both
+    /// read only that level, so they run side by side (`rayon::join`; one after the other on
+    /// one thread, with the same results).
     pub(super) fn new_loop(
         base: Topology,
         level: usize,

@@ -21,7 +21,7 @@
 
 use super::alloc::{fill, put, unwritten, written, Slot};
 use super::level::{
-    assemble, child_half, edge_point_tags, iota, vertex_child_tags, ChildEdges, ChildRings,
+    assemble, child_halves, edge_point_tags, iota, vertex_child_tags, ChildEdges, ChildRings,
 };
 use super::loop_level::child_triangles;
 use super::par;
@@ -90,8 +90,8 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
 
     // Faces and edges: four child faces and three interior edges per parent face, two child
     // edges per parent edge. Sharpness: interior edges smooth (`ChildEdges` fills them),
-    // children of edges decayed by the crease method (in the edge pass, as
-    // `level::child_edge_sharpness` forms them).
+    // children of edges decayed by the crease method (in the edge pass,
+    // `level::child_halves`).
     let total_ef = 2 * nc + 2 * efo(ne);
     let mut tables = ChildEdges::new(4 * nc, nc, ce, total_ef);
     {
@@ -184,25 +184,10 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                     for e in r.clone() {
                         let ev = p.edge_verts[e];
                         let i = 2 * e - base;
-                        let sharp = p.edge_sharpness[e];
                         let et = p.edge_tags[e];
-                        let (t0, t1) = if sharp <= 0.0 || sharp.is_nan() {
-                            // Smooth: both children smooth (what `child_half` gives).
-                            let t = et & (tags::E_BOUNDARY | tags::E_NON_MANIFOLD);
-                            ces[i].set(0.0);
-                            ces[i + 1].set(0.0);
-                            (t, t)
-                        } else {
-                            let ((s0, t0), (s1, t1)) = (
-                                child_half(p, e, 0, &mut around),
-                                child_half(p, e, 1, &mut around),
-                            );
-                            ces[i].set(s0);
-                            ces[i + 1].set(s1);
-                            (t0, t1)
-                        };
-                        cet[i].set(t0);
-                        cet[i + 1].set(t1);
+                        let [(s0, t0), (s1, t1)] = child_halves(p, e, &mut around);
+                        put(&mut ces[i..], &[s0, s1]);
+                        put(&mut cet[i..], &[t0, t1]);
                         cev[i].set([ep(e as u32), ev[0]]);
                         cev[i + 1].set([ep(e as u32), ev[1]]);
                         let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
@@ -279,9 +264,9 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             );
     }
     // SAFETY: the face and edge passes cover these tables whole (`split_exact`; the interior
-    // edges' sharpness and tags filled by `ChildEdges::new`, the offsets' last value above): each parent
-    // face writes its 12 child face vertices and edges, its three interior edges' ends,
-    // offsets and two faces each; each parent edge its two children's ends, offsets,
+    // edges' sharpness and tags filled by `ChildEdges::new`, the offsets' last value above):
+    // each parent face writes its 12 child face vertices and edges, its three interior edges'
+    // ends, offsets and two faces each; each parent edge its two children's ends, offsets,
     // sharpness, tags and `k` faces each.
     let edges = unsafe { tables.written() };
 
@@ -328,9 +313,9 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
             }
         });
 
-    // SAFETY: the two passes above cover these tables whole (`split_exact`; the edge points'
-    // sharpness filled before): each child of a vertex writes its parent's rings, sharpness,
-    // tags and rule, each edge point its `3k` faces, `2 + 2k` edges, tags and rule.
+    // SAFETY: the edge pass and the vertex pass cover these tables whole (`split_exact`; the
+    // edge points' sharpness filled before): each child of a vertex writes its parent's rings,
+    // sharpness, tags and rule, each edge point its `3k` faces, `2 + 2k` edges, tags and rule.
     let (mut rings, vert_sharpness) = unsafe { (rings.written(), written(vert_sharpness)) };
     let face_is_hole = super::loop_level::child_holes(
         &p.face_is_hole,

@@ -61,6 +61,7 @@ pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
 use crate::error::{Error, MeshError, Result};
+use crate::limit::budget::{human, memory_limit};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::topology::Topology;
@@ -172,26 +173,16 @@ pub fn estimate_bytes(base: &Topology, level: usize) -> u64 {
     total
 }
 
-use crate::limit::budget::{available_memory, human};
-
-/// Estimates below this many bytes are not checked against the available memory: reading it
-/// (`/proc/meminfo`) takes 20–30 µs here, a tenth of a small mesh's whole refinement.
-const CHECKED_BYTES: u64 = 64 << 20;
-
 /// Refuses a Loop mesh with a face other than a triangle, and up front, with the estimated
-/// size, a level whose tables would not fit in memory (estimates of [`CHECKED_BYTES`] and
-/// more) or overflow 32-bit indices.
+/// size, a level whose tables would not fit in memory ([`memory_limit`]) or overflow 32-bit
+/// indices.
 fn check_size(base: &Topology, level: usize) -> Result<()> {
     if base.options.scheme == Scheme::Loop {
         check_triangles(base)?;
     }
     let bytes = estimate_bytes(base, level);
     let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
-    let limit = if bytes < CHECKED_BYTES {
-        u64::MAX
-    } else {
-        available_memory().map(|m| m / 10 * 8).unwrap_or(u64::MAX)
-    };
+    let limit = memory_limit(bytes);
     if bytes > limit || corners > (u32::MAX as u128) / 2 {
         return Err(MeshError::TooLarge {
             what: format!("refining {} faces to level {level}", base.num_faces()),

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use super::pattern::QuadPattern;
 use crate::error::{MeshError, Result, TessError};
-use crate::limit::budget::Budget;
+use crate::limit::budget::memory_limit;
 use crate::limit::patch_map::EMPTY;
 use crate::limit::{LimitSurface, PatchTable};
 use crate::topology::Topology;
@@ -390,7 +390,7 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
 pub(crate) fn check_samples(samples: u64) -> Result<()> {
     // Per sample: a query, a position, a normal, two triangles with their (u, v), keys.
     let bytes = samples.saturating_mul(12 + 24 + 2 * (12 + 28) + 16);
-    let limit = Budget::of_available_memory().limit;
+    let limit = memory_limit(bytes);
     if bytes > limit {
         return Err(MeshError::TooLarge {
             what: format!("a tessellation of {samples} samples"),
