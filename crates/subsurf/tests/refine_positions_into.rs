@@ -64,8 +64,8 @@ fn other_widths_match_too() {
     r.refine_positions_into(&uv, &mut out, &mut scratch)
         .unwrap();
     assert_eq!(bits(&out), bits(&r.refine_all(&uv).pop().unwrap()));
-    // The scratch holds the second-to-last level only.
-    assert_eq!(scratch.len(), r.levels[1].num_vertices());
+    // The scratch holds the second-to-last level and the one value read past it.
+    assert_eq!(scratch.len(), r.levels[1].num_vertices() + 1);
 }
 
 #[test]

@@ -7,8 +7,8 @@ use crate::error::{MeshError, Result};
 
 impl Refiner {
     /// Vertex data of the last level written into `out`, bit-identical to
-    /// [`Refiner::refine_positions`], allocating nothing once `scratch` has grown to the
-    /// second-to-last level's size (on the first call).
+    /// [`Refiner::refine_positions`], allocating nothing once `scratch` has grown to one
+    /// value more than the second-to-last level (on the first call).
     ///
     /// Levels alternate between `out` and `scratch` from the last one down: level `L` fills
     /// `out`, level `L - 1` the front of `scratch`, level `L - 2` the front of `out`, and so on,
@@ -63,8 +63,10 @@ impl Refiner {
         }
         if steps >= 2 {
             let need = self.levels[steps - 1].num_vertices();
-            if scratch.len() < need {
-                scratch.resize(need, [0.0; N]);
+            // One value more than the level: a step reads its source one value past its
+            // rows (`StepPlan::apply`'s padded sources).
+            if scratch.len() <= need {
+                scratch.resize(need + 1, [0.0; N]);
             }
         }
         let plans = self
@@ -79,11 +81,15 @@ impl Refiner {
                 self.levels[i].num_vertices(),
             );
             let s = || self.stencils().get(i);
+            // The level before, with the value after it where its buffer has one.
+            fn padded<T>(v: &[T], prev: usize) -> &[T] {
+                &v[..(prev + 1).min(v.len())]
+            }
             if (steps - k) % 2 == 0 {
-                let src: &[[f32; N]] = if i == 0 { base } else { &scratch[..prev] };
+                let src: &[[f32; N]] = if i == 0 { base } else { padded(scratch, prev) };
                 plan.apply(p, s, src, &mut out[..n]);
             } else {
-                let src: &[[f32; N]] = if i == 0 { base } else { &out[..prev] };
+                let src: &[[f32; N]] = if i == 0 { base } else { padded(out, prev) };
                 plan.apply(p, s, src, &mut scratch[..n]);
             }
         }

@@ -42,7 +42,20 @@ impl Acc<3> for Lanes3 {
     }
 
     #[inline(always)]
+    fn add_padded(&mut self, w: f32, v: &[[f32; 3]], k: usize) {
+        if k >= v.len().saturating_sub(1) {
+            super::smooth_frame::past_the_values(k, v.len());
+        }
+        // SAFETY: `k + 1 < v.len()`, so the 16 bytes from `v[k]` are in the slice; `loadu`
+        // needs no alignment.
+        let x = unsafe { _mm_loadu_ps(v.as_ptr().add(k).cast::<f32>()) };
+        // SAFETY: SSE is part of the x86-64 baseline.
+        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+    }
+
+    #[inline(always)]
     fn get(self) -> [f32; 3] {
+
         let mut lanes = [0.0f32; 4];
         // SAFETY: `lanes` holds 16 bytes; `storeu` needs no alignment.
         unsafe { _mm_storeu_ps(lanes.as_mut_ptr(), self.0) };

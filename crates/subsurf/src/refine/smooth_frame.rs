@@ -221,40 +221,64 @@ impl StepPlan {
         };
         assert_eq!(dst.len(), rows, "destination length");
         assert!(src.len() >= np, "source length");
+        // Padded sources: `src` holds a value past the parent's, and the face points are
+        // followed by the first edge point (there is one).
+        let padded = src.len() > np && t.edge.num_rows() > 0;
         #[cfg(target_arch = "x86_64")]
         if let (Some(src), Some(dst)) = (lanes::as3(src), lanes::as3_mut(dst)) {
-            return self.apply_with::<3, lanes::Lanes3>(&t, np, src, dst);
+            return if padded {
+                self.apply_with::<3, Padded<lanes::Lanes3>>(&t, np, src, dst, true)
+            } else {
+                self.apply_with::<3, lanes::Lanes3>(&t, np, src, dst, false)
+            };
         }
-        self.apply_with::<N, [f32; N]>(&t, np, src, dst);
+        self.apply_with::<N, [f32; N]>(&t, np, src, dst, false);
     }
 
     /// [`StepPlan::apply`] summing each row in accumulators of type `A` (the same products
-    /// and sums in the same order, whatever `A`).
+    /// and sums in the same order, whatever `A`). With `padded` (`A` then a [`Padded`]
+    /// accumulator) the rows read sources one value longer than the values they sum:
+    /// `src[..p + 1]`, and the face points with the first edge point after them, which is
+    /// therefore formed first, alone, before the other edge points are formed in parallel
+    /// (no value is read while another thread writes it).
     fn apply_with<const N: usize, A: Acc<N>>(
         &self,
         t: &Tables<'_>,
         p: usize,
         src: &[[f32; N]],
         dst: &mut [[f32; N]],
+        padded: bool,
     ) {
         let (nv, ne) = (t.vertex.num_rows(), t.edge.num_rows());
         let nf = dst.len() - nv - ne;
+        let pad = usize::from(padded);
+        let src = &src[..p + pad];
         let (vd, rest) = dst.split_at_mut(nv);
-        let (fd, ed) = rest.split_at_mut(nf);
+        let fd = &mut rest[..nf];
         match t.face {
-            Some(face) if !self.quad_faces => face.apply(src, fd),
+            Some(face) if !self.quad_faces => face.apply(&src[..p], fd),
             _ => fd
                 .par_chunks_mut(CHUNK)
                 .zip(t.quads[..4 * nf].par_chunks(4 * CHUNK))
                 .for_each(|(out, q)| quad_rows::<N, A>(q, src, out)),
         }
-        let fd: &[[f32; N]] = fd;
         let [vex, eex] = &self.exceptions;
-        vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            self.vertex_rows::<N, A>(t.vertex, vex, p, c * CHUNK, out, src, fd);
-        });
+        {
+            let fd = &rest[..nf + pad];
+            vd.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
+                self.vertex_rows::<N, A>(t.vertex, vex, p, c * CHUNK, out, src, fd);
+            });
+        }
+        let special = &self.edge_special;
+        if padded {
+            let mut first = [[0.0; N]];
+            edge_rows::<N, A>(t.edge, eex, special, p, 0, &mut first, src, &rest[..nf + 1]);
+            rest[nf] = first[0];
+        }
+        let (fd, ed) = rest.split_at_mut(nf + pad);
+        let fd: &[[f32; N]] = fd;
         ed.par_chunks_mut(CHUNK).enumerate().for_each(|(c, out)| {
-            edge_rows::<N, A>(t.edge, eex, &self.edge_special, p, c * CHUNK, out, src, fd);
+            edge_rows::<N, A>(t.edge, eex, special, p, pad + c * CHUNK, out, src, fd);
         });
     }
 
@@ -343,8 +367,44 @@ pub(crate) trait Acc<const N: usize>: Copy {
     fn zero() -> Self;
     /// `self += w · v[k]`.
     fn add(&mut self, w: f32, v: &[[f32; N]], k: usize);
+    /// `self += w · v[k]` where `v` holds one value past the values summed: `k < v.len() - 1`
+    /// (checked), so a representation may load `v[k]` with what follows it.
+    #[inline(always)]
+    fn add_padded(&mut self, w: f32, v: &[[f32; N]], k: usize) {
+        if k >= v.len().saturating_sub(1) {
+            past_the_values(k, v.len());
+        }
+        self.add(w, v, k);
+    }
     /// The components.
     fn get(self) -> [f32; N];
+}
+
+/// The panic of [`Acc::add_padded`], out of the loops' way.
+#[cold]
+#[inline(never)]
+pub(crate) fn past_the_values(k: usize, len: usize) -> ! {
+    panic!("value {k} read from a padded source of {len} values (one past the last summed)")
+}
+
+/// An accumulator summing from padded sources ([`Acc::add_padded`]) through `add`, so the
+/// same kernels serve both: the sources handed to them then hold one value past their rows.
+#[derive(Clone, Copy)]
+pub(crate) struct Padded<A>(A);
+
+impl<const N: usize, A: Acc<N>> Acc<N> for Padded<A> {
+    #[inline(always)]
+    fn zero() -> Self {
+        Padded(A::zero())
+    }
+    #[inline(always)]
+    fn add(&mut self, w: f32, v: &[[f32; N]], k: usize) {
+        self.0.add_padded(w, v, k);
+    }
+    #[inline(always)]
+    fn get(self) -> [f32; N] {
+        self.0.get()
+    }
 }
 
 impl<const N: usize> Acc<N> for [f32; N] {
@@ -601,10 +661,16 @@ mod tests {
         for (k, (s, plan)) in r.stencils().iter().zip(p).enumerate() {
             let mut want = vec![[0.0f32; 3]; s.num_rows()];
             s.apply(&src, &mut want);
+            // Each plan from the source alone and from the source with a value after it
+            // (the padded path, which reads one value past the rows).
+            let mut padded = src.clone();
+            padded.push([f32::NAN, 7.0, -1.0]);
             for plan in [Some(plan), own.map(|o| &o[k])].into_iter().flatten() {
-                let mut got = vec![[f32::NAN; 3]; s.num_rows()];
-                plan.apply(&r.levels[k], || Some(s), &src, &mut got);
-                assert_eq!(bits(&got), bits(&want));
+                for src in [&src, &padded] {
+                    let mut got = vec![[f32::NAN; 3]; s.num_rows()];
+                    plan.apply(&r.levels[k], || Some(s), src, &mut got);
+                    assert_eq!(bits(&got), bits(&want));
+                }
             }
             src = want;
         }
