@@ -21,6 +21,8 @@ use super::last_level::ChildSharpness;
 use super::loop_masks::{manifold_tables, opposite, smooth_edge, smooth_vertex};
 use super::loop_rings::is_manifold;
 use super::par;
+#[cfg(target_arch = "x86_64")]
+use super::smooth_frame::Padded;
 use super::smooth_frame::{runs_between, Acc};
 use super::stencil::StencilTable;
 use crate::rules::r#loop::{edge_mask, smooth_weights};
@@ -89,26 +91,31 @@ impl LoopPlan {
     }
 
     /// One step of `N`-component values from parent `p` (children of vertices, then edge
-    /// points into `dst`), bit-identical to applying the step's stencil table.
+    /// points into `dst`), bit-identical to applying the step's stencil table. `src` holds
+    /// the parent's values, and may hold more: with one value past them the rows read it
+    /// padded ([`Padded`]).
     pub(crate) fn apply<const N: usize>(
         &self,
         p: &Topology,
         src: &[[f32; N]],
         dst: &mut [[f32; N]],
     ) {
-        assert_eq!(
-            dst.len(),
-            p.num_vertices() + p.num_edges(),
-            "destination length"
-        );
+        let np = p.num_vertices();
+        assert_eq!(dst.len(), np + p.num_edges(), "destination length");
+        assert!(src.len() >= np, "source length");
         #[cfg(target_arch = "x86_64")]
         if let (Some(src), Some(dst)) = (lanes::as3(src), lanes::as3_mut(dst)) {
-            return self.apply_acc::<3, lanes::Lanes3>(p, src, dst);
+            return if src.len() > np {
+                self.apply_acc::<3, Padded<lanes::Lanes3>>(p, &src[..np + 1], dst)
+            } else {
+                self.apply_acc::<3, lanes::Lanes3>(p, src, dst)
+            };
         }
-        self.apply_acc::<N, [f32; N]>(p, src, dst);
+        self.apply_acc::<N, [f32; N]>(p, &src[..np], dst);
     }
 
-    /// [`LoopPlan::apply`], each row summed in an `A`.
+    /// [`LoopPlan::apply`], each row summed in an `A` (`src` one value longer than the
+    /// parent's values where `A` reads padded sources).
     fn apply_acc<const N: usize, A: Acc<N>>(
         &self,
         p: &Topology,
@@ -132,7 +139,8 @@ impl LoopPlan {
             acc.get()
         };
         let w6 = vw.get(6).copied().unwrap_or_default();
-        chunks::<N, A>(dv, &self.vertex_special, &self.exceptions[0], src, |v| {
+        let np = p.num_vertices();
+        chunks::<N, A>(dv, &self.vertex_special, &self.exceptions[0], np, src, |v| {
             let (a, b) = (veo[v] as usize, veo[v + 1] as usize);
             if b - a == 6 {
                 row_sum(&vi[a + v..a + v + 7], w6)
@@ -142,7 +150,7 @@ impl LoopPlan {
         });
         let [wv, wo, wm] = self.edge_weights;
         let ei = &self.edge_inputs;
-        chunks::<N, A>(de, &self.edge_special, &self.exceptions[1], src, |e| {
+        chunks::<N, A>(de, &self.edge_special, &self.exceptions[1], np, src, |e| {
             let [e0, e1, o0, o1] = ei[e];
             let mut acc = A::zero();
             acc.add(wv, src, e0 as usize);
@@ -234,11 +242,13 @@ fn edge_inputs(p: &Topology) -> (Vec<[u32; 4]>, Vec<u32>) {
 }
 
 /// Fills `out` (one value per row) in parallel chunks: row `r` is `smooth(r)` unless it is in
-/// `special` (ascending), whose `k`-th row is row `k` of `rows` (over parent vertices only).
+/// `special` (ascending), whose `k`-th row is row `k` of `rows` (over the `np` parent
+/// vertices only).
 fn chunks<const N: usize, A: Acc<N>>(
     out: &mut [[f32; N]],
     special: &[u32],
     rows: &StencilTable,
+    np: usize,
     src: &[[f32; N]],
     smooth: impl Fn(usize) -> [f32; N] + Sync,
 ) {
@@ -248,7 +258,7 @@ fn chunks<const N: usize, A: Acc<N>>(
             runs_between::<N, A>(
                 special,
                 rows,
-                src.len(),
+                np,
                 src,
                 &[],
                 c * CHUNK,
@@ -301,6 +311,11 @@ mod tests {
                     let bits = |v: &[[f32; 3]]| -> Vec<[u32; 3]> {
                         v.iter().map(|x| x.map(f32::to_bits)).collect()
                     };
+                    assert_eq!(bits(&got), bits(&want), "{} step {k}", path.display());
+                    // With a value past the parent's (read padded): the same bits.
+                    let mut padded = src.clone();
+                    padded.push([f32::NAN, 3.0, -2.0]);
+                    lp.apply(p, &padded, &mut got);
                     assert_eq!(bits(&got), bits(&want), "{} step {k}", path.display());
                     planned += 1;
                 }

@@ -390,6 +390,7 @@ pub(crate) fn past_the_values(k: usize, len: usize) -> ! {
 /// An accumulator summing from padded sources ([`Acc::add_padded`]) through `add`, so the
 /// same kernels serve both: the sources handed to them then hold one value past their rows.
 #[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "x86_64"), allow(dead_code))]
 pub(crate) struct Padded<A>(A);
 
 impl<const N: usize, A: Acc<N>> Acc<N> for Padded<A> {
