@@ -21,7 +21,7 @@ use super::alloc::{put, unwritten, written};
 use super::loop_masks::write_rows;
 use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
 use super::par;
-use super::smooth_frame::{OwnRows, StepPlan, MAX_VALENCE};
+use super::smooth_frame::{input_at, OwnRows, StepPlan, MAX_VALENCE, OFFSET_MAX};
 use super::stencil::StencilTable;
 use crate::options::Scheme;
 use crate::topology::Topology;
@@ -85,8 +85,12 @@ impl StepPlan {
         }
         let (nv, nf, ne) = (p.num_vertices(), p.num_faces(), p.num_edges());
         let inputs = nv + nf;
+        if inputs > OFFSET_MAX {
+            return None;
+        }
         let quad_faces = (0..nf).all(|f| p.face_size(f) == 4);
-        let fp = |f: u32| nv as u32 + f;
+        // Gather offsets (`OwnRows`): face point `f` at `3 f`, parent vertex `k` at `3 k`.
+        let at = |k: u32| 3 * k;
         // Vertex rows: a smooth row of valence n (1..=MAX_VALENCE: the plan's weight table)
         // has 2n + 1 entries, a kept one none here.
         let smooth_valence = |v: usize| {
@@ -134,12 +138,12 @@ impl StepPlan {
                     let (faces, edges) = (p.vertex_faces(v), p.vertex_edges(v));
                     assert!(faces.len() == n && edges.len() == n);
                     for (o, &f) in o.iter_mut().zip(faces) {
-                        o.write(fp(f));
+                        o.write(at(f));
                     }
                     for (o, &e) in o[n..].iter_mut().zip(edges) {
-                        o.write(p.other_vertex(e as usize, v as u32));
+                        o.write(at(p.other_vertex(e as usize, v as u32)));
                     }
-                    o[2 * n].write(v as u32);
+                    o[2 * n].write(at(v as u32));
                     if n != 4 {
                         kept.odd.push(v as u32);
                     }
@@ -160,7 +164,7 @@ impl StepPlan {
                     let o = &mut out[4 * e - base..4 * e - base + 4];
                     if rows.quarter_edge(e) {
                         let (faces, ev) = (p.edge_faces(e), p.edge_verts[e]);
-                        put(o, &[fp(faces[0]), fp(faces[1]), ev[0], ev[1]]);
+                        put(o, &[at(faces[0]), at(faces[1]), at(ev[0]), at(ev[1])]);
                     } else {
                         put(o, &[0; 4]);
                         kept.push(e, |add| rows.edge(e, &mut |x, w| add(x, w)));
@@ -216,12 +220,14 @@ impl StepPlan {
         let own = self.own.as_ref()?;
         let [vex, eex] = &self.exceptions;
         let vw = &self.valence_weights;
-        let vertex = expand(&own.vertex, vex, &self.vertex_special, |len| {
+        let np = p.num_vertices() as u32;
+        // A smooth vertex row's `n` face points come first, an edge row's two.
+        let vertex = expand(&own.vertex, vex, &self.vertex_special, np, |len| {
             let n = (len - 1) / 2;
             let [w, wv] = vw[n];
-            move |i| if i < 2 * n { w } else { wv }
+            (n, move |i| if i < 2 * n { w } else { wv })
         });
-        let edge = expand(&own.edge, eex, &self.edge_special, |_| |_| 0.25f32);
+        let edge = expand(&own.edge, eex, &self.edge_special, np, |_| (2, |_| 0.25f32));
         Some(LevelStencils {
             num_parent_vertices: p.num_vertices(),
             face: own.face.clone().unwrap_or_else(|| face_table(p)),
@@ -232,12 +238,15 @@ impl StepPlan {
 }
 
 /// The full table of a plan's rows: row `r` is exception `q` of `ex` where `special[q] == r`,
-/// else the smooth row `r` of `t` with weights `weight(row length)(entry)`.
+/// else the smooth row `r` of `t` (gather offsets over `np` parent vertices, its first
+/// `faces` entries face points) with weights `weight(entry)`, where `class(row length)` is
+/// `(faces, weight)`.
 fn expand<F: Fn(usize) -> f32>(
     t: &StencilTable,
     ex: &StencilTable,
     special: &[u32],
-    weight: impl Fn(usize) -> F + Sync,
+    np: u32,
+    class: impl Fn(usize) -> (usize, F) + Sync,
 ) -> StencilTable {
     // Each pass walks its rows in order with a cursor on the next kept row.
     let kept = |r: usize, q: &mut usize| -> Option<usize> {
@@ -259,8 +268,10 @@ fn expand<F: Fn(usize) -> f32>(
                 wo.copy_from_slice(&ex.weights[span(ex, k)]);
             }
             None => {
-                io.copy_from_slice(&t.indices[span(t, r)]);
-                let w = weight(io.len());
+                let (faces, w) = class(io.len());
+                for (i, (x, &off)) in io.iter_mut().zip(&t.indices[span(t, r)]).enumerate() {
+                    *x = input_at(off, i < faces, np);
+                }
                 for (i, x) in wo.iter_mut().enumerate() {
                     *x = w(i);
                 }

@@ -54,6 +54,19 @@ impl Acc<3> for Lanes3 {
     }
 
     #[inline(always)]
+    fn add_at_padded(&mut self, w: f32, v: &[[f32; 3]], off: usize) {
+        // Value `off / 3` and the one after it are in the slice.
+        if off >= 3 * v.len().saturating_sub(1) {
+            super::smooth_frame::past_the_values(off / 3, v.len());
+        }
+        // SAFETY: `off < 3 * (v.len() - 1)`, so `off + 4 <= 3 * v.len()`: the 16 bytes from
+        // float `off` are in the slice; `loadu` needs no alignment.
+        let x = unsafe { _mm_loadu_ps(v.as_ptr().cast::<f32>().add(off)) };
+        // SAFETY: SSE is part of the x86-64 baseline.
+        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+    }
+
+    #[inline(always)]
     fn get(self) -> [f32; 3] {
 
         let mut lanes = [0.0f32; 4];

@@ -49,16 +49,22 @@ pub(crate) struct StepPlan {
     pub(super) valence_weights: Vec<[f32; 2]>,
     /// The exceptions' rows, in the order of `vertex_special` and of `edge_special`.
     pub(super) exceptions: [StencilTable; 2],
-    /// The smooth rows' indices, where the plan was made from the topology
-    /// ([`StepPlan::from_topology`]) rather than from stored tables.
+    /// The smooth rows' gather offsets ([`OwnRows`]); `None` where the plan applies the
+    /// stored tables whole (`stencils_only`).
     pub(super) own: Option<OwnRows>,
     /// A Loop step's plan, made from the topology; the fields above are then unused.
     pub(super) loop_plan: Option<super::loop_frame::LoopPlan>,
 }
 
-/// A plan's own tables ([`StepPlan::from_topology`]): offsets and indices of the smooth rows
-/// (an exception's row is empty here; no weights), and the face rows where the parent has
-/// faces other than quads.
+/// A plan's own tables: the smooth rows' inputs (an exception's row is empty, or four zeros
+/// for an edge; no weights), and the face rows where the parent has faces other than quads.
+///
+/// An input is stored as its gather offset, `3 k` for value `k` of its source: a parent
+/// vertex `k`, or face point `k` of the step (counted from the first face point, not from the
+/// parent's vertex count as the stored tables number it). A three-component gather then
+/// needs neither the subtraction nor the scaling of the index (`Acc::add_at`); an offset
+/// table holds at most `u32::MAX / 3` values' offsets, so larger steps keep their stored
+/// tables.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct OwnRows {
     pub(super) face: Option<StencilTable>,
@@ -150,14 +156,23 @@ impl StepPlan {
                 && w.iter().all(|x| x.to_bits() == quarter))
         });
         let exceptions = vertex_special.len() + edge_special.len();
-        let stencils_only = 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows();
-        let exceptions = if stencils_only {
+        let stencils_only = 2 * exceptions > s.vertex.num_rows() + s.edge.num_rows()
+            || s.vertex.num_inputs > OFFSET_MAX;
+        let (exceptions, own) = if stencils_only {
             Default::default()
         } else {
-            [
-                pick_rows(&s.vertex, &vertex_special),
-                pick_rows(&s.edge, &edge_special),
-            ]
+            let (p, face) = (s.num_parent_vertices as u32, &s.face);
+            (
+                [
+                    pick_rows(&s.vertex, &vertex_special),
+                    pick_rows(&s.edge, &edge_special),
+                ],
+                Some(OwnRows {
+                    face: (!quad_faces).then(|| face.clone()),
+                    vertex: offset_rows(&s.vertex, &vertex_special, p, None),
+                    edge: offset_rows(&s.edge, &edge_special, p, Some(4)),
+                }),
+            )
         };
         StepPlan {
             stencils_only,
@@ -167,7 +182,7 @@ impl StepPlan {
             edge_special,
             valence_weights,
             exceptions,
-            own: None,
+            own,
             loop_plan: None,
         }
     }
@@ -180,8 +195,8 @@ impl StepPlan {
 
     /// One step of `N`-component values from parent `p`, bit-identical to
     /// [`LevelStencils::apply`] of the step's stencils `s`, in parallel chunks of rows. `s`
-    /// is read only when the plan was made from it ([`StepPlan::new`]): a plan made from the
-    /// topology ([`StepPlan::from_topology`]) reads its own rows and `p`'s face lists.
+    /// is read only by a plan that applies the stored tables whole (`stencils_only`); the
+    /// others read their own rows and `p`'s face lists.
     pub(crate) fn apply<'s, const N: usize>(
         &self,
         p: &super::Topology,
@@ -193,32 +208,22 @@ impl StepPlan {
             lp.apply(p, src, dst);
             return;
         }
-        let stored = if self.own.is_none() { s() } else { None };
-        if self.stencils_only {
-            let s = stored.expect("a plan made from stored tables");
-            s.apply(src, dst);
-            return;
-        }
-        let t = match (&self.own, stored) {
-            (Some(own), _) => Tables {
-                face: own.face.as_ref(),
-                quads: &p.face_verts,
-                vertex: &own.vertex,
-                edge: &own.edge,
-            },
-            (None, Some(s)) => Tables {
-                face: Some(&s.face),
-                quads: &s.face.indices,
-                vertex: &s.vertex,
-                edge: &s.edge,
-            },
-            (None, None) => panic!("a plan made from stored tables needs them"),
+        let own = match &self.own {
+            Some(own) if !self.stencils_only => own,
+            _ => {
+                s().expect("a plan without rows of its own applies the stored tables")
+                    .apply(src, dst);
+                return;
+            }
+        };
+        let t = Tables {
+            face: own.face.as_ref(),
+            quads: &p.face_verts,
+            vertex: &own.vertex,
+            edge: &own.edge,
         };
         let np = p.num_vertices();
-        let rows = match stored {
-            Some(s) => s.num_rows(),
-            None => np + p.num_faces() + p.num_edges(),
-        };
+        let rows = np + p.num_faces() + p.num_edges();
         assert_eq!(dst.len(), rows, "destination length");
         assert!(src.len() >= np, "source length");
         // Padded sources: `src` holds a value past the parent's, and the face points are
@@ -310,7 +315,7 @@ impl StepPlan {
         loop {
             let e = next_special.min(next_odd);
             let (run, rest) = std::mem::take(&mut out).split_at_mut(e - r);
-            vertex4_run::<N, A>(&t.indices[j..j + 9 * run.len()], run, p, src, fd);
+            vertex4_run::<N, A>(&t.indices[j..j + 9 * run.len()], run, src, fd);
             let Some((o, rest)) = rest.split_first_mut() else {
                 break;
             };
@@ -325,12 +330,12 @@ impl StepPlan {
                 let [w, wv] = self.valence_weights[n];
                 let mut acc = A::zero();
                 for &k in &idx[..n] {
-                    acc.add(w, fd, k as usize - p);
+                    acc.add_at(w, fd, k as usize);
                 }
                 for &k in &idx[n..2 * n] {
-                    acc.add(w, src, k as usize);
+                    acc.add_at(w, src, k as usize);
                 }
-                acc.add(wv, src, idx[2 * n] as usize);
+                acc.add_at(wv, src, idx[2 * n] as usize);
                 *o = acc.get();
                 next_odd = row(odd.next());
             }
@@ -376,6 +381,16 @@ pub(crate) trait Acc<const N: usize>: Copy {
         }
         self.add(w, v, k);
     }
+    /// `self += w · v[off / 3]`: the gather offset of an [`OwnRows`] input.
+    #[inline(always)]
+    fn add_at(&mut self, w: f32, v: &[[f32; N]], off: usize) {
+        self.add(w, v, off / 3);
+    }
+    /// [`Acc::add_at`] from a padded source ([`Acc::add_padded`]).
+    #[inline(always)]
+    fn add_at_padded(&mut self, w: f32, v: &[[f32; N]], off: usize) {
+        self.add_padded(w, v, off / 3);
+    }
     /// The components.
     fn get(self) -> [f32; N];
 }
@@ -403,6 +418,10 @@ impl<const N: usize, A: Acc<N>> Acc<N> for Padded<A> {
         self.0.add_padded(w, v, k);
     }
     #[inline(always)]
+    fn add_at(&mut self, w: f32, v: &[[f32; N]], off: usize) {
+        self.0.add_at_padded(w, v, off);
+    }
+    #[inline(always)]
     fn get(self) -> [f32; N] {
         self.0.get()
     }
@@ -425,11 +444,11 @@ impl<const N: usize> Acc<N> for [f32; N] {
     }
 }
 
-/// Smooth vertex rows of valence 4, 9 indices each in `idx`, into `out`.
+/// Smooth vertex rows of valence 4, 9 gather offsets each in `idx` ([`OwnRows`]), into
+/// `out`.
 fn vertex4_run<const N: usize, A: Acc<N>>(
     idx: &[u32],
     out: &mut [[f32; N]],
-    p: usize,
     src: &[[f32; N]],
     fd: &[[f32; N]],
 ) {
@@ -438,12 +457,12 @@ fn vertex4_run<const N: usize, A: Acc<N>>(
         let q: &[u32; 9] = q.try_into().expect("chunks of 9");
         let mut acc = A::zero();
         for &k in &q[..4] {
-            acc.add(w, fd, k as usize - p);
+            acc.add_at(w, fd, k as usize);
         }
         for &k in &q[4..8] {
-            acc.add(w, src, k as usize);
+            acc.add_at(w, src, k as usize);
         }
-        acc.add(wv, src, q[8] as usize);
+        acc.add_at(wv, src, q[8] as usize);
         *o = acc.get();
     }
 }
@@ -465,7 +484,7 @@ fn edge_rows<const N: usize, A: Acc<N>>(
     runs_between::<N, A>(special, ex, p, src, fd, first, out, |r, run| {
         // An exception's row is empty here, so a run's indices start at its first offset.
         let j = t.offsets[r] as usize;
-        edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, p, src, fd);
+        edge_run::<N, A>(&t.indices[j..j + 4 * run.len()], run, src, fd);
     });
 }
 
@@ -506,11 +525,11 @@ pub(super) fn runs_between<const N: usize, A: Acc<N>>(
     }
 }
 
-/// Smooth two-face edge rows, 4 indices each in `idx` (two face points, two ends), into `out`.
+/// Smooth two-face edge rows, 4 gather offsets each in `idx` (two face points, two ends;
+/// [`OwnRows`]), into `out`.
 fn edge_run<const N: usize, A: Acc<N>>(
     idx: &[u32],
     out: &mut [[f32; N]],
-    p: usize,
     src: &[[f32; N]],
     fd: &[[f32; N]],
 ) {
@@ -519,10 +538,10 @@ fn edge_run<const N: usize, A: Acc<N>>(
             unreachable!("chunks of 4")
         };
         let mut acc = A::zero();
-        acc.add(0.25, fd, a as usize - p);
-        acc.add(0.25, fd, b as usize - p);
-        acc.add(0.25, src, c as usize);
-        acc.add(0.25, src, d as usize);
+        acc.add_at(0.25, fd, a as usize);
+        acc.add_at(0.25, fd, b as usize);
+        acc.add_at(0.25, src, c as usize);
+        acc.add_at(0.25, src, d as usize);
         *o = acc.get();
     }
 }
@@ -540,7 +559,7 @@ fn exception_row<const N: usize, A: Acc<N>>(
     split_row::<N, A>(&ex.indices[lo..hi], &ex.weights[lo..hi], p, src, fd)
 }
 
-/// The tables a plan reads: its own ([`OwnRows`]) or a step's stored stencils.
+/// The tables a plan reads: its own rows ([`OwnRows`]) and the parent's face lists.
 struct Tables<'a> {
     /// The face rows, where not all quads.
     face: Option<&'a StencilTable>,
@@ -548,6 +567,46 @@ struct Tables<'a> {
     quads: &'a [u32],
     vertex: &'a StencilTable,
     edge: &'a StencilTable,
+}
+
+/// Most values an offset table ([`OwnRows`]) can address: `3 k` fits a `u32`.
+pub(super) const OFFSET_MAX: usize = (u32::MAX / 3) as usize;
+
+/// The gather offset of stored input `k` of a step from `p` parent vertices: `3 k` for a
+/// parent vertex, `3 (k - p)` for a face point.
+#[inline]
+pub(super) fn offset_of(k: u32, p: u32) -> u32 {
+    3 * if k < p { k } else { k - p }
+}
+
+/// The stored input at gather offset `off`, the entry being a face point or not.
+#[inline]
+pub(super) fn input_at(off: u32, face_point: bool, p: u32) -> u32 {
+    off / 3 + if face_point { p } else { 0 }
+}
+
+/// The smooth rows of stored table `t` (all but `special`, ascending) as gather offsets
+/// ([`offset_of`]), each special row empty, or `stride` zeros where rows have a fixed length.
+fn offset_rows(t: &StencilTable, special: &[u32], p: u32, stride: Option<usize>) -> StencilTable {
+    let mut out = StencilTable {
+        offsets: Vec::with_capacity(t.offsets.len()),
+        indices: Vec::with_capacity(t.indices.len()),
+        weights: Vec::new(),
+        num_inputs: t.num_inputs,
+    };
+    out.offsets.push(0);
+    let mut special = special.iter().peekable();
+    for r in 0..t.num_rows() {
+        if special.next_if_eq(&&(r as u32)).is_some() {
+            out.indices.resize(out.indices.len() + stride.unwrap_or(0), 0);
+        } else {
+            let (lo, hi) = (t.offsets[r] as usize, t.offsets[r + 1] as usize);
+            out.indices
+                .extend(t.indices[lo..hi].iter().map(|&k| offset_of(k, p)));
+        }
+        out.offsets.push(out.indices.len() as u32);
+    }
+    out
 }
 
 /// A stored row over parent vertices (`k < p`) and face points (`fd[k - p]`).
