@@ -172,10 +172,7 @@ pub(crate) fn prefault<T>(v: &[T]) -> bool {
     let page = sys::page_size();
     let start = (v.as_ptr() as usize).next_multiple_of(page);
     let end = (v.as_ptr() as usize + bytes) / page * page;
-    end > start
-        && !sys::resident(start)
-        && !sys::resident(end - page)
-        && populate(start, end, page)
+    end > start && !sys::resident(start) && !sys::resident(end - page) && populate(start, end, page)
 }
 
 /// Maps the pages `start..end` (page aligned), in parts across the pool; whether the kernel
@@ -235,7 +232,6 @@ mod sys {
         unsafe { libc::madvise(addr as *mut libc::c_void, len, libc::MADV_POPULATE_WRITE) == 0 }
     }
 }
-
 
 #[cfg(not(target_os = "linux"))]
 mod sys {

@@ -68,7 +68,6 @@ impl Acc<3> for Lanes3 {
 
     #[inline(always)]
     fn get(self) -> [f32; 3] {
-
         let mut lanes = [0.0f32; 4];
         // SAFETY: `lanes` holds 16 bytes; `storeu` needs no alignment.
         unsafe { _mm_storeu_ps(lanes.as_mut_ptr(), self.0) };

@@ -140,14 +140,21 @@ impl LoopPlan {
         };
         let w6 = vw.get(6).copied().unwrap_or_default();
         let np = p.num_vertices();
-        chunks::<N, A>(dv, &self.vertex_special, &self.exceptions[0], np, src, |v| {
-            let (a, b) = (veo[v] as usize, veo[v + 1] as usize);
-            if b - a == 6 {
-                row_sum(&vi[a + v..a + v + 7], w6)
-            } else {
-                row_sum(&vi[a + v..b + v + 1], vw[b - a])
-            }
-        });
+        chunks::<N, A>(
+            dv,
+            &self.vertex_special,
+            &self.exceptions[0],
+            np,
+            src,
+            |v| {
+                let (a, b) = (veo[v] as usize, veo[v + 1] as usize);
+                if b - a == 6 {
+                    row_sum(&vi[a + v..a + v + 7], w6)
+                } else {
+                    row_sum(&vi[a + v..b + v + 1], vw[b - a])
+                }
+            },
+        );
         let [wv, wo, wm] = self.edge_weights;
         let ei = &self.edge_inputs;
         chunks::<N, A>(de, &self.edge_special, &self.exceptions[1], np, src, |e| {
@@ -255,20 +262,11 @@ fn chunks<const N: usize, A: Acc<N>>(
     out.par_chunks_mut(CHUNK)
         .enumerate()
         .for_each(|(c, out): (usize, &mut [[f32; N]])| {
-            runs_between::<N, A>(
-                special,
-                rows,
-                np,
-                src,
-                &[],
-                c * CHUNK,
-                out,
-                |r, run| {
-                    for (o, q) in run.iter_mut().zip(r..) {
-                        *o = smooth(q);
-                    }
-                },
-            );
+            runs_between::<N, A>(special, rows, np, src, &[], c * CHUNK, out, |r, run| {
+                for (o, q) in run.iter_mut().zip(r..) {
+                    *o = smooth(q);
+                }
+            });
         });
 }
 

@@ -598,7 +598,8 @@ fn offset_rows(t: &StencilTable, special: &[u32], p: u32, stride: Option<usize>)
     let mut special = special.iter().peekable();
     for r in 0..t.num_rows() {
         if special.next_if_eq(&&(r as u32)).is_some() {
-            out.indices.resize(out.indices.len() + stride.unwrap_or(0), 0);
+            out.indices
+                .resize(out.indices.len() + stride.unwrap_or(0), 0);
         } else {
             let (lo, hi) = (t.offsets[r] as usize, t.offsets[r + 1] as usize);
             out.indices
