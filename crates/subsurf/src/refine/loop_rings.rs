@@ -220,10 +220,18 @@ pub(super) fn refine_manifold(p: &Topology) -> Topology {
                             let (c0, c1) = if forward[j] { (x, y) } else { (y, x) };
                             (child[0][slot], child[1][slot], local[slot]) = (c0, c1, kl);
                         }
-                        put(&mut cef[o..], &child[0][..k]);
-                        put(&mut cef[o + k..], &child[1][..k]);
-                        put(&mut cel[o..], &local[..k]);
-                        put(&mut cel[o + k..], &local[..k]);
+                        // Written with their length known (one face or two), so no copy
+                        // of a variable length (a `memcpy` call each) is made.
+                        if k == 2 {
+                            put(
+                                &mut cef[o..],
+                                &[child[0][0], child[0][1], child[1][0], child[1][1]],
+                            );
+                            put(&mut cel[o..], &[local[0], local[1], local[0], local[1]]);
+                        } else {
+                            put(&mut cef[o..], &[child[0][0], child[1][0]]);
+                            put(&mut cel[o..], &[local[0], local[0]]);
+                        }
                         // The edge point's rings, the forward face first.
                         let ring = if k == 2 && !forward[0] {
                             [1, 0]
