@@ -1,6 +1,6 @@
 //! A step's per-frame plan made from the topology, without the step's stencil tables: the
-//! smooth rows' input indices (no weights) and the exceptions' rows, as the stored tables
-//! would hold them.
+//! smooth rows' inputs as gather offsets (`OwnRows`; no weights) and the exceptions' rows, as
+//! the stored tables would hold them.
 //!
 //! A vertex row follows the smooth rule when its parent vertex's rule is smooth (or a dart)
 //! and its rings close (as many faces as edges), at a valence of at most 32; an edge row when

@@ -11,14 +11,17 @@
 //! A [`StepPlan`] finds those rows once and keeps the rows where the rules differ (creases,
 //! boundaries, corners, irregular faces or rules) as a sorted list of exceptions with their
 //! rows. A Catmull-Clark `Refiner` makes its plans from the topology as it refines
-//! ([`StepPlan::from_topology`], `frame_plan.rs`: the smooth rows' indices and the
+//! ([`StepPlan::from_topology`], `frame_plan.rs`: the smooth rows' inputs and the
 //! exceptions' rows, no stencil table at all); otherwise a plan is found from a step's stored
 //! tables ([`StepPlan::new`]: a row is smooth when its entries have exactly the smooth
-//! pattern and weights, bit for bit). Applying the plan then reads, per smooth row, only its
+//! pattern and weights, bit for bit; its inputs are then copied as gather offsets). Applying the plan then reads, per smooth row, only its
 //! input indices: no weight, and for face points (the parent's face lists), edge points and
 //! vertices of valence 4 no row offset either (their length is known; the plan also lists the
-//! smooth vertices of other valences, which read their offsets). Every row is summed in the
-//! stored entry order with the stored weights, so the result is bit-identical to
+//! smooth vertices of other valences, which read their offsets). The smooth rows' inputs are
+//! kept as gather offsets ([`OwnRows`]: `3 k`, face points counted from the first), and where
+//! a step's sources hold one value past the ones it sums (`Refiner::refine_positions_into`
+//! arranges it) each gather is one bounds test and one 16-byte load ([`Padded`]). Every row is
+//! summed in the stored entry order with the stored weights, so the result is bit-identical to
 //! [`LevelStencils::apply`].
 
 #[cfg(target_arch = "x86_64")]
