@@ -12,9 +12,10 @@
 //! [`zeroed`], [`empty`] and [`unwritten`] allocate a table and advise those windows before
 //! anything writes them (elsewhere than Linux, or for tables under [`ADVISE_MIN`] bytes, they
 //! only allocate); [`empty`] and [`unwritten`], whose builders write every value, also map
-//! the table's fresh pages in one call ([`prefault`]). A zero table costs no extra pass on fresh memory (the allocator does not
-//! write a large zeroed allocation), but on memory the allocator reuses it is cleared in one
-//! serial sweep; tables whose builder writes every value take [`unwritten`] instead.
+//! the table's fresh pages in one call ([`prefault`]). A zero table costs no extra pass on
+//! fresh memory (the allocator does not write a large zeroed allocation), but on memory the
+//! allocator reuses it is cleared in one serial sweep; tables whose builder writes every value
+//! take [`unwritten`] instead.
 
 use std::mem::MaybeUninit;
 

@@ -81,10 +81,6 @@ impl Refiner {
                 self.levels[i].num_vertices(),
             );
             let s = || self.stencils().get(i);
-            // The level before, with the value after it where its buffer has one.
-            fn padded<T>(v: &[T], prev: usize) -> &[T] {
-                &v[..(prev + 1).min(v.len())]
-            }
             if (steps - k) % 2 == 0 {
                 let src: &[[f32; N]] = if i == 0 { base } else { padded(scratch, prev) };
                 plan.apply(p, s, src, &mut out[..n]);
@@ -95,4 +91,10 @@ impl Refiner {
         }
         Ok(())
     }
+}
+
+/// The first `prev` values of `v` (the level before), with the value after them where `v` has
+/// one: `StepPlan::apply` then reads them padded.
+fn padded<T>(v: &[T], prev: usize) -> &[T] {
+    &v[..(prev + 1).min(v.len())]
 }

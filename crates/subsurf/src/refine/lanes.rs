@@ -19,6 +19,15 @@ use std::arch::x86_64::{
 #[derive(Clone, Copy)]
 pub(crate) struct Lanes3(__m128);
 
+impl Lanes3 {
+    /// `self += w · x` lane by lane.
+    #[inline(always)]
+    fn mul_add(&mut self, w: f32, x: __m128) {
+        // SAFETY: SSE is part of the x86-64 baseline.
+        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+    }
+}
+
 impl Acc<3> for Lanes3 {
     #[inline(always)]
     fn zero() -> Self {
@@ -37,20 +46,12 @@ impl Acc<3> for Lanes3 {
             // SAFETY: SSE is part of the x86-64 baseline.
             unsafe { _mm_set_ps(0.0, c, b, a) }
         };
-        // SAFETY: SSE is part of the x86-64 baseline.
-        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+        self.mul_add(w, x);
     }
 
     #[inline(always)]
     fn add_padded(&mut self, w: f32, v: &[[f32; 3]], k: usize) {
-        if k >= v.len().saturating_sub(1) {
-            super::smooth_frame::past_the_values(k, v.len());
-        }
-        // SAFETY: `k + 1 < v.len()`, so the 16 bytes from `v[k]` are in the slice; `loadu`
-        // needs no alignment.
-        let x = unsafe { _mm_loadu_ps(v.as_ptr().add(k).cast::<f32>()) };
-        // SAFETY: SSE is part of the x86-64 baseline.
-        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+        self.add_at_padded(w, v, 3 * k);
     }
 
     #[inline(always)]
@@ -61,9 +62,9 @@ impl Acc<3> for Lanes3 {
         }
         // SAFETY: `off < 3 * (v.len() - 1)`, so `off + 4 <= 3 * v.len()`: the 16 bytes from
         // float `off` are in the slice; `loadu` needs no alignment.
-        let x = unsafe { _mm_loadu_ps(v.as_ptr().cast::<f32>().add(off)) };
-        // SAFETY: SSE is part of the x86-64 baseline.
-        self.0 = unsafe { _mm_add_ps(self.0, _mm_mul_ps(_mm_set1_ps(w), x)) };
+        self.mul_add(w, unsafe {
+            _mm_loadu_ps(v.as_ptr().cast::<f32>().add(off))
+        });
     }
 
     #[inline(always)]

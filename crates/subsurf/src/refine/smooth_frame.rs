@@ -578,7 +578,7 @@ pub(super) const OFFSET_MAX: usize = (u32::MAX / 3) as usize;
 /// The gather offset of stored input `k` of a step from `p` parent vertices: `3 k` for a
 /// parent vertex, `3 (k - p)` for a face point.
 #[inline]
-pub(super) fn offset_of(k: u32, p: u32) -> u32 {
+fn offset_of(k: u32, p: u32) -> u32 {
     3 * if k < p { k } else { k - p }
 }
 
