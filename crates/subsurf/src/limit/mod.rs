@@ -83,6 +83,7 @@
 //! ```
 
 pub mod budget;
+pub mod curve_eval;
 pub mod edit;
 pub mod edit_region;
 pub mod endcap;

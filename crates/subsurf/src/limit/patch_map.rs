@@ -34,6 +34,40 @@ pub struct PatchMap {
     pub nodes: Vec<[u32; 4]>,
 }
 
+/// A leaf of a ptex face's quadtree and its square: `[iu, iu + 1) × [iv, iv + 1)` scaled by
+/// `2^-level` (closed at `u, v = 1`), the `(u, v)` that [`PatchMap::find`] sends to it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Cell {
+    /// The patch.
+    pub patch: u32,
+    /// The ptex face.
+    pub ptex: u32,
+    /// Depth of the leaf in the tree.
+    pub level: u32,
+    /// Column of the square at that depth.
+    pub iu: u32,
+    /// Row of the square at that depth.
+    pub iv: u32,
+}
+
+impl Cell {
+    /// Whether [`PatchMap::find`] sends `(u, v)` of ptex face `ptex` here (after clamping).
+    /// The walk compares `u` with dyadic fractions (its doublings and subtractions are exact),
+    /// so it ends in the square with `iu ≤ u 2^level < iu + 1`, or the last one at `u = 1`;
+    /// `u 2^level − iu` is exact in that range and rounds monotonically outside it, so the
+    /// comparisons below decide the same.
+    #[inline]
+    pub fn contains<R: Real>(&self, ptex: usize, u: R, v: R) -> bool {
+        let scale = R::pow2(self.level as i32);
+        let inside = |x: R, i: u32| {
+            let x = clamp01(x);
+            let a = x * scale - R::from_f64(f64::from(i));
+            a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))
+        };
+        ptex == self.ptex as usize && inside(u, self.iu) && inside(v, self.iv)
+    }
+}
+
 /// `(du, dv)` offset of quadrant `q`.
 pub const QUADRANT: [(u32, u32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
 
@@ -41,15 +75,29 @@ impl PatchMap {
     /// The patch covering `(u, v)` of ptex face `ptex`; `None` for a hole or an index out of
     /// range. `u` and `v` are clamped to `[0, 1]`.
     pub fn find<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<u32> {
+        self.find_cell(ptex, u, v).map(|c| c.patch)
+    }
+
+    /// [`PatchMap::find`] with the leaf's square, so that nearby queries can test
+    /// [`Cell::contains`] instead of walking the tree again.
+    pub fn find_cell<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<Cell> {
         let mut h = *self.roots.get(ptex)?;
         let (mut u, mut v) = (clamp01(u), clamp01(v));
         let (half, two) = (R::from_f64(0.5), R::from_f64(2.0));
+        let mut cell = Cell {
+            patch: 0,
+            ptex: ptex as u32,
+            level: 0,
+            iu: 0,
+            iv: 0,
+        };
         loop {
             if h == EMPTY {
                 return None;
             }
             if h & LEAF != 0 {
-                return Some(h & !LEAF);
+                cell.patch = h & !LEAF;
+                return Some(cell);
             }
             let hi_u = u >= half;
             let hi_v = v >= half;
@@ -61,6 +109,9 @@ impl PatchMap {
             };
             u = two * u - R::from_f64(hi_u as u32 as f64);
             v = two * v - R::from_f64(hi_v as u32 as f64);
+            cell.level += 1;
+            cell.iu = 2 * cell.iu + hi_u as u32;
+            cell.iv = 2 * cell.iv + hi_v as u32;
             h = self.nodes.get(h as usize)?[q];
         }
     }
@@ -68,5 +119,52 @@ impl PatchMap {
     /// Bytes of the two arrays.
     pub fn size_bytes(&self) -> usize {
         4 * self.roots.len() + 16 * self.nodes.len()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limit::{PatchOptions, PatchTable};
+
+    /// On a grid of every ptex face of an isolated pole (with a hole), including the
+    /// squares' edges and `u, v = 1`, a point lies in a found cell exactly when `find` sends
+    /// it to that cell.
+    #[test]
+    fn cells_contain_what_find_sends_them() {
+        let mut mesh = crate::shapes::pole(5);
+        mesh.holes.push(1);
+        let t = crate::Topology::new(&mesh).unwrap();
+        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let map = &table.patch_map;
+        let n = 32;
+        let mut deepest = 0;
+        for ptex in 0..map.roots.len() {
+            let points: Vec<(f32, f32)> = (0..=n)
+                .flat_map(|i| (0..=n).map(move |j| (i as f32 / n as f32, j as f32 / n as f32)))
+                .collect();
+            let cells: Vec<Option<Cell>> = points
+                .iter()
+                .map(|&(u, v)| map.find_cell(ptex, u, v))
+                .collect();
+            let mut distinct: Vec<Cell> = cells.iter().flatten().copied().collect();
+            distinct.sort_by_key(|c| (c.level, c.iu, c.iv));
+            distinct.dedup();
+            for c in &distinct {
+                deepest = deepest.max(c.level);
+                for (&(u, v), found) in points.iter().zip(&cells) {
+                    assert_eq!(
+                        c.contains(ptex, u, v),
+                        *found == Some(*c),
+                        "{c:?} ({u}, {v})"
+                    );
+                }
+                assert!(!c.contains(ptex + 1, 0.5, 0.5) || c.ptex as usize == ptex + 1);
+            }
+            for (&(u, v), found) in points.iter().zip(&cells) {
+                assert_eq!(found.map(|c| c.patch), map.find(ptex, u, v));
+            }
+        }
+        assert!(deepest >= 3, "{deepest}");
     }
 }

@@ -2,12 +2,12 @@
 //! [`PatchParam`], evaluates the right basis and scales the derivatives back to the face's
 //! parameterization (OpenSubdiv's `Far::internal::EvaluatePatchBasis`).
 
-use super::bspline::bspline_curves;
 #[cfg(test)]
 use super::bspline::bspline_patch_weights;
+use super::bspline::{bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1};
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
-use super::single_crease::single_crease_curves;
+use super::single_crease::single_crease_curve;
 #[cfg(test)]
 use super::single_crease::single_crease_patch_weights;
 use super::weights::{CurveWeights, PatchWeights};
@@ -97,16 +97,90 @@ enum Basis<T> {
 /// weights below all go through it.
 #[inline(always)]
 fn basis<T: Real>(kind: PatchKind, param: &PatchParam, sharpness: T, s: T, t: T) -> Basis<T> {
+    match (
+        patch_curve(kind, param, sharpness, 0, s),
+        patch_curve(kind, param, sharpness, 1, t),
+    ) {
+        (Some(wu), Some(wv)) => Basis::Tensor([wu, wv]),
+        _ => match kind {
+            PatchKind::GregoryBasis(d) => Basis::Gregory(d),
+            _ => unreachable!("tensor kinds have curves"),
+        },
+    }
+}
+
+/// One curve of a tensor-product patch's basis at its own parameter `x` (`dir` 0: along `s`,
+/// 1: along `t`), as [`patch_weights_normalized`] forms it, bit for bit (each curve depends
+/// on its own parameter only); `None` for a Gregory patch, which is no tensor product.
+#[inline(always)]
+pub fn patch_curve<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    dir: usize,
+    x: T,
+) -> Option<CurveWeights<T>> {
+    match patch_curve_shape(kind, param, sharpness, dir) {
+        CurveShape::BSpline { low, high } => Some(bspline_curve_bounded(x, low, high)),
+        CurveShape::Crease(edge) => Some(single_crease_curve(x, dir, edge, sharpness)),
+        CurveShape::None => None,
+    }
+}
+
+/// What one curve of a patch's basis is ([`patch_curve`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CurveShape {
+    /// The uniform cubic B-spline, its first (`low`) or last (`high`) point a phantom
+    /// folded into the others (`bspline_curve_bounded`): one cubic polynomial.
+    BSpline {
+        /// Boundary at `x = 0`.
+        low: bool,
+        /// Boundary at `x = 1`.
+        high: bool,
+    },
+    /// A single-crease patch's curve across its crease edge: cubic pieces of the
+    /// sharpness (`single_crease_curve`).
+    Crease(PatchEdge),
+    /// No tensor product (Gregory).
+    None,
+}
+
+/// The shape of [`patch_curve`] along `dir` for a patch (the one place that decides it).
+#[inline(always)]
+pub fn patch_curve_shape<T: Real>(
+    kind: PatchKind,
+    param: &PatchParam,
+    sharpness: T,
+    dir: usize,
+) -> CurveShape {
     let bits = param.boundary() & 0xf;
+    let (low, high) = if dir == 0 {
+        (BOUNDARY_U0, BOUNDARY_U1)
+    } else {
+        (BOUNDARY_V0, BOUNDARY_V1)
+    };
+    let folds = |m: u8| CurveShape::BSpline {
+        low: m & low != 0,
+        high: m & high != 0,
+    };
     match kind {
-        PatchKind::Regular => Basis::Tensor(bspline_curves(s, t, bits)),
-        PatchKind::SingleCrease => {
-            Basis::Tensor(match PatchEdge::from_index(bits.trailing_zeros()) {
-                Some(edge) => single_crease_curves(s, t, edge, sharpness),
-                None => bspline_curves(s, t, 0),
-            })
-        }
-        PatchKind::GregoryBasis(d) => Basis::Gregory(d),
+        PatchKind::Regular => folds(bits),
+        PatchKind::SingleCrease => match PatchEdge::from_index(bits.trailing_zeros()) {
+            Some(edge) => {
+                if sharpness.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
+                    folds(0)
+                } else if sharpness >= T::from_f64(crate::SHARPNESS_INFINITE as f64) {
+                    folds(edge.mask())
+                } else if edge.index() % 2 == 1 - dir as u32 {
+                    // Edges 1 and 3 (u = 1, u = 0) crease the curves along u, 0 and 2 along v.
+                    CurveShape::Crease(edge)
+                } else {
+                    folds(0)
+                }
+            }
+            None => folds(0),
+        },
+        PatchKind::GregoryBasis(_) => CurveShape::None,
     }
 }
 

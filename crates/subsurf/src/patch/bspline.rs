@@ -101,6 +101,7 @@ pub fn fold_phantom_high<T: Real>(w: &mut [T; 4]) {
 }
 
 /// [`fold_phantom_low`] / [`fold_phantom_high`] applied to all three weight vectors.
+#[inline]
 pub fn fold_curve<T: Real>(w: &mut CurveWeights<T>, low: bool, high: bool) {
     for v in [&mut w.p, &mut w.d1, &mut w.d2] {
         if low {
@@ -114,6 +115,7 @@ pub fn fold_curve<T: Real>(w: &mut CurveWeights<T>, low: bool, high: bool) {
 
 /// Curve weights of a B-spline segment whose end(s) lie on a boundary: the infinitely sharp
 /// curve `N(t) M∞` of Nießner et al. 2012 when `high` is set (phantom `P3 = 2 P2 − P1`).
+#[inline]
 pub fn bspline_curve_bounded<T: Real>(t: T, low: bool, high: bool) -> CurveWeights<T> {
     let mut w = bspline_curve(t);
     fold_curve(&mut w, low, high);

@@ -77,7 +77,9 @@
 //! | `V1` (`v = 1`, grid row 2) | `v` | `v` |
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
-use super::bspline::{bspline_curve, bspline_curve_bounded, bspline_curves};
+use super::bspline::{
+    bspline_curve, bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1,
+};
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -196,25 +198,35 @@ pub fn single_crease_patch_weights<T: Real>(
 /// The two curves whose tensor product is [`single_crease_patch_weights`] (along `u`, along
 /// `v`), for callers that need only some of the tensor's weights.
 pub fn single_crease_curves<T: Real>(u: T, v: T, edge: PatchEdge, s: T) -> [CurveWeights<T>; 2] {
+    [
+        single_crease_curve(u, 0, edge, s),
+        single_crease_curve(v, 1, edge, s),
+    ]
+}
+
+/// One curve of [`single_crease_curves`] alone (`dir` 0: along `u` at `x = u`, 1: along `v`
+/// at `x = v`), bit for bit: each depends on its own parameter only.
+#[inline(always)]
+pub fn single_crease_curve<T: Real>(x: T, dir: usize, edge: PatchEdge, s: T) -> CurveWeights<T> {
     // The two limits are the plain and the boundary (phantom point) patch; delegating keeps
     // them bit-identical to those patches in every orientation.
     if s.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
-        return bspline_curves(u, v, 0);
+        return bspline_curve_bounded(x, false, false);
     }
     if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
-        return bspline_curves(u, v, edge.mask());
+        let m = edge.mask();
+        return if dir == 0 {
+            bspline_curve_bounded(x, m & BOUNDARY_U0 != 0, m & BOUNDARY_U1 != 0)
+        } else {
+            bspline_curve_bounded(x, m & BOUNDARY_V0 != 0, m & BOUNDARY_V1 != 0)
+        };
     }
-    match edge {
-        PatchEdge::U1 => [crease_curve_td(u, T::ONE - u, s), bspline_curve(v)],
-        PatchEdge::U0 => [
-            crease_curve_td(T::ONE - u, u, s).reversed(),
-            bspline_curve(v),
-        ],
-        PatchEdge::V1 => [bspline_curve(u), crease_curve_td(v, T::ONE - v, s)],
-        PatchEdge::V0 => [
-            bspline_curve(u),
-            crease_curve_td(T::ONE - v, v, s).reversed(),
-        ],
+    match (edge, dir) {
+        (PatchEdge::U1, 0) => crease_curve_td(x, T::ONE - x, s),
+        (PatchEdge::U0, 0) => crease_curve_td(T::ONE - x, x, s).reversed(),
+        (PatchEdge::V1, 1) => crease_curve_td(x, T::ONE - x, s),
+        (PatchEdge::V0, 1) => crease_curve_td(T::ONE - x, x, s).reversed(),
+        _ => bspline_curve(x),
     }
 }
 

@@ -25,7 +25,7 @@
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
-use crate::limit::eval::PatchCache;
+use crate::limit::curve_eval::CurveCache;
 use crate::limit::LimitSurface;
 use rayon::prelude::*;
 
@@ -80,7 +80,7 @@ pub fn chord_errors(
         .zip(p.queries.par_chunks(CHUNK))
         .zip(needed.par_chunks(CHUNK))
         .for_each(|((out, q), need)| {
-            let mut cache = PatchCache::new();
+            let mut cache = CurveCache::new();
             for ((x, &(f, u, v)), &need) in out.iter_mut().zip(q).zip(need) {
                 if need {
                     *x = cache
@@ -94,7 +94,7 @@ pub fn chord_errors(
         .par_chunks(CHUNK)
         .zip(p.triangle_uv.par_chunks(CHUNK))
         .flat_map_iter(|(tris, uvs)| {
-            let mut cache = PatchCache::new();
+            let mut cache = CurveCache::new();
             let mut found = Vec::new();
             for (tri, &(ptex, c)) in tris.iter().zip(uvs) {
                 if !measured(ptex) {

@@ -13,7 +13,7 @@
 use rayon::prelude::*;
 
 use super::rates::ScreenCamera;
-use crate::limit::eval::PatchCache;
+use crate::limit::curve_eval::CurveCache;
 use crate::limit::patch_map::EMPTY;
 use crate::limit::{LimitSurface, PatchTable};
 use crate::topology::Topology;
@@ -154,7 +154,7 @@ impl RateCurves {
                         return 0.0;
                     }
                     // One cache per curve: its samples mostly share patches.
-                    let mut cache = PatchCache::new();
+                    let mut cache = CurveCache::new();
                     line.clear();
                     line.extend(
                         q.iter()
@@ -273,11 +273,13 @@ mod tests {
     use super::*;
     use crate::limit::PatchOptions;
 
-    /// Measures through one patch cache per curve equal those of a fresh evaluation per
-    /// sample, bit for bit; dead curves (holes) measure zero; the layout has one curve per
-    /// edge and six per ptex face of every face that is not a hole.
+    /// Measures through one curve cache per curve ([`CurveCache`]: collapsed patches) agree
+    /// with those of the exact evaluation per sample to rounding (a few units in the last
+    /// place of the surface's extent, over the sample spacing or its square); dead curves
+    /// (holes) measure zero; the layout has one curve per edge and six per ptex face of every
+    /// face that is not a hole.
     #[test]
-    fn cached_curve_measures_equal_fresh_evaluations() {
+    fn cached_curve_measures_agree_with_exact_evaluations() {
         let mut mesh = crate::shapes::pole(7);
         mesh.holes.push(2);
         let t = crate::Topology::new(&mesh).unwrap();
@@ -293,6 +295,8 @@ mod tests {
             t.num_edges() + ISOLINES_PER_PTEX * ptex_live as usize
         );
         assert!(curves.live.iter().any(|&l| l) && !curves.live.iter().all(|&l| l));
+        let diag = crate::mesh::bbox_diagonal(&surface.points);
+        let mut worst = 0.0f64;
         for m in [CurveMeasure::SecondDerivative, CurveMeasure::Speed] {
             let cached = curves.measure(&surface, &m);
             for (c, q) in curves.queries.chunks_exact(CURVE_POINTS).enumerate() {
@@ -305,9 +309,24 @@ mod tests {
                 } else {
                     0.0
                 };
-                assert_eq!(cached[c].to_bits(), want.to_bits(), "curve {c}");
+                let steps = CURVE_SAMPLES as f64;
+                let spacing = match m {
+                    CurveMeasure::SecondDerivative => steps * steps,
+                    _ => steps,
+                };
+                let rounding = 16.0 * f64::from(f32::EPSILON) * f64::from(diag) * spacing;
+                assert!(
+                    (cached[c] - want).abs() <= rounding,
+                    "curve {c}: {} vs {want}",
+                    cached[c]
+                );
+                worst = worst.max((cached[c] - want).abs() / rounding);
+                if !curves.live[c] {
+                    assert_eq!(cached[c], 0.0, "dead curve {c}");
+                }
             }
         }
+        eprintln!("worst difference: {worst:.3} of the rounding allowed");
     }
 
     /// Measures of another mesh's curves are refused, naming the policy; uniform rates need

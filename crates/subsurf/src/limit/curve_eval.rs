@@ -1,0 +1,309 @@
+//! Positions of many nearby points of a limit surface, for the tessellation's rate curves and
+//! chord checks: a tensor-product patch is collapsed once along the parameter its queries
+//! share, and each query then sums four points.
+//!
+//! A regular or single-crease patch is `P(s, t) = x₀ + Σ_j Σ_i a_i(s) b_j(t) d_{ji}` with
+//! `d = x − x₀` ([`super::eval`]) and curves `a`, `b` that each depend on one parameter
+//! ([`crate::patch::basis::patch_curve`]). For a fixed `t` its rows collapse to four points
+//! `r_i = Σ_j b_j(t) d_{ji}`, and `P = x₀ + Σ_i a_i(s) r_i`: 12 products a query instead of
+//! the 16 tensor weights and 48 products of [`super::LimitSurface::eval_position`]. Along an
+//! isoline of constant `v` every query after the first in a patch reuses the rows; along one of
+//! constant `u` the columns `c_j = Σ_i a_i(s) d_{ji}` likewise (the direction is picked when the
+//! second query repeats the first one's `s`). Anywhere else a query pays one collapse (48
+//! products), still fewer than the tensor. Gregory patches are summed whole.
+//!
+//! The sums run in another order than [`super::LimitSurface::eval_position`]'s, so positions
+//! agree with it to rounding (a few units in the last place of the patch's extent), not bit
+//! for bit; the rate curves and the chord check only compare distances far above that.
+
+use super::patch_map::{clamp01, Cell};
+use super::LimitSurface;
+use crate::patch::basis::{
+    patch_curve, patch_curve_shape, patch_position_weights, CurveShape, PatchKind,
+};
+use crate::real::Real;
+
+/// A collapsed patch: four points along the free parameter, for one value of the fixed one;
+/// where the free curve is one cubic (a B-spline, its boundary phantoms folded into the
+/// points), its power-basis coefficients instead, so that a query is a Horner sum.
+#[derive(Debug, Clone, Copy)]
+struct Collapsed<R> {
+    /// The fixed parameter's value (the patch's own `t` for rows, `s` for columns).
+    at: R,
+    /// The four points, relative to the patch's first control point, or the coefficients of
+    /// `1, x, x², x³`.
+    points: [[R; 3]; 4],
+    /// Whether `points` are coefficients.
+    cubic: bool,
+}
+
+impl<R: Real> Collapsed<R> {
+    /// No collapse (NaN equals no parameter).
+    fn none() -> Self {
+        Collapsed {
+            at: R::from_f64(f64::NAN),
+            points: [[R::ZERO; 3]; 4],
+            cubic: false,
+        }
+    }
+
+    /// The collapse at `at` of the points `Σ_m w d` over the terms `term(k, m) = (w, d)`,
+    /// `k` the point, `m = 0..4` the fixed direction's index; `shape` is the free curve's.
+    #[inline(always)]
+    fn new(at: R, shape: CurveShape, term: impl Fn(usize, usize) -> (R, [R; 3])) -> Self {
+        let mut p = [[R::ZERO; 3]; 4];
+        for (k, q) in p.iter_mut().enumerate() {
+            for m in 0..4 {
+                let (w, d) = term(k, m);
+                for c in 0..3 {
+                    q[c] += w * d[c];
+                }
+            }
+        }
+        let CurveShape::BSpline { low, high } = shape else {
+            return Collapsed {
+                at,
+                points: p,
+                cubic: false,
+            };
+        };
+        let two = R::from_f64(2.0);
+        let (p1, p2) = (p[1], p[2]);
+        for c in 0..3 {
+            // Phantom points (`fold_phantom_low`, `fold_phantom_high`).
+            if low {
+                p[0][c] = two * p1[c] - p2[c];
+            }
+            if high {
+                p[3][c] = two * p2[c] - p1[c];
+            }
+        }
+        // The uniform cubic B-spline in the power basis.
+        let (half, sixth) = (R::from_f64(0.5), R::from_f64(1.0 / 6.0));
+        let points = [0, 1, 2].map(|c| {
+            let [a, b, d, e] = [p[0][c], p[1][c], p[2][c], p[3][c]];
+            [
+                sixth * (a + R::from_f64(4.0) * b + d),
+                half * (d - a),
+                half * (a - two * b + d),
+                sixth * (e - a + R::from_f64(3.0) * (b - d)),
+            ]
+        });
+        Collapsed {
+            at,
+            points: [0, 1, 2, 3].map(|k| [points[0][k], points[1][k], points[2][k]]),
+            cubic: true,
+        }
+    }
+
+    /// The point at `x` along the free parameter; `weights` gives the free curve's weights
+    /// when the collapse is not a cubic.
+    #[inline(always)]
+    fn along(&self, x: R, weights: impl FnOnce() -> [R; 4]) -> [R; 3] {
+        if self.cubic {
+            let k = &self.points;
+            [0, 1, 2].map(|c| k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c])))
+        } else {
+            sum4(&weights(), &self.points)
+        }
+    }
+}
+
+/// The control points of the last patch found and its last collapses (module documentation).
+/// One cache serves one surface.
+#[derive(Debug, Clone)]
+pub struct CurveCache<R> {
+    /// The square of the patch map's leaf last found.
+    cell: Option<Cell>,
+    patch: usize,
+    x0: [R; 3],
+    d: [[R; 3]; 20],
+    n: usize,
+    /// Rows collapsed at a `t` (along `s`); at NaN when none.
+    rows: Collapsed<R>,
+    /// Columns collapsed at an `s` (along `t`); at NaN when none.
+    cols: Collapsed<R>,
+    /// The previous query's `s` in this patch (NaN: none).
+    last_s: R,
+}
+
+impl<R: Real> Default for CurveCache<R> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// `Σ_k w_k p_k` over four points, in order.
+#[inline(always)]
+fn sum4<R: Real>(w: &[R; 4], p: &[[R; 3]; 4]) -> [R; 3] {
+    let mut r = [R::ZERO; 3];
+    for (w, p) in w.iter().zip(p) {
+        for c in 0..3 {
+            r[c] += *w * p[c];
+        }
+    }
+    r
+}
+
+impl<R: Real> CurveCache<R> {
+    /// An empty cache.
+    pub fn new() -> Self {
+        CurveCache {
+            cell: None,
+            patch: usize::MAX,
+            x0: [R::ZERO; 3],
+            d: [[R::ZERO; 3]; 20],
+            n: 0,
+            rows: Collapsed::none(),
+            cols: Collapsed::none(),
+            last_s: R::from_f64(f64::NAN),
+        }
+    }
+
+    /// The position of `surface` at `(u, v)` of ptex face `ptex` (clamped to `[0, 1]`);
+    /// `None` in a hole, for a ptex index out of range or a non-finite parameter, as
+    /// [`LimitSurface::eval_position`], which it equals to rounding.
+    pub fn position(
+        &mut self,
+        surface: &LimitSurface<R>,
+        ptex: usize,
+        u: R,
+        v: R,
+    ) -> Option<[R; 3]> {
+        if !(u.is_finite() && v.is_finite()) {
+            return None;
+        }
+        let (u, v) = (clamp01(u), clamp01(v));
+        let t = &surface.table;
+        // The last patch's square first: nearby queries skip the walk down the tree.
+        let p = match self.cell {
+            Some(c) if c.contains(ptex, u, v) => c.patch,
+            _ => {
+                let c = t.patch_map.find_cell(ptex, u, v)?;
+                self.cell = Some(c);
+                c.patch
+            }
+        } as usize;
+        if p != self.patch {
+            let cvs = t.patch_cvs(p);
+            assert!(
+                cvs.len() <= self.d.len(),
+                "patch {p} has {} points",
+                cvs.len()
+            );
+            let x0 = surface.points[cvs[0] as usize];
+            for (d, &cv) in self.d.iter_mut().zip(cvs) {
+                let x = surface.points[cv as usize];
+                *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
+            }
+            (self.patch, self.x0, self.n) = (p, x0, cvs.len());
+            (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
+            self.last_s = R::from_f64(f64::NAN);
+        }
+        let kind = t.patch_type(p).kind();
+        let param = &t.params[p];
+        let sharpness = R::from_f32(t.sharpness[p]);
+        if matches!(kind, PatchKind::GregoryBasis(_)) {
+            // The tensor does not factor.
+            let w = patch_position_weights(kind, param, sharpness, u, v);
+            let mut sum = [R::ZERO; 3];
+            for (w, d) in w.iter().zip(&self.d[..self.n]) {
+                for c in 0..3 {
+                    sum[c] += *w * d[c];
+                }
+            }
+            return Some([0, 1, 2].map(|c| self.x0[c] + sum[c]));
+        }
+        let (s, tt) = param.normalize(u, v);
+        let curve = |dir: usize, x: R| {
+            patch_curve(kind, param, sharpness, dir, x).map_or([R::ZERO; 4], |w| w.p)
+        };
+        let walking_t = self.last_s == s;
+        self.last_s = s;
+        let rel = if self.rows.at == tt {
+            self.rows.along(s, || curve(0, s))
+        } else if self.cols.at == s {
+            self.cols.along(tt, || curve(1, tt))
+        } else if walking_t {
+            // Columns at this `s`: c_j = Σ_i a_i d_{ji}.
+            let a = curve(0, s);
+            let shape = patch_curve_shape(kind, param, sharpness, 1);
+            self.cols = Collapsed::new(s, shape, |j, i| (a[i], self.d[4 * j + i]));
+            self.cols.along(tt, || curve(1, tt))
+        } else {
+            // Rows at this `t`: r_i = Σ_j b_j d_{ji}.
+            let b = curve(1, tt);
+            let shape = patch_curve_shape(kind, param, sharpness, 0);
+            self.rows = Collapsed::new(tt, shape, |i, j| (b[j], self.d[4 * j + i]));
+            self.rows.along(s, || curve(0, s))
+        };
+        Some([0, 1, 2].map(|c| self.x0[c] + rel[c]))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limit::{PatchOptions, PatchTable};
+
+    /// Along rows, columns and scattered points of every patch kind (a pole of valence 7 with
+    /// a crease and a boundary: regular, single-crease and Gregory patches), positions agree
+    /// with the exact evaluation to a few units in the last place of the surface's extent;
+    /// holes and bad parameters give `None` as it does.
+    #[test]
+    fn positions_agree_with_the_evaluation() {
+        let mut mesh = crate::shapes::pole(7);
+        mesh.holes.push(2);
+        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
+        mesh.creases.push(crate::mesh::Crease {
+            v0,
+            v1,
+            sharpness: 2.5,
+        });
+        let t = crate::Topology::new(&mesh).unwrap();
+        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let s = LimitSurface::new(table, &mesh.positions);
+        let diag = crate::mesh::bbox_diagonal(&s.points);
+        let kinds: std::collections::HashSet<_> = (0..s.table.num_patches())
+            .map(|p| format!("{:?}", s.table.patch_type(p).kind()))
+            .collect();
+        assert!(kinds.len() >= 3, "{kinds:?}");
+        let n = s.table.ptex_offsets.last().copied().unwrap() as usize;
+        let mut worst = 0.0f32;
+        let mut compared = 0;
+        for ptex in 0..n {
+            // Rows, then columns, then a scatter, each through one cache.
+            let grid = |k: usize| k as f32 / 16.0;
+            let walks: [Vec<(f32, f32)>; 3] = [
+                (0..17 * 3)
+                    .map(|k| (grid(k % 17), 0.25 * (1 + k / 17) as f32))
+                    .collect(),
+                (0..17 * 3)
+                    .map(|k| (0.25 * (1 + k / 17) as f32, grid(k % 17)))
+                    .collect(),
+                (0..40)
+                    .map(|k| (((k * 7) % 40) as f32 / 39.0, ((k * 13) % 40) as f32 / 39.0))
+                    .collect(),
+            ];
+            for walk in walks {
+                let mut cache = CurveCache::new();
+                for (u, v) in walk {
+                    let want = s.eval_position(ptex, u, v);
+                    let got = cache.position(&s, ptex, u, v);
+                    assert_eq!(want.is_some(), got.is_some(), "ptex {ptex} ({u}, {v})");
+                    if let (Some(a), Some(b)) = (want, got) {
+                        compared += 1;
+                        for c in 0..3 {
+                            worst = worst.max((a[c] - b[c]).abs());
+                        }
+                    }
+                }
+            }
+            let mut cache = CurveCache::new();
+            assert_eq!(cache.position(&s, ptex, f32::NAN, 0.5), None);
+        }
+        assert!(compared > 500, "{compared}");
+        assert!(worst <= 8.0 * f32::EPSILON * diag, "{worst:e} of {diag}");
+        assert!(CurveCache::new().position(&s, n, 0.5, 0.5).is_none());
+    }
+}
