@@ -67,33 +67,29 @@ impl<R: Real> Collapsed<R> {
                 cubic: false,
             };
         };
-        let two = R::from_f64(2.0);
-        let (p1, p2) = (p[1], p[2]);
+        let mut points = [[R::ZERO; 3]; 4];
         for c in 0..3 {
-            // Phantom points (`fold_phantom_low`, `fold_phantom_high`).
-            if low {
-                p[0][c] = two * p1[c] - p2[c];
-            }
-            if high {
-                p[3][c] = two * p2[c] - p1[c];
+            let k = power_basis(folded([p[0][c], p[1][c], p[2][c], p[3][c]], low, high));
+            for (q, k) in points.iter_mut().zip(k) {
+                q[c] = k;
             }
         }
-        // The uniform cubic B-spline in the power basis.
-        let (half, sixth) = (R::from_f64(0.5), R::from_f64(1.0 / 6.0));
-        let points = [0, 1, 2].map(|c| {
-            let [a, b, d, e] = [p[0][c], p[1][c], p[2][c], p[3][c]];
-            [
-                sixth * (a + R::from_f64(4.0) * b + d),
-                half * (d - a),
-                half * (a - two * b + d),
-                sixth * (e - a + R::from_f64(3.0) * (b - d)),
-            ]
-        });
         Collapsed {
             at,
-            points: [0, 1, 2, 3].map(|k| [points[0][k], points[1][k], points[2][k]]),
+            points,
             cubic: true,
         }
+    }
+
+    /// `x0 +` the cubic at `x` (a collapse with `cubic` set).
+    #[inline(always)]
+    fn horner(&self, x0: &[R; 3], x: R) -> [R; 3] {
+        let k = &self.points;
+        let mut r = *x0;
+        for c in 0..3 {
+            r[c] += k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
+        }
+        r
     }
 
     /// The point at `x` along the free parameter; `weights` gives the free curve's weights
@@ -102,7 +98,11 @@ impl<R: Real> Collapsed<R> {
     fn along(&self, x: R, weights: impl FnOnce() -> [R; 4]) -> [R; 3] {
         if self.cubic {
             let k = &self.points;
-            [0, 1, 2].map(|c| k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c])))
+            let mut r = [R::ZERO; 3];
+            for c in 0..3 {
+                r[c] = k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
+            }
+            r
         } else {
             sum4(&weights(), &self.points)
         }
@@ -113,8 +113,13 @@ impl<R: Real> Collapsed<R> {
 /// One cache serves one surface.
 #[derive(Debug, Clone)]
 pub struct CurveCache<R> {
-    /// The square of the patch map's leaf last found.
-    cell: Option<Cell>,
+    /// The ptex face of the leaf last found (its patch's data below; `usize::MAX`: none).
+    ptex: usize,
+    /// Its square as in [`Cell::local`]: `2^level`, `iu`, `iv`.
+    square: [R; 3],
+    /// Whether the leaf's square is the patch's own (`PatchParam::normalize` then equals
+    /// [`Cell::local`], the same operations); else queries are normalized.
+    own_square: bool,
     patch: usize,
     x0: [R; 3],
     d: [[R; 3]; 20],
@@ -123,14 +128,49 @@ pub struct CurveCache<R> {
     rows: Collapsed<R>,
     /// Columns collapsed at an `s` (along `t`); at NaN when none.
     cols: Collapsed<R>,
-    /// The previous query's `s` in this patch (NaN: none).
-    last_s: R,
+    /// The previous query's ptex face and `u` (clamped; NaN: none), in any patch.
+    last: (usize, R),
 }
 
 impl<R: Real> Default for CurveCache<R> {
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The four points of a uniform cubic B-spline segment with its first (`low`) or last
+/// (`high`) point replaced by the phantom `2 P1 − P2` (`2 P2 − P1`), as
+/// `fold_phantom_low` and `fold_phantom_high` fold them into the weights.
+#[inline(always)]
+fn folded<R: Real>(mut p: [R; 4], low: bool, high: bool) -> [R; 4] {
+    let two = R::from_f64(2.0);
+    let (p1, p2) = (p[1], p[2]);
+    if low {
+        p[0] = two * p1 - p2;
+    }
+    if high {
+        p[3] = two * p2 - p1;
+    }
+    p
+}
+
+/// The coefficients of `1, x, x², x³` of the uniform cubic B-spline segment with points `p`.
+#[inline(always)]
+fn power_basis<R: Real>(p: [R; 4]) -> [R; 4] {
+    let [a, b, d, e] = p;
+    let (two, half, sixth) = (R::from_f64(2.0), R::from_f64(0.5), R::from_f64(1.0 / 6.0));
+    [
+        sixth * (a + R::from_f64(4.0) * b + d),
+        half * (d - a),
+        half * (a - two * b + d),
+        sixth * (e - a + R::from_f64(3.0) * (b - d)),
+    ]
+}
+
+/// `a + b`.
+#[inline(always)]
+fn add<R: Real>(a: &[R; 3], b: &[R; 3]) -> [R; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 /// `Σ_k w_k p_k` over four points, in order.
@@ -149,20 +189,23 @@ impl<R: Real> CurveCache<R> {
     /// An empty cache.
     pub fn new() -> Self {
         CurveCache {
-            cell: None,
+            ptex: usize::MAX,
+            square: [R::ZERO; 3],
+            own_square: false,
             patch: usize::MAX,
             x0: [R::ZERO; 3],
             d: [[R::ZERO; 3]; 20],
             n: 0,
             rows: Collapsed::none(),
             cols: Collapsed::none(),
-            last_s: R::from_f64(f64::NAN),
+            last: (usize::MAX, R::from_f64(f64::NAN)),
         }
     }
 
     /// The position of `surface` at `(u, v)` of ptex face `ptex` (clamped to `[0, 1]`);
     /// `None` in a hole, for a ptex index out of range or a non-finite parameter, as
     /// [`LimitSurface::eval_position`], which it equals to rounding.
+    #[inline]
     pub fn position(
         &mut self,
         surface: &LimitSurface<R>,
@@ -174,32 +217,82 @@ impl<R: Real> CurveCache<R> {
             return None;
         }
         let (u, v) = (clamp01(u), clamp01(v));
-        let t = &surface.table;
-        // The last patch's square first: nearby queries skip the walk down the tree.
-        let p = match self.cell {
-            Some(c) if c.contains(ptex, u, v) => c.patch,
-            _ => {
-                let c = t.patch_map.find_cell(ptex, u, v)?;
-                self.cell = Some(c);
-                c.patch
+        // The last leaf's square first: nearby queries skip the walk down the tree, and a
+        // row or column of a cubic already collapsed is a Horner sum.
+        if let Some((s, t)) = self.local(ptex, u, v) {
+            if self.own_square {
+                if self.rows.cubic && self.rows.at == t {
+                    self.last = (ptex, u);
+                    return Some(self.rows.horner(&self.x0, s));
+                }
+                if self.cols.cubic && self.cols.at == s {
+                    self.last = (ptex, u);
+                    return Some(self.cols.horner(&self.x0, t));
+                }
             }
-        } as usize;
-        if p != self.patch {
-            let cvs = t.patch_cvs(p);
-            assert!(
-                cvs.len() <= self.d.len(),
-                "patch {p} has {} points",
-                cvs.len()
-            );
-            let x0 = surface.points[cvs[0] as usize];
-            for (d, &cv) in self.d.iter_mut().zip(cvs) {
-                let x = surface.points[cv as usize];
-                *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
-            }
-            (self.patch, self.x0, self.n) = (p, x0, cvs.len());
-            (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
-            self.last_s = R::from_f64(f64::NAN);
         }
+        self.miss(surface, ptex, u, v)
+    }
+
+    /// [`Self::position`] past the cached collapses: finds and loads the patch if needed,
+    /// then collapses it.
+    #[inline(never)]
+    fn miss(&mut self, surface: &LimitSurface<R>, ptex: usize, u: R, v: R) -> Option<[R; 3]> {
+        if self.local(ptex, u, v).is_none() {
+            let c = surface.table.patch_map.find_cell(ptex, u, v)?;
+            self.load(surface, c);
+        }
+        // A query with the previous one's `u` walks along `v`: columns.
+        let walking_v = self.last == (ptex, u);
+        self.last = (ptex, u);
+        Some(self.collapse(surface, u, v, walking_v))
+    }
+
+    /// [`Cell::local`] of the cached leaf, from its scale and corner kept as `R`.
+    #[inline(always)]
+    fn local(&self, ptex: usize, u: R, v: R) -> Option<(R, R)> {
+        let [scale, iu, iv] = self.square;
+        let inside = |x: R, i: R| {
+            let a = x * scale - i;
+            (a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))).then_some(a)
+        };
+        if ptex != self.ptex {
+            return None;
+        }
+        Some((inside(u, iu)?, inside(v, iv)?))
+    }
+
+    /// Gathers the points of the patch of leaf `c`, relative to its first.
+    fn load(&mut self, surface: &LimitSurface<R>, c: Cell) {
+        let t = &surface.table;
+        let p = c.patch as usize;
+        let cvs = t.patch_cvs(p);
+        assert!(
+            cvs.len() <= self.d.len(),
+            "patch {p} has {} points",
+            cvs.len()
+        );
+        let x0 = surface.points[cvs[0] as usize];
+        for (d, &cv) in self.d.iter_mut().zip(cvs) {
+            let x = surface.points[cv as usize];
+            *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
+        }
+        let param = &t.params[p];
+        self.own_square = param.square() == (c.level, c.iu, c.iv);
+        self.square = [
+            R::pow2(c.level as i32),
+            R::from_f64(f64::from(c.iu)),
+            R::from_f64(f64::from(c.iv)),
+        ];
+        (self.ptex, self.patch, self.x0, self.n) = (c.ptex as usize, p, x0, cvs.len());
+        (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
+    }
+
+    /// The position at `(u, v)` (clamped, in the loaded patch) by a collapse (columns when
+    /// `walking_v`, else rows) or, for a Gregory patch, its whole sum.
+    fn collapse(&mut self, surface: &LimitSurface<R>, u: R, v: R, walking_v: bool) -> [R; 3] {
+        let t = &surface.table;
+        let p = self.patch;
         let kind = t.patch_type(p).kind();
         let param = &t.params[p];
         let sharpness = R::from_f32(t.sharpness[p]);
@@ -212,19 +305,17 @@ impl<R: Real> CurveCache<R> {
                     sum[c] += *w * d[c];
                 }
             }
-            return Some([0, 1, 2].map(|c| self.x0[c] + sum[c]));
+            return add(&self.x0, &sum);
         }
         let (s, tt) = param.normalize(u, v);
         let curve = |dir: usize, x: R| {
             patch_curve(kind, param, sharpness, dir, x).map_or([R::ZERO; 4], |w| w.p)
         };
-        let walking_t = self.last_s == s;
-        self.last_s = s;
         let rel = if self.rows.at == tt {
             self.rows.along(s, || curve(0, s))
         } else if self.cols.at == s {
             self.cols.along(tt, || curve(1, tt))
-        } else if walking_t {
+        } else if walking_v {
             // Columns at this `s`: c_j = Σ_i a_i d_{ji}.
             let a = curve(0, s);
             let shape = patch_curve_shape(kind, param, sharpness, 1);
@@ -237,7 +328,7 @@ impl<R: Real> CurveCache<R> {
             self.rows = Collapsed::new(tt, shape, |i, j| (b[j], self.d[4 * j + i]));
             self.rows.along(s, || curve(0, s))
         };
-        Some([0, 1, 2].map(|c| self.x0[c] + rel[c]))
+        add(&self.x0, &rel)
     }
 }
 

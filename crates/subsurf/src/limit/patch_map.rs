@@ -52,19 +52,28 @@ pub struct Cell {
 
 impl Cell {
     /// Whether [`PatchMap::find`] sends `(u, v)` of ptex face `ptex` here (after clamping).
-    /// The walk compares `u` with dyadic fractions (its doublings and subtractions are exact),
-    /// so it ends in the square with `iu ≤ u 2^level < iu + 1`, or the last one at `u = 1`;
-    /// `u 2^level − iu` is exact in that range and rounds monotonically outside it, so the
-    /// comparisons below decide the same.
     #[inline]
     pub fn contains<R: Real>(&self, ptex: usize, u: R, v: R) -> bool {
+        self.local(ptex, clamp01(u), clamp01(v)).is_some()
+    }
+
+    /// `(u, v)` (in `[0, 1]`) in the square's own coordinates, `u 2^level − iu` and
+    /// `v 2^level − iv`, when [`PatchMap::find`] sends it here; `None` otherwise. The walk
+    /// compares `u` with dyadic fractions (its doublings and subtractions are exact), so it
+    /// ends in the square with `iu ≤ u 2^level < iu + 1`, or the last one at `u = 1`; the
+    /// local coordinate is exact in that range and rounds monotonically outside it, so the
+    /// comparisons below decide the same.
+    #[inline]
+    pub fn local<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<(R, R)> {
         let scale = R::pow2(self.level as i32);
         let inside = |x: R, i: u32| {
-            let x = clamp01(x);
             let a = x * scale - R::from_f64(f64::from(i));
-            a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))
+            (a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))).then_some(a)
         };
-        ptex == self.ptex as usize && inside(u, self.iu) && inside(v, self.iv)
+        if ptex != self.ptex as usize {
+            return None;
+        }
+        Some((inside(u, self.iu)?, inside(v, self.iv)?))
     }
 }
 

@@ -192,6 +192,13 @@ impl PatchParam {
         (self.depth() as i32 - self.non_quad_root() as i32).max(0)
     }
 
+    /// The patch's square in its ptex face's quadtree: `(level, u, v)`, the square
+    /// `[u, u + 1] × [v, v + 1]` scaled by `2^-level` (what [`Self::normalize`] maps to
+    /// `[0, 1]²`).
+    pub fn square(&self) -> (u32, u32, u32) {
+        (self.ptex_level() as u32, self.u() as u32, self.v() as u32)
+    }
+
     /// Side length `φ = 2^-(depth − nonquad)` of the patch's square in its ptex face.
     pub fn param_fraction(&self) -> f32 {
         1.0 / (1u32 << self.ptex_level()) as f32
