@@ -32,6 +32,9 @@ use rayon::prelude::*;
 /// Queries or triangles per parallel chunk.
 const CHUNK: usize = 512;
 
+/// Slots of the memo of samples evaluated again from another ptex face.
+const SEEN: usize = 64;
+
 /// At most this many plans.
 pub const ROUNDS: usize = 8;
 
@@ -96,9 +99,17 @@ pub fn chord_errors(
         .flat_map_iter(|(tris, uvs)| {
             let mut cache = CurveCache::new();
             let mut found = Vec::new();
+            // Samples of other ptex faces evaluated from this one, by sample index (direct
+            // mapped: a sample joins several triangles of the face).
+            let mut seen = [(u32::MAX, [0.0f32; 3]); SEEN];
+            let mut seen_ptex = u32::MAX;
             for (tri, &(ptex, c)) in tris.iter().zip(uvs) {
                 if !measured(ptex) {
                     continue;
+                }
+                if ptex != seen_ptex {
+                    seen.iter_mut().for_each(|e| e.0 = u32::MAX);
+                    seen_ptex = ptex;
                 }
                 let mut at = |u: f32, v: f32| cache.position(surface, ptex as usize, u, v);
                 // A sample another ptex face evaluates is taken again from this one: the
@@ -107,10 +118,13 @@ pub fn chord_errors(
                 let x = [0, 1, 2].map(|k| {
                     let i = tri[k] as usize;
                     if p.queries[i].0 == ptex {
-                        positions[i]
-                    } else {
-                        at(c[k][0], c[k][1]).unwrap_or(positions[i])
+                        return positions[i];
                     }
+                    let e = &mut seen[i % SEEN];
+                    if e.0 != tri[k] {
+                        *e = (tri[k], at(c[k][0], c[k][1]).unwrap_or(positions[i]));
+                    }
+                    e.1
                 });
                 let mut w = 0.0f64;
                 for i in 0..3 {
