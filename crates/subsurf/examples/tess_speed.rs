@@ -1,19 +1,35 @@
 //! Time of rates + tessellation alone (the per-frame work of a renderer that re-tessellates),
 //! on the surface `--tolerance` tessellates (`surface::adaptive_surface`):
 //! `cargo run --release -p subsurf --example tess_speed [-- FILE TOLERANCE RUNS]` (default
-//! `testdata/shapes/catmark_car.obj`, `1e-3`, 21 runs). Prints the medians of the rate step,
-//! the tessellation (with the check of every triangle, `tess::check`) and both, in milliseconds, on all threads (`RAYON_NUM_THREADS`
-//! sets how many). One run under `valgrind --tool=callgrind` counts instructions.
+//! `testdata/shapes/catmark_car.obj`, `1e-3`, 21 runs). Prints medians in milliseconds, on all
+//! threads (`RAYON_NUM_THREADS` sets how many):
+//!
+//! - `one call`: `RatePolicy::rates` (its rate curves laid out, measured, turned into rates)
+//!   and the tessellation with the check of every triangle (`tess::check`);
+//! - `per frame`: the same with the rate curves laid out once (`RateCurves::new` reads only the
+//!   patch table, so a renderer keeps them, as `subsurf-gpu`'s `GpuRates` does): measure, rates,
+//!   checked tessellation;
+//! - the stages of one plan: layout, measure, rates from the measures, plan, chord check,
+//!   evaluation of the output.
+//!
+//! `ONLY=measure`, `ONLY=chord` or `ONLY=rates` runs that stage alone RUNS times after one warm-up (for
+//! `valgrind --tool=callgrind`: the difference of two run counts is the stage's instructions).
 
 use std::time::Instant;
 
 use subsurf::limit::PatchOptions;
-use subsurf::tess::{tessellate_within_tolerance, RatePolicy};
+use subsurf::tess::{
+    chord_errors, plan, tessellate_within_tolerance, CurveMeasure, RateCurves, RatePolicy,
+};
 use subsurf::Topology;
 
 fn median(mut t: Vec<f64>) -> f64 {
     t.sort_by(f64::total_cmp);
     t[t.len() / 2]
+}
+
+fn ms(a: Instant, b: Instant) -> f64 {
+    (b - a).as_secs_f64() * 1e3
 }
 
 fn main() {
@@ -38,28 +54,111 @@ fn main() {
     let RatePolicy::Tolerance(chords) = policy else {
         unreachable!()
     };
-    let (mut rates_ms, mut tess_ms, mut total_ms) = (Vec::new(), Vec::new(), Vec::new());
+    let m = CurveMeasure::SecondDerivative;
+    let curves = RateCurves::new(&s.table);
+    let face_of_ptex = s.table.ptex_base_faces();
+    let diagonal = |s: &subsurf::limit::LimitSurface| subsurf::mesh::bbox_diagonal(&s.points);
+    if let Ok(only) = std::env::var("ONLY") {
+        let measures = curves.measure(&s, &m);
+        let r = policy
+            .rates_from_measures(&s.table, diagonal(&s), &curves, &measures, "")
+            .unwrap();
+        let p = plan(&s.table, &r, "").unwrap();
+        for _ in 0..runs {
+            match only.as_str() {
+                "measure" => drop(std::hint::black_box(curves.measure(&s, &m))),
+                "chord" => drop(std::hint::black_box(chord_errors(
+                    &s,
+                    &p,
+                    &face_of_ptex,
+                    None,
+                ))),
+                "rates" => drop(std::hint::black_box(policy.rates_from_measures(
+                    &s.table,
+                    diagonal(&s),
+                    &curves,
+                    &measures,
+                    "",
+                ))),
+                other => panic!("ONLY={other}: measure, chord or rates"),
+            }
+        }
+        return;
+    }
+    let mut one_call = (Vec::new(), Vec::new(), Vec::new());
+    let mut frame = (Vec::new(), Vec::new());
+    let mut stages = vec![Vec::new(); 6];
     let mut triangles = 0;
     for _ in 0..runs {
+        // One call.
         let t0 = Instant::now();
         let r = policy.rates(&s, "--tolerance").unwrap();
         let t1 = Instant::now();
-        let t2 = Instant::now();
         let (_, out, _) = tessellate_within_tolerance(&s, r, chords, "").unwrap();
-        let t3 = Instant::now();
+        let t2 = Instant::now();
         triangles = std::hint::black_box(out).triangles.len();
-        rates_ms.push((t1 - t0).as_secs_f64() * 1e3);
-        tess_ms.push((t3 - t2).as_secs_f64() * 1e3);
-        total_ms.push(((t1 - t0) + (t3 - t2)).as_secs_f64() * 1e3);
+        one_call.0.push(ms(t0, t1));
+        one_call.1.push(ms(t1, t2));
+        one_call.2.push(ms(t0, t2));
+        // Per frame, the curves kept.
+        let t0 = Instant::now();
+        let measures = curves.measure(&s, &m);
+        let r = policy
+            .rates_from_measures(&s.table, diagonal(&s), &curves, &measures, "")
+            .unwrap();
+        let t1 = Instant::now();
+        let (_, out, _) = tessellate_within_tolerance(&s, r, chords, "").unwrap();
+        let t2 = Instant::now();
+        std::hint::black_box(out);
+        frame.0.push(ms(t0, t1));
+        frame.1.push(ms(t0, t2));
+        // The stages of one plan.
+        let t0 = Instant::now();
+        let c = RateCurves::new(&s.table);
+        let t1 = Instant::now();
+        let measures = c.measure(&s, &m);
+        let t2 = Instant::now();
+        let r = policy
+            .rates_from_measures(&s.table, diagonal(&s), &c, &measures, "")
+            .unwrap();
+        let t3 = Instant::now();
+        let p = plan(&s.table, &r, "").unwrap();
+        let t4 = Instant::now();
+        let e = chord_errors(&s, &p, &face_of_ptex, None);
+        let t5 = Instant::now();
+        let out = s.eval_plan(p);
+        let t6 = Instant::now();
+        std::hint::black_box((e, out));
+        for (k, (a, b)) in [(t0, t1), (t1, t2), (t2, t3), (t3, t4), (t4, t5), (t5, t6)]
+            .into_iter()
+            .enumerate()
+        {
+            stages[k].push(ms(a, b));
+        }
     }
     println!(
-        "{file} tolerance {tol:e}: {triangles} triangles, {} patches; rates {:.2} ms, tessellation \
-         checked {:.2} ms, both {:.2} ms (medians of {runs}, {} \
-         threads)",
+        "{file} tolerance {tol:e}: {triangles} triangles, {} patches, {} rate curves; medians of \
+         {runs}, {} threads",
         s.table.num_patches(),
-        median(rates_ms),
-        median(tess_ms),
-        median(total_ms),
+        curves.num_curves(),
         rayon::current_num_threads()
     );
+    println!(
+        "  one call: rates {:.2} ms, tessellation checked {:.2} ms, both {:.2} ms",
+        median(one_call.0),
+        median(one_call.1),
+        median(one_call.2)
+    );
+    println!(
+        "  per frame (curves kept): rates {:.2} ms, with the checked tessellation {:.2} ms",
+        median(frame.0),
+        median(frame.1)
+    );
+    let names = ["layout", "measure", "rates", "plan", "check", "evaluation"];
+    let parts: Vec<String> = names
+        .iter()
+        .zip(stages)
+        .map(|(n, t)| format!("{n} {:.2}", median(t)))
+        .collect();
+    println!("  stages (ms): {}", parts.join(", "));
 }

@@ -86,8 +86,28 @@ impl Mesh {
     }
 }
 
-/// Axis-aligned bounding box of a point set.
+/// Axis-aligned bounding box of a point set (NaN coordinates are passed over, as
+/// `f32::min` does). Large sets are split across the thread pool (rayon); `min` and `max` pick
+/// values, so the parts' boxes merge into the same box.
 pub fn bounding_box(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
+    /// Points per part.
+    const PART: usize = 1 << 15;
+    if points.len() <= 2 * PART {
+        return bounding_box_serial(points);
+    }
+    use rayon::prelude::*;
+    points
+        .par_chunks(PART)
+        .filter_map(bounding_box_serial)
+        .reduce_with(|(lo, hi), (l, h)| {
+            (
+                [0, 1, 2].map(|k| lo[k].min(l[k])),
+                [0, 1, 2].map(|k| hi[k].max(h[k])),
+            )
+        })
+}
+
+fn bounding_box_serial(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
     let first = *points.first()?;
     let (mut lo, mut hi) = (first, first);
     for p in points {

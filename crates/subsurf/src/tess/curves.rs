@@ -255,16 +255,20 @@ fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) ->
 /// second differences (the square root taken once, as in [`max_speed`]).
 fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
     let h = 1.0 / (c.len().max(2) - 1) as f64;
-    let best = c
-        .windows(3)
-        .map(|w| {
-            (0..3)
-                .map(|k| {
-                    (f64::from(w[0][k]) - 2.0 * f64::from(w[1][k]) + f64::from(w[2][k])).powi(2)
-                })
-                .sum::<f64>()
-        })
-        .fold(0.0, f64::max);
+    let wide = |p: [f32; 3]| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])];
+    let mut best = 0.0f64;
+    if let [first, second, rest @ ..] = c {
+        // Each sample widened once; the windows' sums as `(a − 2b + c)²` over x, y, z.
+        let (mut a, mut b) = (wide(*first), wide(*second));
+        for &p in rest {
+            let q = wide(p);
+            let sq = (0..3)
+                .map(|k| (a[k] - 2.0 * b[k] + q[k]).powi(2))
+                .sum::<f64>();
+            best = best.max(sq);
+            (a, b) = (b, q);
+        }
+    }
     best.sqrt() / (h * h)
 }
 
