@@ -1,16 +1,21 @@
 //! Positions of many nearby points of a limit surface, for the tessellation's rate curves and
 //! chord checks: a tensor-product patch is collapsed once along the parameter its queries
-//! share, and each query then sums four points.
+//! share, and each query then sums four points, or evaluates one cubic.
 //!
 //! A regular or single-crease patch is `P(s, t) = x₀ + Σ_j Σ_i a_i(s) b_j(t) d_{ji}` with
 //! `d = x − x₀` ([`super::eval`]) and curves `a`, `b` that each depend on one parameter
 //! ([`crate::patch::basis::patch_curve`]). For a fixed `t` its rows collapse to four points
-//! `r_i = Σ_j b_j(t) d_{ji}`, and `P = x₀ + Σ_i a_i(s) r_i`: 12 products a query instead of
-//! the 16 tensor weights and 48 products of [`super::LimitSurface::eval_position`]. Along an
-//! isoline of constant `v` every query after the first in a patch reuses the rows; along one of
-//! constant `u` the columns `c_j = Σ_i a_i(s) d_{ji}` likewise (the direction is picked when the
-//! second query repeats the first one's `s`). Anywhere else a query pays one collapse (48
-//! products), still fewer than the tensor. Gregory patches are summed whole.
+//! `r_i = Σ_j b_j(t) d_{ji}` (48 products), and `P = x₀ + Σ_i a_i(s) r_i`. Where the curve
+//! along `s` is a B-spline ([`crate::patch::basis::CurveShape::BSpline`]: regular patches, and
+//! single-crease ones along their crease), its boundary phantoms are folded into the four
+//! points and they become the cubic's coefficients in the power basis, so a query is a Horner
+//! sum (9 products) instead of the 16 tensor weights and 48 products of
+//! [`super::LimitSurface::eval_position`]. Along an isoline of constant `v` every query after
+//! the first in a patch reuses the rows; a query with the previous one's `u` collapses the
+//! columns `c_j = Σ_i a_i(s) d_{ji}` instead, which the next ones along `v` reuse. The square
+//! of the patch map's last leaf ([`super::patch_map::Cell`]) is tested before walking the
+//! tree again. Across a semi-sharp crease the curve's weights are formed per query; Gregory
+//! patches are summed whole.
 //!
 //! The sums run in another order than [`super::LimitSurface::eval_position`]'s, so positions
 //! agree with it to rounding (a few units in the last place of the patch's extent), not bit
