@@ -10,7 +10,10 @@
 //!   patch table, so a renderer keeps them, as `subsurf-gpu`'s `GpuRates` does): measure, rates,
 //!   checked tessellation;
 //! - the stages of one plan: layout, measure, rates from the measures, plan, chord check,
-//!   evaluation of the output.
+//!   evaluation of the output;
+//! - a frame under the screen-space policy (no check: what a renderer re-tessellates when its
+//!   camera moves), the curves kept: measure, rates, plan, evaluation, on an 800 x 600 image
+//!   framing the model seen along `-z` (orthographic), 16 pixels per edge.
 //!
 //! `ONLY=measure`, `ONLY=chord` or `ONLY=rates` runs that stage alone RUNS times after one warm-up (for
 //! `valgrind --tool=callgrind`: the difference of two run counts is the stage's instructions).
@@ -89,6 +92,37 @@ fn main() {
     let mut frame = (Vec::new(), Vec::new());
     let mut stages = vec![Vec::new(); 6];
     let mut triangles = 0;
+    // Orthographic, along -z, the bounding box framed in 800 x 600 pixels.
+    let (lo, hi) = subsurf::mesh::bounding_box(&s.points).unwrap();
+    let half = 0.55 * (hi[0] - lo[0]).max((hi[1] - lo[1]) * 4.0 / 3.0);
+    let (cx, cy) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
+    let (sx, sy) = (1.0 / half, 4.0 / 3.0 / half);
+    let screen = RatePolicy::Screen {
+        camera: subsurf::tess::ScreenCamera {
+            view_proj: [
+                [sx, 0.0, 0.0, 0.0],
+                [0.0, sy, 0.0, 0.0],
+                [0.0, 0.0, 0.0, 0.0],
+                [-cx * sx, -cy * sy, 0.0, 1.0],
+            ],
+            width: 800,
+            height: 600,
+        },
+        pixels: 16.0,
+    };
+    let screen_m = screen.measure().unwrap();
+    let (mut screen_ms, mut screen_triangles) = (Vec::new(), 0);
+    for _ in 0..runs {
+        let t0 = Instant::now();
+        let measures = curves.measure(&s, &screen_m);
+        let r = screen
+            .rates_from_measures(&s.table, diagonal(&s), &curves, &measures, "")
+            .unwrap();
+        let out = s.tessellate_rates(&r, "").unwrap();
+        let t1 = Instant::now();
+        screen_triangles = std::hint::black_box(out).triangles.len();
+        screen_ms.push(ms(t0, t1));
+    }
     for _ in 0..runs {
         // One call.
         let t0 = Instant::now();
@@ -153,6 +187,11 @@ fn main() {
         "  per frame (curves kept): rates {:.2} ms, with the checked tessellation {:.2} ms",
         median(frame.0),
         median(frame.1)
+    );
+    println!(
+        "  screen-space frame (curves kept, 16 px, no check): {:.2} ms, {screen_triangles} \
+         triangles",
+        median(screen_ms)
     );
     let names = ["layout", "measure", "rates", "plan", "check", "evaluation"];
     let parts: Vec<String> = names
