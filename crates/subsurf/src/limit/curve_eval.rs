@@ -342,34 +342,15 @@ mod tests {
     use super::*;
     use crate::limit::{PatchOptions, PatchTable};
 
-    /// Along rows, columns and scattered points of every patch kind (a pole of valence 7 with
-    /// a crease and a boundary: regular, single-crease and Gregory patches), positions agree
-    /// with the exact evaluation to a few units in the last place of the surface's extent;
-    /// holes and bad parameters give `None` as it does.
-    #[test]
-    fn positions_agree_with_the_evaluation() {
-        let mut mesh = crate::shapes::pole(7);
-        mesh.holes.push(2);
-        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
-        mesh.creases.push(crate::mesh::Crease {
-            v0,
-            v1,
-            sharpness: 2.5,
-        });
-        let t = crate::Topology::new(&mesh).unwrap();
-        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
-        let s = LimitSurface::new(table, &mesh.positions);
-        let diag = crate::mesh::bbox_diagonal(&s.points);
-        let kinds: std::collections::HashSet<_> = (0..s.table.num_patches())
-            .map(|p| format!("{:?}", s.table.patch_type(p).kind()))
-            .collect();
-        assert!(kinds.len() >= 3, "{kinds:?}");
+    /// The largest coordinate difference between the cache's positions and the exact
+    /// evaluation's along rows, columns and a scatter of every ptex face of `s` (each walk
+    /// through one cache), with the number compared; holes and bad parameters must give
+    /// `None` as the evaluation does.
+    fn worst_difference<R: Real>(s: &LimitSurface<R>) -> (f64, usize) {
         let n = s.table.ptex_offsets.last().copied().unwrap() as usize;
-        let mut worst = 0.0f32;
-        let mut compared = 0;
+        let (mut worst, mut compared) = (0.0f64, 0);
+        let grid = |k: usize| k as f32 / 16.0;
         for ptex in 0..n {
-            // Rows, then columns, then a scatter, each through one cache.
-            let grid = |k: usize| k as f32 / 16.0;
             let walks: [Vec<(f32, f32)>; 3] = [
                 (0..17 * 3)
                     .map(|k| (grid(k % 17), 0.25 * (1 + k / 17) as f32))
@@ -384,22 +365,67 @@ mod tests {
             for walk in walks {
                 let mut cache = CurveCache::new();
                 for (u, v) in walk {
+                    let (u, v) = (R::from_f32(u), R::from_f32(v));
                     let want = s.eval_position(ptex, u, v);
-                    let got = cache.position(&s, ptex, u, v);
-                    assert_eq!(want.is_some(), got.is_some(), "ptex {ptex} ({u}, {v})");
+                    let got = cache.position(s, ptex, u, v);
+                    assert_eq!(want.is_some(), got.is_some(), "ptex {ptex} ({u:?}, {v:?})");
                     if let (Some(a), Some(b)) = (want, got) {
                         compared += 1;
                         for c in 0..3 {
-                            worst = worst.max((a[c] - b[c]).abs());
+                            worst = worst.max((a[c] - b[c]).to_f64().abs());
                         }
                     }
                 }
             }
-            let mut cache = CurveCache::new();
-            assert_eq!(cache.position(&s, ptex, f32::NAN, 0.5), None);
+            let nan = R::from_f64(f64::NAN);
+            assert_eq!(CurveCache::new().position(s, ptex, nan, R::ZERO), None);
         }
+        let half = R::from_f64(0.5);
+        assert!(CurveCache::new().position(s, n, half, half).is_none());
+        (worst, compared)
+    }
+
+    /// Along rows, columns and scattered points of every patch kind (a pole of valence 7 with
+    /// a crease, a hole and a boundary: regular patches with and without folded boundaries,
+    /// single-crease and Gregory patches), positions agree with the exact evaluation to a few
+    /// units in the last place of the surface's extent, in `f32` and in `f64`.
+    #[test]
+    fn positions_agree_with_the_evaluation() {
+        let mut mesh = crate::shapes::pole(7);
+        mesh.holes.push(2);
+        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
+        mesh.creases.push(crate::mesh::Crease {
+            v0,
+            v1,
+            sharpness: 2.5,
+        });
+        let t = crate::Topology::new(&mesh).unwrap();
+        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let kinds: std::collections::HashSet<_> = (0..table.num_patches())
+            .map(|p| {
+                let kind = format!("{:?}", table.patch_type(p).kind());
+                let folded = matches!(
+                    patch_curve_shape(table.patch_type(p).kind(), &table.params[p], 0.0f32, 0),
+                    CurveShape::BSpline { low: true, .. } | CurveShape::BSpline { high: true, .. }
+                );
+                (kind, folded)
+            })
+            .collect();
+        assert!(kinds.len() >= 4, "{kinds:?}");
+        let s = LimitSurface::new(table, &mesh.positions);
+        let diag = f64::from(crate::mesh::bbox_diagonal(&s.points));
+        let (worst, compared) = worst_difference(&s);
         assert!(compared > 500, "{compared}");
-        assert!(worst <= 8.0 * f32::EPSILON * diag, "{worst:e} of {diag}");
-        assert!(CurveCache::new().position(&s, n, 0.5, 0.5).is_none());
+        assert!(
+            worst <= 8.0 * f64::from(f32::EPSILON) * diag,
+            "{worst:e} of {diag}"
+        );
+        let s64 = LimitSurface::<f64>::new(
+            PatchTable::build_real(&t, &PatchOptions::default()).unwrap(),
+            &mesh.positions,
+        );
+        let (worst, compared) = worst_difference(&s64);
+        assert!(compared > 500, "{compared}");
+        assert!(worst <= 8.0 * f64::EPSILON * diag, "{worst:e} of {diag}");
     }
 }
