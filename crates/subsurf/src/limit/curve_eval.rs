@@ -21,6 +21,7 @@
 //! agree with it to rounding (a few units in the last place of the patch's extent), not bit
 //! for bit; the rate curves and the chord check only compare distances far above that.
 
+use super::eval::gather_relative;
 use super::patch_map::{clamp01, Cell};
 use super::LimitSurface;
 use crate::patch::basis::{
@@ -271,17 +272,7 @@ impl<R: Real> CurveCache<R> {
     fn load(&mut self, surface: &LimitSurface<R>, c: Cell) {
         let t = &surface.table;
         let p = c.patch as usize;
-        let cvs = t.patch_cvs(p);
-        assert!(
-            cvs.len() <= self.d.len(),
-            "patch {p} has {} points",
-            cvs.len()
-        );
-        let x0 = surface.points[cvs[0] as usize];
-        for (d, &cv) in self.d.iter_mut().zip(cvs) {
-            let x = surface.points[cv as usize];
-            *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
-        }
+        let (x0, n) = gather_relative(surface, p, &mut self.d);
         let param = &t.params[p];
         self.own_square = param.square() == (c.level, c.iu, c.iv);
         self.square = [
@@ -289,7 +280,7 @@ impl<R: Real> CurveCache<R> {
             R::from_f64(f64::from(c.iu)),
             R::from_f64(f64::from(c.iv)),
         ];
-        (self.ptex, self.patch, self.x0, self.n) = (c.ptex as usize, p, x0, cvs.len());
+        (self.ptex, self.patch, self.x0, self.n) = (c.ptex as usize, p, x0, n);
         (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
     }
 

@@ -101,9 +101,28 @@ impl<R: Real> LimitSurface<R> {
     }
 
     /// The position of [`LimitSurface::eval_raw`] alone (the same sums, bit for bit), for
-    /// callers that need no derivatives (the tessellation rates).
+    /// callers that need no derivatives.
     pub fn eval_position(&self, ptex: usize, u: R, v: R) -> Option<[R; 3]> {
-        PatchCache::new().position(self, ptex, u, v)
+        if !(u.is_finite() && v.is_finite()) {
+            return None;
+        }
+        let (u, v) = (clamp01(u), clamp01(v));
+        let t = &self.table;
+        let p = t.patch_map.find(ptex, u, v)? as usize;
+        let mut d = [[R::ZERO; 3]; 20];
+        let (x0, n) = gather_relative(self, p, &mut d);
+        let kind = t.patch_type(p).kind();
+        let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
+        let mut r = [R::ZERO; 3];
+        for (w, d) in w.iter().zip(&d[..n]) {
+            for c in 0..3 {
+                r[c] += *w * d[c];
+            }
+        }
+        for c in 0..3 {
+            r[c] += x0[c];
+        }
+        Some(r)
     }
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
@@ -133,69 +152,19 @@ impl<R: Real> LimitSurface<R> {
     }
 }
 
-/// The control points of the last patch a position query found, relative to its first
-/// (`x − x₀`, as [`LimitSurface::eval_raw`] sums them), so that queries along a curve through
-/// one patch gather them once ([`PatchCache::position`]).
-#[derive(Debug, Clone)]
-pub(crate) struct PatchCache<R> {
-    patch: usize,
-    x0: [R; 3],
-    d: [[R; 3]; 20],
-    n: usize,
-}
-
-impl<R: Real> PatchCache<R> {
-    /// An empty cache.
-    pub(crate) fn new() -> Self {
-        PatchCache {
-            patch: usize::MAX,
-            x0: [R::ZERO; 3],
-            d: [[R::ZERO; 3]; 20],
-            n: 0,
-        }
+/// The control points of patch `p` of `surface` relative to its first (`x − x₀`, as
+/// [`LimitSurface::eval_raw`] sums them) into `d`: the first point and the number of points.
+pub(crate) fn gather_relative<R: Real>(
+    surface: &LimitSurface<R>,
+    p: usize,
+    d: &mut [[R; 3]; 20],
+) -> ([R; 3], usize) {
+    let cvs = surface.table.patch_cvs(p);
+    assert!(cvs.len() <= d.len(), "patch {p} has {} points", cvs.len());
+    let x0 = surface.points[cvs[0] as usize];
+    for (d, &cv) in d.iter_mut().zip(cvs) {
+        let x = surface.points[cv as usize];
+        *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
     }
-
-    /// [`LimitSurface::eval_position`] of `surface` at `(u, v)` of ptex face `ptex`, bit for
-    /// bit, reusing the control points gathered by the previous call when it found the same
-    /// patch (one cache serves one surface).
-    pub(crate) fn position(
-        &mut self,
-        surface: &LimitSurface<R>,
-        ptex: usize,
-        u: R,
-        v: R,
-    ) -> Option<[R; 3]> {
-        if !(u.is_finite() && v.is_finite()) {
-            return None;
-        }
-        let (u, v) = (clamp01(u), clamp01(v));
-        let t = &surface.table;
-        let p = t.patch_map.find(ptex, u, v)? as usize;
-        if p != self.patch {
-            let cvs = t.patch_cvs(p);
-            assert!(
-                cvs.len() <= self.d.len(),
-                "patch {p} has {} points",
-                cvs.len()
-            );
-            let x0 = surface.points[cvs[0] as usize];
-            for (d, &cv) in self.d.iter_mut().zip(cvs) {
-                let x = surface.points[cv as usize];
-                *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
-            }
-            (self.patch, self.x0, self.n) = (p, x0, cvs.len());
-        }
-        let kind = t.patch_type(p).kind();
-        let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
-        let mut r = [R::ZERO; 3];
-        for (w, d) in w.iter().zip(&self.d[..self.n]) {
-            for c in 0..3 {
-                r[c] += *w * d[c];
-            }
-        }
-        for c in 0..3 {
-            r[c] += self.x0[c];
-        }
-        Some(r)
-    }
+    (x0, cvs.len())
 }
