@@ -15,7 +15,7 @@
 //!   camera moves), the curves kept: measure, rates, plan, evaluation, on an 800 x 600 image
 //!   framing the model seen along `-z` (orthographic), 16 pixels per edge.
 //!
-//! `ONLY=measure`, `ONLY=chord` or `ONLY=rates` runs that stage alone RUNS times after one warm-up (for
+//! `ONLY=measure`, `ONLY=chord`, `ONLY=plan` or `ONLY=rates` runs that stage alone RUNS times after one warm-up (for
 //! `valgrind --tool=callgrind`: the difference of two run counts is the stage's instructions).
 
 use std::time::Instant;
@@ -76,6 +76,7 @@ fn main() {
                     &face_of_ptex,
                     None,
                 ))),
+                "plan" => drop(std::hint::black_box(plan(&s.table, &r, ""))),
                 "rates" => drop(std::hint::black_box(policy.rates_from_measures(
                     &s.table,
                     diagonal(&s),
@@ -83,7 +84,7 @@ fn main() {
                     &measures,
                     "",
                 ))),
-                other => panic!("ONLY={other}: measure, chord or rates"),
+                other => panic!("ONLY={other}: measure, chord, plan or rates"),
             }
         }
         return;

@@ -281,10 +281,26 @@ fn plan_with(
         .collect();
     check_memory(&ptex_rates)?;
 
-    let patterns: Vec<Option<QuadPattern>> = ptex_rates
-        .par_iter()
-        .map(|r| r.map(|(outer, inner)| QuadPattern::new(outer, Some(inner))))
+    // One pattern per distinct pair of rates (faces mostly share a few), built in parallel.
+    let mut distinct: Vec<([u32; 4], [u32; 2])> = Vec::new();
+    let mut index = std::collections::HashMap::new();
+    let pattern_of: Vec<Option<usize>> = ptex_rates
+        .iter()
+        .map(|r| {
+            r.map(|rates| {
+                *index.entry(rates).or_insert_with(|| {
+                    distinct.push(rates);
+                    distinct.len() - 1
+                })
+            })
+        })
         .collect();
+    let unique: Vec<QuadPattern> = distinct
+        .par_iter()
+        .map(|&(outer, inner)| QuadPattern::new(outer, Some(inner)))
+        .collect();
+    let patterns: Vec<Option<&QuadPattern>> =
+        pattern_of.iter().map(|i| i.map(|i| &unique[i])).collect();
 
     // Global keys.
     let mut next = t.num_vertices();
