@@ -21,7 +21,9 @@
 //! narrower than the triangles (within `2^-s` of a semi-sharp corner), which finer rates
 //! resolve once they pass its width: such a face's rates are doubled, up to 8x those of its
 //! first miss, and then left (no chord error there: the surface is not continuous at that
-//! scale). The output is evaluated once, from the last plan.
+//! scale). The first plan's output is evaluated before its check, whose corner positions it
+//! gives, and is the tessellation when no face misses (the usual case); after a raise the last
+//! plan is evaluated.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
@@ -63,35 +65,31 @@ pub fn chord_errors(
     face_of_ptex: &[u32],
     only: Option<&[bool]>,
 ) -> Vec<f64> {
+    chord_errors_at(surface, p, face_of_ptex, only, None)
+}
+
+/// [`chord_errors`], the samples' positions given (`known`: the output's, one per query of
+/// `p`) or evaluated here.
+fn chord_errors_at(
+    surface: &LimitSurface,
+    p: &AdaptivePlan,
+    face_of_ptex: &[u32],
+    only: Option<&[bool]>,
+    known: Option<&[[f32; 3]]>,
+) -> Vec<f64> {
     let nf = surface.table.base.num_faces();
     let measured = |ptex: u32| only.is_none_or(|o| o[face_of_ptex[ptex as usize] as usize]);
     // The positions of the samples the measured triangles join, as the output will have
     // them (a sample shared by two ptex faces is evaluated from the first, as `eval_plan`).
-    let mut needed = vec![only.is_none(); p.queries.len()];
-    if only.is_some() {
-        for (tri, &(ptex, _)) in p.triangles.iter().zip(&p.triangle_uv) {
-            if measured(ptex) {
-                tri.iter().for_each(|&i| needed[i as usize] = true);
-            }
+    let evaluated;
+    let positions: &[[f32; 3]] = match known {
+        Some(known) => known,
+        None => {
+            let measured: &dyn Fn(u32) -> bool = &measured;
+            evaluated = evaluate_joined(surface, p, only.map(|_| measured));
+            &evaluated
         }
-    }
-    // In chunks, one cache each, walked by plain loops: rayon's per-item adaptors move their
-    // state (the cache's 20 points) with every item.
-    let mut positions = vec![[0.0f32; 3]; p.queries.len()];
-    positions
-        .par_chunks_mut(CHUNK)
-        .zip(p.queries.par_chunks(CHUNK))
-        .zip(needed.par_chunks(CHUNK))
-        .for_each(|((out, q), need)| {
-            let mut cache = CurveCache::new();
-            for ((x, &(f, u, v)), &need) in out.iter_mut().zip(q).zip(need) {
-                if need {
-                    *x = cache
-                        .position(surface, f as usize, u, v)
-                        .unwrap_or_default();
-                }
-            }
-        });
+    };
     let found: Vec<(u32, f64)> = p
         .triangles
         .par_chunks(CHUNK)
@@ -161,6 +159,41 @@ pub fn chord_errors(
     out
 }
 
+/// The positions of the queries of `p` that the triangles of measured ptex faces join (all
+/// when `measured` is `None`; the others read zero), through one [`CurveCache`] per chunk.
+fn evaluate_joined(
+    surface: &LimitSurface,
+    p: &AdaptivePlan,
+    measured: Option<&dyn Fn(u32) -> bool>,
+) -> Vec<[f32; 3]> {
+    let mut needed = vec![measured.is_none(); p.queries.len()];
+    if let Some(measured) = measured {
+        for (tri, &(ptex, _)) in p.triangles.iter().zip(&p.triangle_uv) {
+            if measured(ptex) {
+                tri.iter().for_each(|&i| needed[i as usize] = true);
+            }
+        }
+    }
+    // In chunks, one cache each, walked by plain loops: rayon's per-item adaptors move their
+    // state (the cache's 20 points) with every item.
+    let mut positions = vec![[0.0f32; 3]; p.queries.len()];
+    positions
+        .par_chunks_mut(CHUNK)
+        .zip(p.queries.par_chunks(CHUNK))
+        .zip(needed.par_chunks(CHUNK))
+        .for_each(|((out, q), need)| {
+            let mut cache = CurveCache::new();
+            for ((x, &(f, u, v)), &need) in out.iter_mut().zip(q).zip(need) {
+                if need {
+                    *x = cache
+                        .position(surface, f as usize, u, v)
+                        .unwrap_or_default();
+                }
+            }
+        });
+    positions
+}
+
 /// A tessellation of `surface` at `rates`, with the rates of base faces whose triangles miss
 /// `tolerance` (a fraction of the points' bounding-box diagonal) at an edge midpoint or
 /// centroid raised until they meet it (module documentation): the rates used, the
@@ -184,8 +217,12 @@ pub fn tessellate_within_tolerance(
     let mut first = vec![0u32; t.num_faces()];
     let mut last = vec![0.0f64; t.num_faces()];
     let mut stuck = vec![false; t.num_faces()];
+    // The output of the first plan, evaluated first: its positions are the check's, and it
+    // is the tessellation when no face is raised (the usual case).
+    let mut output = Some(surface.eval_queries(&p.queries));
     for _ in 1..ROUNDS {
-        let errors = chord_errors(surface, &p, &face_of_ptex, only.as_deref());
+        let known = output.as_ref().map(|(positions, _)| &positions[..]);
+        let errors = chord_errors_at(surface, &p, &face_of_ptex, only.as_deref(), known);
         if rates.faces.is_empty() {
             rates.faces = vec![0; t.num_faces()];
         }
@@ -256,9 +293,19 @@ pub fn tessellate_within_tolerance(
         }
         p = plan(table, &rates, origin)?;
         only = Some(again);
+        output = None;
     }
     let uv = std::mem::take(&mut p.triangle_uv);
-    Ok((rates, surface.eval_plan(p), uv))
+    let tessellation = match output {
+        Some((positions, normals)) => AdaptiveTessellation {
+            positions,
+            normals,
+            triangles: p.triangles,
+            edge_rates: p.edge_rates,
+        },
+        None => surface.eval_plan(p),
+    };
+    Ok((rates, tessellation, uv))
 }
 
 /// What [`tessellate_within_tolerance`] gives: the rates used, the tessellation, and per

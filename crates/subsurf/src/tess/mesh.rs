@@ -460,16 +460,28 @@ impl LimitSurface {
 
     /// Evaluates a plan made by [`plan`] for this surface's table.
     pub fn eval_plan(&self, plan: AdaptivePlan) -> AdaptiveTessellation {
-        let evaluated: Vec<_> = plan
-            .queries
-            .par_iter()
-            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
-            .collect();
+        let (positions, normals) = self.eval_queries(&plan.queries);
         AdaptiveTessellation {
-            positions: evaluated.iter().map(|e| e.p).collect(),
-            normals: evaluated.iter().map(|e| e.n).collect(),
+            positions,
+            normals,
             triangles: plan.triangles,
             edge_rates: plan.edge_rates,
         }
+    }
+
+    /// Positions and normals of a plan's queries, as [`Self::eval_plan`] gives them (zero
+    /// in a hole).
+    pub(crate) fn eval_queries(
+        &self,
+        queries: &[(u32, f32, f32)],
+    ) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
+        let evaluated: Vec<_> = queries
+            .par_iter()
+            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
+            .collect();
+        (
+            evaluated.iter().map(|e| e.p).collect(),
+            evaluated.iter().map(|e| e.n).collect(),
+        )
     }
 }
