@@ -67,15 +67,7 @@ fn main() {
             .rates_from_measures(&s.table, diagonal(&s), &curves, &measures, "")
             .unwrap();
         let p = plan(&s.table, &r, "").unwrap();
-        if std::env::var("SHOW").is_ok() {
-            let e = chord_errors(&s, &p, &face_of_ptex, None);
-            let bound = f64::from(chords) * f64::from(diagonal(&s));
-            println!(
-                "plan triangles {} faces missing {}",
-                p.triangles.len(),
-                e.iter().filter(|&&w| w > bound).count()
-            );
-        }
+        eprintln!("{} points", s.points.len());
         for _ in 0..runs {
             match only.as_str() {
                 "measure" => drop(std::hint::black_box(curves.measure(&s, &m))),
