@@ -154,6 +154,7 @@ impl<R: Real> LimitSurface<R> {
 
 /// The control points of patch `p` of `surface` relative to its first (`x − x₀`, as
 /// [`LimitSurface::eval_raw`] sums them) into `d`: the first point and the number of points.
+#[inline(always)]
 pub(crate) fn gather_relative<R: Real>(
     surface: &LimitSurface<R>,
     p: usize,
