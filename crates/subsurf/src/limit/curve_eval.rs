@@ -208,6 +208,13 @@ impl<R: Real> CurveCache<R> {
         }
     }
 
+    /// Forgets the patch and the previous query: the next queries give what they give
+    /// through a new cache.
+    pub fn reset(&mut self) {
+        self.ptex = usize::MAX;
+        self.last = (usize::MAX, R::from_f64(f64::NAN));
+    }
+
     /// The position of `surface` at `(u, v)` of ptex face `ptex` (clamped to `[0, 1]`);
     /// `None` in a hole, for a ptex index out of range or a non-finite parameter, as
     /// [`LimitSurface::eval_position`], which it equals to rounding.

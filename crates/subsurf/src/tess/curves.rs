@@ -142,28 +142,34 @@ impl RateCurves {
         self.live.len()
     }
 
-    /// Every curve measured on the CPU, from `surface`'s positions (in parallel, rayon).
+    /// Every curve measured on the CPU, from `surface`'s positions (in parallel, rayon, in
+    /// chunks of curves walked by plain loops).
     pub fn measure(&self, surface: &LimitSurface, m: &CurveMeasure) -> Vec<f64> {
-        self.queries
-            .par_chunks_exact(CURVE_POINTS)
-            .zip(self.live.par_iter())
-            .map_init(
-                || Vec::with_capacity(CURVE_POINTS),
-                |line, (q, &live)| {
+        /// Curves per parallel chunk.
+        const CHUNK: usize = 64;
+        let mut out = vec![0.0; self.num_curves()];
+        out.par_chunks_mut(CHUNK)
+            .zip(self.queries.par_chunks(CHUNK * CURVE_POINTS))
+            .zip(self.live.par_chunks(CHUNK))
+            .for_each(|((out, q), live)| {
+                let mut cache = CurveCache::new();
+                let mut line = Vec::with_capacity(CURVE_POINTS);
+                for ((out, q), &live) in out.iter_mut().zip(q.chunks_exact(CURVE_POINTS)).zip(live)
+                {
                     if !live {
-                        return 0.0;
+                        continue;
                     }
-                    // One cache per curve: its samples mostly share patches.
-                    let mut cache = CurveCache::new();
+                    // As fresh for each curve: its samples mostly share patches.
+                    cache.reset();
                     line.clear();
                     line.extend(
                         q.iter()
                             .filter_map(|&(p, u, v)| cache.position(surface, p as usize, u, v)),
                     );
-                    measure(line, m)
-                },
-            )
-            .collect()
+                    *out = measure(&line, m);
+                }
+            });
+        out
     }
 }
 
@@ -313,6 +319,15 @@ mod tests {
                 } else {
                     0.0
                 };
+                // A cache reset between curves gives what a new one gives, bit for bit.
+                if curves.live[c] {
+                    let mut cache = CurveCache::new();
+                    let own: Vec<[f32; 3]> = q
+                        .iter()
+                        .filter_map(|&(p, u, v)| cache.position(&surface, p as usize, u, v))
+                        .collect();
+                    assert_eq!(cached[c].to_bits(), measure(&own, &m).to_bits(), "curve {c}");
+                }
                 let steps = CURVE_SAMPLES as f64;
                 let spacing = match m {
                     CurveMeasure::SecondDerivative => steps * steps,
