@@ -326,7 +326,11 @@ mod tests {
                         .iter()
                         .filter_map(|&(p, u, v)| cache.position(&surface, p as usize, u, v))
                         .collect();
-                    assert_eq!(cached[c].to_bits(), measure(&own, &m).to_bits(), "curve {c}");
+                    assert_eq!(
+                        cached[c].to_bits(),
+                        measure(&own, &m).to_bits(),
+                        "curve {c}"
+                    );
                 }
                 let steps = CURVE_SAMPLES as f64;
                 let spacing = match m {
