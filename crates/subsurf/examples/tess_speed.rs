@@ -67,7 +67,6 @@ fn main() {
             .rates_from_measures(&s.table, diagonal(&s), &curves, &measures, "")
             .unwrap();
         let p = plan(&s.table, &r, "").unwrap();
-        eprintln!("{} points", s.points.len());
         for _ in 0..runs {
             match only.as_str() {
                 "measure" => drop(std::hint::black_box(curves.measure(&s, &m))),
