@@ -161,12 +161,17 @@ impl RateCurves {
                     }
                     // As fresh for each curve: its samples mostly share patches.
                     cache.reset();
-                    line.clear();
-                    line.extend(
-                        q.iter()
-                            .filter_map(|&(p, u, v)| cache.position(surface, p as usize, u, v)),
-                    );
-                    *out = measure(&line, m);
+                    let points = q
+                        .iter()
+                        .filter_map(|&(p, u, v)| cache.position(surface, p as usize, u, v));
+                    *out = if let CurveMeasure::SecondDerivative = m {
+                        // Streamed: the windows need no list.
+                        max_second_derivative(points)
+                    } else {
+                        line.clear();
+                        line.extend(points);
+                        measure(&line, m)
+                    };
                 }
             });
         out
@@ -230,7 +235,7 @@ impl EdgeSide {
 /// differences; zero for fewer than two (three) points.
 pub fn measure(points: &[[f32; 3]], m: &CurveMeasure) -> f64 {
     match m {
-        CurveMeasure::SecondDerivative => max_second_derivative(points),
+        CurveMeasure::SecondDerivative => max_second_derivative(points.iter().copied()),
         CurveMeasure::Speed => max_speed(points, Some),
         CurveMeasure::ScreenSpeed(camera) => {
             max_speed(points, |p| camera.project(p).map(|q| [q[0], q[1], 0.0]))
@@ -259,14 +264,17 @@ fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) ->
 
 /// Largest second derivative (per unit parameter squared) along evenly spaced samples, from
 /// second differences (the square root taken once, as in [`max_speed`]).
-fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
-    let h = 1.0 / (c.len().max(2) - 1) as f64;
+fn max_second_derivative(c: impl IntoIterator<Item = [f32; 3]>) -> f64 {
     let wide = |p: [f32; 3]| [f64::from(p[0]), f64::from(p[1]), f64::from(p[2])];
     let mut best = 0.0f64;
-    if let [first, second, rest @ ..] = c {
-        // Each sample widened once; the windows' sums as `(a − 2b + c)²` over x, y, z.
-        let (mut a, mut b) = (wide(*first), wide(*second));
-        for &p in rest {
+    // Each sample widened once; the windows' sums as `(a − 2b + c)²` over x, y, z.
+    let mut c = c.into_iter();
+    let mut n = 0usize;
+    if let (Some(first), Some(second)) = (c.next(), c.next()) {
+        n = 2;
+        let (mut a, mut b) = (wide(first), wide(second));
+        for p in c {
+            n += 1;
             let q = wide(p);
             let sq = (0..3)
                 .map(|k| (a[k] - 2.0 * b[k] + q[k]).powi(2))
@@ -275,6 +283,7 @@ fn max_second_derivative(c: &[[f32; 3]]) -> f64 {
             (a, b) = (b, q);
         }
     }
+    let h = 1.0 / (n.max(2) - 1) as f64;
     best.sqrt() / (h * h)
 }
 
