@@ -103,16 +103,11 @@ impl RenderMesh {
 
     /// Bounding box of the vertices and line ends; `None` when there is nothing to draw.
     pub fn bounding_box(&self) -> Option<([f32; 3], [f32; 3])> {
-        let mut pts = self.points();
-        let first = *pts.next()?;
-        let (mut lo, mut hi) = (first, first);
-        for p in pts {
-            for k in 0..3 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        Some((lo, hi))
+        use subsurf::mesh::{bounding_box, union_box};
+        union_box(
+            bounding_box(&self.positions),
+            bounding_box(self.lines.as_flattened()),
+        )
     }
 
     /// The sphere about the bounding-box centre through the farthest vertex or line end.

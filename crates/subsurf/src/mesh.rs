@@ -89,7 +89,7 @@ impl Mesh {
 /// Axis-aligned bounding box of a point set (NaN coordinates are passed over, as
 /// `f32::min` does). Large sets are split across the thread pool (rayon); `min` and `max` pick
 /// values, so the parts' boxes merge into the same box.
-pub fn bounding_box(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
+pub fn bounding_box(points: &[[f32; 3]]) -> Option<Box3> {
     /// Points per part.
     const PART: usize = 1 << 15;
     if points.len() <= 2 * PART {
@@ -98,16 +98,27 @@ pub fn bounding_box(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
     use rayon::prelude::*;
     points
         .par_chunks(PART)
-        .filter_map(bounding_box_serial)
-        .reduce_with(|(lo, hi), (l, h)| {
-            (
-                [0, 1, 2].map(|k| lo[k].min(l[k])),
-                [0, 1, 2].map(|k| hi[k].max(h[k])),
-            )
-        })
+        .map(bounding_box_serial)
+        .reduce(|| None, union_box)
 }
 
-fn bounding_box_serial(points: &[[f32; 3]]) -> Option<([f32; 3], [f32; 3])> {
+/// The box of two point sets from theirs (either may be empty): the same as the box of both
+/// together, bit for bit (`min` and `max` pick values and pass NaN over).
+pub fn union_box(a: Option<Box3>, b: Option<Box3>) -> Option<Box3> {
+    match (a, b) {
+        (Some((lo, hi)), Some((l, h))) => Some((
+            [0, 1, 2].map(|k| lo[k].min(l[k])),
+            [0, 1, 2].map(|k| hi[k].max(h[k])),
+        )),
+        (a, None) => a,
+        (None, b) => b,
+    }
+}
+
+/// An axis-aligned box: its lowest and highest corners.
+pub type Box3 = ([f32; 3], [f32; 3]);
+
+fn bounding_box_serial(points: &[[f32; 3]]) -> Option<Box3> {
     points.first()?;
     // Compare and select (which the compiler turns into packed min and max): a NaN
     // coordinate fails both tests and is passed over; a coordinate that is NaN in every

@@ -21,8 +21,8 @@
 //! agree with it to rounding (a few units in the last place of the patch's extent), not bit
 //! for bit; the rate curves and the chord check only compare distances far above that.
 
-use super::eval::gather_relative;
-use super::patch_map::{clamp01, Cell};
+use super::eval::{gather_relative, weighted_sum};
+use super::patch_map::{clamp01, square_local, Cell};
 use super::LimitSurface;
 use crate::patch::basis::{
     patch_curve, patch_curve_shape, patch_position_weights, CurveShape, PatchKind,
@@ -87,13 +87,13 @@ impl<R: Real> Collapsed<R> {
         }
     }
 
-    /// `x0 +` the cubic at `x` (a collapse with `cubic` set).
+    /// The cubic at `x` (a collapse with `cubic` set), relative to the patch's first point.
     #[inline(always)]
-    fn horner(&self, x0: &[R; 3], x: R) -> [R; 3] {
+    fn cubic_at(&self, x: R) -> [R; 3] {
         let k = &self.points;
-        let mut r = *x0;
+        let mut r = [R::ZERO; 3];
         for c in 0..3 {
-            r[c] += k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
+            r[c] = k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
         }
         r
     }
@@ -103,12 +103,7 @@ impl<R: Real> Collapsed<R> {
     #[inline(always)]
     fn along(&self, x: R, weights: impl FnOnce() -> [R; 4]) -> [R; 3] {
         if self.cubic {
-            let k = &self.points;
-            let mut r = [R::ZERO; 3];
-            for c in 0..3 {
-                r[c] = k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
-            }
-            r
+            self.cubic_at(x)
         } else {
             sum4(&weights(), &self.points)
         }
@@ -232,47 +227,60 @@ impl<R: Real> CurveCache<R> {
         let (u, v) = (clamp01(u), clamp01(v));
         // The last leaf's square first: nearby queries skip the walk down the tree, and a
         // row or column of a cubic already collapsed is a Horner sum.
-        if let Some((s, t)) = self.local(ptex, u, v) {
-            if self.own_square {
-                if self.rows.cubic && self.rows.at == t {
-                    self.last = (ptex, u);
-                    return Some(self.rows.horner(&self.x0, s));
-                }
-                if self.cols.cubic && self.cols.at == s {
-                    self.last = (ptex, u);
-                    return Some(self.cols.horner(&self.x0, t));
-                }
+        let local = self.local(ptex, u, v);
+        if let (Some((s, t)), true) = (local, self.own_square) {
+            if self.rows.cubic && self.rows.at == t {
+                self.last = (ptex, u);
+                return Some(add(&self.x0, &self.rows.cubic_at(s)));
+            }
+            if self.cols.cubic && self.cols.at == s {
+                self.last = (ptex, u);
+                return Some(add(&self.x0, &self.cols.cubic_at(t)));
             }
         }
-        self.miss(surface, ptex, u, v)
+        self.miss(surface, ptex, u, v, local)
     }
 
-    /// [`Self::position`] past the cached collapses: finds and loads the patch if needed,
-    /// then collapses it.
+    /// [`Self::position`] past the cached collapses (`local`: the query in the cached leaf's
+    /// square, if it lies there): finds and loads the patch if needed, then collapses it.
     #[inline(never)]
-    fn miss(&mut self, surface: &LimitSurface<R>, ptex: usize, u: R, v: R) -> Option<[R; 3]> {
-        if self.local(ptex, u, v).is_none() {
-            let c = surface.table.patch_map.find_cell(ptex, u, v)?;
-            self.load(surface, c);
-        }
+    fn miss(
+        &mut self,
+        surface: &LimitSurface<R>,
+        ptex: usize,
+        u: R,
+        v: R,
+        local: Option<(R, R)>,
+    ) -> Option<[R; 3]> {
+        let local = match local {
+            Some(st) => st,
+            None => {
+                let c = surface.table.patch_map.find_cell(ptex, u, v)?;
+                self.load(surface, c);
+                self.local(ptex, u, v)?
+            }
+        };
+        // The patch's own parameters: the square's when it is the patch's.
+        let param = &surface.table.params[self.patch];
+        let (s, t) = if self.own_square {
+            local
+        } else {
+            param.normalize(u, v)
+        };
         // A query with the previous one's `u` walks along `v`: columns.
         let walking_v = self.last == (ptex, u);
         self.last = (ptex, u);
-        Some(self.collapse(surface, u, v, walking_v))
+        Some(self.collapse(surface, u, v, (s, t), walking_v))
     }
 
     /// [`Cell::local`] of the cached leaf, from its scale and corner kept as `R`.
     #[inline(always)]
     fn local(&self, ptex: usize, u: R, v: R) -> Option<(R, R)> {
-        let [scale, iu, iv] = self.square;
-        let inside = |x: R, i: R| {
-            let a = x * scale - i;
-            (a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))).then_some(a)
-        };
         if ptex != self.ptex {
             return None;
         }
-        Some((inside(u, iu)?, inside(v, iv)?))
+        let [scale, iu, iv] = self.square;
+        Some((square_local(u, scale, iu)?, square_local(v, scale, iv)?))
     }
 
     /// Gathers the points of the patch of leaf `c`, relative to its first.
@@ -291,9 +299,17 @@ impl<R: Real> CurveCache<R> {
         (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
     }
 
-    /// The position at `(u, v)` (clamped, in the loaded patch) by a collapse (columns when
-    /// `walking_v`, else rows) or, for a Gregory patch, its whole sum.
-    fn collapse(&mut self, surface: &LimitSurface<R>, u: R, v: R, walking_v: bool) -> [R; 3] {
+    /// The position at `(u, v)` (clamped, in the loaded patch; `(s, tt)` in the patch's own
+    /// parameters) by a collapse (columns when `walking_v`, else rows) or, for a Gregory
+    /// patch, its whole sum.
+    fn collapse(
+        &mut self,
+        surface: &LimitSurface<R>,
+        u: R,
+        v: R,
+        (s, tt): (R, R),
+        walking_v: bool,
+    ) -> [R; 3] {
         let t = &surface.table;
         let p = self.patch;
         let kind = t.patch_type(p).kind();
@@ -302,15 +318,8 @@ impl<R: Real> CurveCache<R> {
         if matches!(kind, PatchKind::GregoryBasis(_)) {
             // The tensor does not factor.
             let w = patch_position_weights(kind, param, sharpness, u, v);
-            let mut sum = [R::ZERO; 3];
-            for (w, d) in w.iter().zip(&self.d[..self.n]) {
-                for c in 0..3 {
-                    sum[c] += *w * d[c];
-                }
-            }
-            return add(&self.x0, &sum);
+            return weighted_sum(&self.x0, &w[..self.n], &self.d[..self.n]);
         }
-        let (s, tt) = param.normalize(u, v);
         let curve = |dir: usize, x: R| {
             patch_curve(kind, param, sharpness, dir, x).map_or([R::ZERO; 4], |w| w.p)
         };

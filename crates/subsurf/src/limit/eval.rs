@@ -113,16 +113,7 @@ impl<R: Real> LimitSurface<R> {
         let (x0, n) = gather_relative(self, p, &mut d);
         let kind = t.patch_type(p).kind();
         let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
-        let mut r = [R::ZERO; 3];
-        for (w, d) in w.iter().zip(&d[..n]) {
-            for c in 0..3 {
-                r[c] += *w * d[c];
-            }
-        }
-        for c in 0..3 {
-            r[c] += x0[c];
-        }
-        Some(r)
+        Some(weighted_sum(&x0, &w[..n], &d[..n]))
     }
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
@@ -168,4 +159,19 @@ pub(crate) fn gather_relative<R: Real>(
         *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
     }
     (x0, cvs.len())
+}
+
+/// `x₀ + Σ_k w_k d_k`, summed in order (as [`LimitSurface::eval_raw`] sums positions).
+#[inline(always)]
+pub(crate) fn weighted_sum<R: Real>(x0: &[R; 3], w: &[R], d: &[[R; 3]]) -> [R; 3] {
+    let mut r = [R::ZERO; 3];
+    for (w, d) in w.iter().zip(d) {
+        for c in 0..3 {
+            r[c] += *w * d[c];
+        }
+    }
+    for c in 0..3 {
+        r[c] += x0[c];
+    }
+    r
 }

@@ -65,16 +65,24 @@ impl Cell {
     /// comparisons below decide the same.
     #[inline]
     pub fn local<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<(R, R)> {
-        let scale = R::pow2(self.level as i32);
-        let inside = |x: R, i: u32| {
-            let a = x * scale - R::from_f64(f64::from(i));
-            (a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))).then_some(a)
-        };
         if ptex != self.ptex as usize {
             return None;
         }
-        Some((inside(u, self.iu)?, inside(v, self.iv)?))
+        let scale = R::pow2(self.level as i32);
+        let at = |i: u32| R::from_f64(f64::from(i));
+        Some((
+            square_local(u, scale, at(self.iu))?,
+            square_local(v, scale, at(self.iv))?,
+        ))
     }
+}
+
+/// `x` (in `[0, 1]`) in the coordinate of the squares of side `1 / scale` whose `i`-th it
+/// falls in, as [`PatchMap::find`] assigns it ([`Cell::local`]); `None` outside that square.
+#[inline(always)]
+pub(crate) fn square_local<R: Real>(x: R, scale: R, i: R) -> Option<R> {
+    let a = x * scale - i;
+    (a >= R::ZERO && (a < R::ONE || (a == R::ONE && x == R::ONE))).then_some(a)
 }
 
 /// `(du, dv)` offset of quadrant `q`.

@@ -7,9 +7,9 @@ use super::bspline::bspline_patch_weights;
 use super::bspline::{bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1};
 use super::gregory::{gregory_patch_weights, GregoryDerivatives};
 use super::param::PatchParam;
-use super::single_crease::single_crease_curve;
 #[cfg(test)]
 use super::single_crease::single_crease_patch_weights;
+use super::single_crease::{crease_curve_across, single_crease_shape};
 use super::weights::{CurveWeights, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -122,7 +122,7 @@ pub fn patch_curve<T: Real>(
 ) -> Option<CurveWeights<T>> {
     match patch_curve_shape(kind, param, sharpness, dir) {
         CurveShape::BSpline { low, high } => Some(bspline_curve_bounded(x, low, high)),
-        CurveShape::Crease(edge) => Some(single_crease_curve(x, dir, edge, sharpness)),
+        CurveShape::Crease(edge) => Some(crease_curve_across(x, edge, sharpness)),
         CurveShape::None => None,
     }
 }
@@ -145,7 +145,25 @@ pub enum CurveShape {
     None,
 }
 
-/// The shape of [`patch_curve`] along `dir` for a patch (the one place that decides it).
+impl CurveShape {
+    /// The B-spline along `dir` of a patch with boundary mask `mask` (bits as
+    /// `bspline::BOUNDARY_*`): its ends folded where the mask marks them.
+    #[inline(always)]
+    pub fn bounded(mask: u8, dir: usize) -> CurveShape {
+        let (low, high) = if dir == 0 {
+            (BOUNDARY_U0, BOUNDARY_U1)
+        } else {
+            (BOUNDARY_V0, BOUNDARY_V1)
+        };
+        CurveShape::BSpline {
+            low: mask & low != 0,
+            high: mask & high != 0,
+        }
+    }
+}
+
+/// The shape of [`patch_curve`] along `dir` for a patch (the one place that decides it;
+/// single-crease patches through [`single_crease_shape`]).
 #[inline(always)]
 pub fn patch_curve_shape<T: Real>(
     kind: PatchKind,
@@ -154,31 +172,11 @@ pub fn patch_curve_shape<T: Real>(
     dir: usize,
 ) -> CurveShape {
     let bits = param.boundary() & 0xf;
-    let (low, high) = if dir == 0 {
-        (BOUNDARY_U0, BOUNDARY_U1)
-    } else {
-        (BOUNDARY_V0, BOUNDARY_V1)
-    };
-    let folds = |m: u8| CurveShape::BSpline {
-        low: m & low != 0,
-        high: m & high != 0,
-    };
     match kind {
-        PatchKind::Regular => folds(bits),
+        PatchKind::Regular => CurveShape::bounded(bits, dir),
         PatchKind::SingleCrease => match PatchEdge::from_index(bits.trailing_zeros()) {
-            Some(edge) => {
-                if sharpness.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
-                    folds(0)
-                } else if sharpness >= T::from_f64(crate::SHARPNESS_INFINITE as f64) {
-                    folds(edge.mask())
-                } else if edge.index() % 2 == 1 - dir as u32 {
-                    // Edges 1 and 3 (u = 1, u = 0) crease the curves along u, 0 and 2 along v.
-                    CurveShape::Crease(edge)
-                } else {
-                    folds(0)
-                }
-            }
-            None => folds(0),
+            Some(edge) => single_crease_shape(dir, edge, sharpness),
+            None => CurveShape::bounded(0, dir),
         },
         PatchKind::GregoryBasis(_) => CurveShape::None,
     }

@@ -77,9 +77,8 @@
 //! | `V1` (`v = 1`, grid row 2) | `v` | `v` |
 //! | `V0` (`v = 0`, grid row 1) | `v`, points reversed | `1 − v` |
 
-use super::bspline::{
-    bspline_curve, bspline_curve_bounded, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1,
-};
+use super::basis::CurveShape;
+use super::bspline::{bspline_curve, bspline_curve_bounded};
 use super::weights::{CurveWeights, PatchEval, PatchWeights};
 use super::PatchEdge;
 use crate::real::Real;
@@ -205,28 +204,44 @@ pub fn single_crease_curves<T: Real>(u: T, v: T, edge: PatchEdge, s: T) -> [Curv
 }
 
 /// One curve of [`single_crease_curves`] alone (`dir` 0: along `u` at `x = u`, 1: along `v`
-/// at `x = v`), bit for bit: each depends on its own parameter only.
+/// at `x = v`), bit for bit: each depends on its own parameter only. Which curve it is (the
+/// plain or boundary B-spline, or the crease's) is decided once, by
+/// [`single_crease_shape`].
 #[inline(always)]
 pub fn single_crease_curve<T: Real>(x: T, dir: usize, edge: PatchEdge, s: T) -> CurveWeights<T> {
-    // The two limits are the plain and the boundary (phantom point) patch; delegating keeps
-    // them bit-identical to those patches in every orientation.
+    match single_crease_shape(dir, edge, s) {
+        CurveShape::BSpline { low, high } => bspline_curve_bounded(x, low, high),
+        CurveShape::Crease(edge) => crease_curve_across(x, edge, s),
+        CurveShape::None => unreachable!("a single-crease curve is a tensor factor"),
+    }
+}
+
+/// The curve across a crease along `edge` of sharpness `s` (0 < `s` < infinite) at `x`, the
+/// parameter across it ([`CurveShape::Crease`]).
+#[inline(always)]
+pub fn crease_curve_across<T: Real>(x: T, edge: PatchEdge, s: T) -> CurveWeights<T> {
+    match edge {
+        PatchEdge::U1 | PatchEdge::V1 => crease_curve_td(x, T::ONE - x, s),
+        PatchEdge::U0 | PatchEdge::V0 => crease_curve_td(T::ONE - x, x, s).reversed(),
+    }
+}
+
+/// The shape of the curve along `dir` of a single-crease patch creased along `edge` with
+/// sharpness `s`: the two limits are the plain (`s <= 0`) and the boundary (phantom point,
+/// `s` infinite) B-spline, bit-identical to those patches in every orientation; otherwise the
+/// curves across the crease (along `u` for edges `u = 0, 1`, along `v` for `v = 0, 1`) are the
+/// crease's and the others plain.
+#[inline(always)]
+pub fn single_crease_shape<T: Real>(dir: usize, edge: PatchEdge, s: T) -> CurveShape {
+    let folds = |m: u8| CurveShape::bounded(m, dir);
     if s.partial_cmp(&T::ZERO) != Some(std::cmp::Ordering::Greater) {
-        return bspline_curve_bounded(x, false, false);
-    }
-    if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
-        let m = edge.mask();
-        return if dir == 0 {
-            bspline_curve_bounded(x, m & BOUNDARY_U0 != 0, m & BOUNDARY_U1 != 0)
-        } else {
-            bspline_curve_bounded(x, m & BOUNDARY_V0 != 0, m & BOUNDARY_V1 != 0)
-        };
-    }
-    match (edge, dir) {
-        (PatchEdge::U1, 0) => crease_curve_td(x, T::ONE - x, s),
-        (PatchEdge::U0, 0) => crease_curve_td(T::ONE - x, x, s).reversed(),
-        (PatchEdge::V1, 1) => crease_curve_td(x, T::ONE - x, s),
-        (PatchEdge::V0, 1) => crease_curve_td(T::ONE - x, x, s).reversed(),
-        _ => bspline_curve(x),
+        folds(0)
+    } else if s >= T::from_f64(SHARPNESS_INFINITE as f64) {
+        folds(edge.mask())
+    } else if edge.index() % 2 == 1 - dir as u32 {
+        CurveShape::Crease(edge)
+    } else {
+        folds(0)
     }
 }
 

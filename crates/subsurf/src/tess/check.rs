@@ -85,8 +85,7 @@ fn chord_errors_at(
     let positions: &[[f32; 3]] = match known {
         Some(known) => known,
         None => {
-            let measured: &dyn Fn(u32) -> bool = &measured;
-            evaluated = evaluate_joined(surface, p, only.map(|_| measured));
+            evaluated = evaluate_joined(surface, p, only.is_none(), measured);
             &evaluated
         }
     };
@@ -159,15 +158,16 @@ fn chord_errors_at(
     out
 }
 
-/// The positions of the queries of `p` that the triangles of measured ptex faces join (all
-/// when `measured` is `None`; the others read zero), through one [`CurveCache`] per chunk.
+/// The positions of the queries of `p` (`all`) or of those the triangles of `measured` ptex
+/// faces join (the others read zero), through one [`CurveCache`] per chunk.
 fn evaluate_joined(
     surface: &LimitSurface,
     p: &AdaptivePlan,
-    measured: Option<&dyn Fn(u32) -> bool>,
+    all: bool,
+    measured: impl Fn(u32) -> bool,
 ) -> Vec<[f32; 3]> {
-    let mut needed = vec![measured.is_none(); p.queries.len()];
-    if let Some(measured) = measured {
+    let mut needed = vec![all; p.queries.len()];
+    if !all {
         for (tri, &(ptex, _)) in p.triangles.iter().zip(&p.triangle_uv) {
             if measured(ptex) {
                 tri.iter().for_each(|&i| needed[i as usize] = true);

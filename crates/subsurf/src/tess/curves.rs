@@ -153,7 +153,6 @@ impl RateCurves {
             .zip(self.live.par_chunks(CHUNK))
             .for_each(|((out, q), live)| {
                 let mut cache = CurveCache::new();
-                let mut line = Vec::with_capacity(CURVE_POINTS);
                 for ((out, q), &live) in out.iter_mut().zip(q.chunks_exact(CURVE_POINTS)).zip(live)
                 {
                     if !live {
@@ -164,14 +163,7 @@ impl RateCurves {
                     let points = q
                         .iter()
                         .filter_map(|&(p, u, v)| cache.position(surface, p as usize, u, v));
-                    *out = if let CurveMeasure::SecondDerivative = m {
-                        // Streamed: the windows need no list.
-                        max_second_derivative(points)
-                    } else {
-                        line.clear();
-                        line.extend(points);
-                        measure(&line, m)
-                    };
+                    *out = measure_stream(points, m);
                 }
             });
         out
@@ -234,8 +226,13 @@ impl EdgeSide {
 /// One curve's measure (the CPU's, in `f64`): the largest over its segments or second
 /// differences; zero for fewer than two (three) points.
 pub fn measure(points: &[[f32; 3]], m: &CurveMeasure) -> f64 {
+    measure_stream(points.iter().copied(), m)
+}
+
+/// [`measure`] of points as they are evaluated (no list).
+fn measure_stream(points: impl IntoIterator<Item = [f32; 3]>, m: &CurveMeasure) -> f64 {
     match m {
-        CurveMeasure::SecondDerivative => max_second_derivative(points.iter().copied()),
+        CurveMeasure::SecondDerivative => max_second_derivative(points),
         CurveMeasure::Speed => max_speed(points, Some),
         CurveMeasure::ScreenSpeed(camera) => {
             max_speed(points, |p| camera.project(p).map(|q| [q[0], q[1], 0.0]))
@@ -247,11 +244,15 @@ pub fn measure(points: &[[f32; 3]], m: &CurveMeasure) -> f64 {
 /// an end mapped to `None` counts zero). The square roots are taken once, of the largest
 /// squared length: `sqrt` is correctly rounded and monotonic, so the result is the largest of
 /// the segments' rounded lengths, bit for bit.
-fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) -> f64 {
-    let steps = (points.len().max(2) - 1) as f64;
+fn max_speed(
+    points: impl IntoIterator<Item = [f32; 3]>,
+    map: impl Fn([f32; 3]) -> Option<[f32; 3]>,
+) -> f64 {
+    let mut n = 0usize;
     let mut prev: Option<[f32; 3]> = None;
     let mut best = 0.0f64;
-    for &p in points {
+    for p in points {
+        n += 1;
         let m = map(p);
         if let (Some(a), Some(b)) = (prev, m) {
             let sq = (0..3).map(|k| f64::from(b[k] - a[k]).powi(2)).sum::<f64>();
@@ -259,6 +260,7 @@ fn max_speed(points: &[[f32; 3]], map: impl Fn([f32; 3]) -> Option<[f32; 3]>) ->
         }
         prev = m;
     }
+    let steps = (n.max(2) - 1) as f64;
     best.sqrt() * steps
 }
 
