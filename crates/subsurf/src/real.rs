@@ -8,6 +8,10 @@
 use std::fmt::Debug;
 use std::ops::{Add, AddAssign, Div, Mul, MulAssign, Neg, Sub, SubAssign};
 
+pub mod vec3;
+
+pub use vec3::Vec3;
+
 /// A floating-point scalar: implemented for `f32` and `f64`.
 pub trait Real:
     Copy
@@ -47,6 +51,8 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// Name used in messages and bench labels.
     const NAME: &'static str;
+    /// Three values as one ([`vec3`]: an SSE register for `f32` on x86-64).
+    type V3: Vec3<Self>;
     /// `0` (same as [`Real::ZERO`]).
     #[inline(always)]
     fn zero() -> Self {
@@ -92,6 +98,7 @@ impl Real for f32 {
         f32::sqrt(self)
     }
     const NAME: &'static str = "f32";
+    type V3 = vec3::Sse3;
 }
 
 impl Real for f64 {
@@ -126,6 +133,7 @@ impl Real for f64 {
         f64::sqrt(self)
     }
     const NAME: &'static str = "f64";
+    type V3 = [f64; 3];
 }
 
 #[cfg(test)]

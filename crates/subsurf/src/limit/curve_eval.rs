@@ -27,18 +27,18 @@ use super::LimitSurface;
 use crate::patch::basis::{
     patch_curve, patch_curve_shape, patch_position_weights, CurveShape, PatchKind,
 };
-use crate::real::Real;
+use crate::real::{Real, Vec3};
 
 /// A collapsed patch: four points along the free parameter, for one value of the fixed one;
 /// where the free curve is one cubic (a B-spline, its boundary phantoms folded into the
 /// points), its power-basis coefficients instead, so that a query is a Horner sum.
 #[derive(Debug, Clone, Copy)]
-struct Collapsed<R> {
+struct Collapsed<R: Real> {
     /// The fixed parameter's value (the patch's own `t` for rows, `s` for columns).
     at: R,
     /// The four points, relative to the patch's first control point, or the coefficients of
     /// `1, x, x², x³`.
-    points: [[R; 3]; 4],
+    points: [R::V3; 4],
     /// Whether `points` are coefficients.
     cubic: bool,
 }
@@ -48,7 +48,7 @@ impl<R: Real> Collapsed<R> {
     fn none() -> Self {
         Collapsed {
             at: R::from_f64(f64::NAN),
-            points: [[R::ZERO; 3]; 4],
+            points: [R::V3::zero(); 4],
             cubic: false,
         }
     }
@@ -56,14 +56,12 @@ impl<R: Real> Collapsed<R> {
     /// The collapse at `at` of the points `Σ_m w d` over the terms `term(k, m) = (w, d)`,
     /// `k` the point, `m = 0..4` the fixed direction's index; `shape` is the free curve's.
     #[inline(always)]
-    fn new(at: R, shape: CurveShape, term: impl Fn(usize, usize) -> (R, [R; 3])) -> Self {
-        let mut p = [[R::ZERO; 3]; 4];
+    fn new(at: R, shape: CurveShape, term: impl Fn(usize, usize) -> (R, R::V3)) -> Self {
+        let mut p = [R::V3::zero(); 4];
         for (k, q) in p.iter_mut().enumerate() {
             for m in 0..4 {
                 let (w, d) = term(k, m);
-                for c in 0..3 {
-                    q[c] += w * d[c];
-                }
+                *q = q.mul_add(w, d);
             }
         }
         let CurveShape::BSpline { low, high } = shape else {
@@ -73,39 +71,29 @@ impl<R: Real> Collapsed<R> {
                 cubic: false,
             };
         };
-        let mut points = [[R::ZERO; 3]; 4];
-        for c in 0..3 {
-            let k = power_basis(folded([p[0][c], p[1][c], p[2][c], p[3][c]], low, high));
-            for (q, k) in points.iter_mut().zip(k) {
-                q[c] = k;
-            }
-        }
         Collapsed {
             at,
-            points,
+            points: power_basis::<R>(folded::<R>(p, low, high)),
             cubic: true,
         }
     }
 
     /// The cubic at `x` (a collapse with `cubic` set), relative to the patch's first point.
     #[inline(always)]
-    fn cubic_at(&self, x: R) -> [R; 3] {
-        let k = &self.points;
-        let mut r = [R::ZERO; 3];
-        for c in 0..3 {
-            r[c] = k[0][c] + x * (k[1][c] + x * (k[2][c] + x * k[3][c]));
-        }
-        r
+    fn cubic_at(&self, x: R) -> R::V3 {
+        let [k0, k1, k2, k3] = self.points;
+        // `k0 + x (k1 + x (k2 + x k3))`
+        k3.scale(x).add(k2).scale(x).add(k1).scale(x).add(k0)
     }
 
     /// The point at `x` along the free parameter; `weights` gives the free curve's weights
     /// when the collapse is not a cubic.
     #[inline(always)]
-    fn along(&self, x: R, weights: impl FnOnce() -> [R; 4]) -> [R; 3] {
+    fn along(&self, x: R, weights: impl FnOnce() -> [R; 4]) -> R::V3 {
         if self.cubic {
             self.cubic_at(x)
         } else {
-            sum4(&weights(), &self.points)
+            sum4::<R>(&weights(), &self.points)
         }
     }
 }
@@ -113,7 +101,7 @@ impl<R: Real> Collapsed<R> {
 /// The control points of the last patch found and its last collapses (module documentation).
 /// One cache serves one surface.
 #[derive(Debug, Clone)]
-pub struct CurveCache<R> {
+pub struct CurveCache<R: Real> {
     /// The ptex face of the leaf last found (its patch's data below; `usize::MAX`: none).
     ptex: usize,
     /// Its square as in [`Cell::local`]: `2^level`, `iu`, `iv`.
@@ -122,15 +110,39 @@ pub struct CurveCache<R> {
     /// [`Cell::local`], the same operations); else queries are normalized.
     own_square: bool,
     patch: usize,
-    x0: [R; 3],
-    d: [[R; 3]; 20],
-    n: usize,
+    x0: R::V3,
+    /// The slot of `loaded` holding the patch's points.
+    slot: usize,
+    /// Points of the patches last loaded, by [`slot_of`] their index: a query that returns
+    /// to a patch (the check's samples alternate between the few large patches of a ptex
+    /// face; a face's isolines cross the same ones) skips the gather.
+    loaded: [Loaded<R>; SLOTS],
     /// Rows collapsed at a `t` (along `s`); at NaN when none.
     rows: Collapsed<R>,
     /// Columns collapsed at an `s` (along `t`); at NaN when none.
     cols: Collapsed<R>,
     /// The previous query's ptex face and `u` (clamped; NaN: none), in any patch.
     last: (usize, R),
+}
+
+/// Patches whose points a cache keeps.
+const SLOTS: usize = 8;
+
+/// The slot of patch `p` (multiplicative hashing: a ptex face's patches need not be
+/// consecutive in the table).
+#[inline(always)]
+fn slot_of(p: usize) -> usize {
+    ((p as u32).wrapping_mul(0x9E37_79B1) >> 29) as usize
+}
+
+/// A patch's points relative to its first ([`gather_relative`]).
+#[derive(Debug, Clone, Copy)]
+struct Loaded<R: Real> {
+    /// The patch (`usize::MAX`: none).
+    patch: usize,
+    x0: R::V3,
+    d: [R::V3; 20],
+    n: usize,
 }
 
 impl<R: Real> Default for CurveCache<R> {
@@ -143,45 +155,39 @@ impl<R: Real> Default for CurveCache<R> {
 /// (`high`) point replaced by the phantom `2 P1 − P2` (`2 P2 − P1`), as
 /// `fold_phantom_low` and `fold_phantom_high` fold them into the weights.
 #[inline(always)]
-fn folded<R: Real>(mut p: [R; 4], low: bool, high: bool) -> [R; 4] {
+fn folded<R: Real>(mut p: [R::V3; 4], low: bool, high: bool) -> [R::V3; 4] {
     let two = R::from_f64(2.0);
     let (p1, p2) = (p[1], p[2]);
     if low {
-        p[0] = two * p1 - p2;
+        p[0] = p1.scale(two).sub(p2);
     }
     if high {
-        p[3] = two * p2 - p1;
+        p[3] = p2.scale(two).sub(p1);
     }
     p
 }
 
 /// The coefficients of `1, x, x², x³` of the uniform cubic B-spline segment with points `p`.
 #[inline(always)]
-fn power_basis<R: Real>(p: [R; 4]) -> [R; 4] {
+fn power_basis<R: Real>(p: [R::V3; 4]) -> [R::V3; 4] {
     let [a, b, d, e] = p;
     let (two, half, sixth) = (R::from_f64(2.0), R::from_f64(0.5), R::from_f64(1.0 / 6.0));
+    let (three, four) = (R::from_f64(3.0), R::from_f64(4.0));
     [
-        sixth * (a + R::from_f64(4.0) * b + d),
-        half * (d - a),
-        half * (a - two * b + d),
-        sixth * (e - a + R::from_f64(3.0) * (b - d)),
+        // sixth (a + 4 b + d), half (d − a), half (a − 2 b + d), sixth (e − a + 3 (b − d))
+        a.add(b.scale(four)).add(d).scale(sixth),
+        d.sub(a).scale(half),
+        a.sub(b.scale(two)).add(d).scale(half),
+        e.sub(a).add(b.sub(d).scale(three)).scale(sixth),
     ]
-}
-
-/// `a + b`.
-#[inline(always)]
-fn add<R: Real>(a: &[R; 3], b: &[R; 3]) -> [R; 3] {
-    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
 /// `Σ_k w_k p_k` over four points, in order.
 #[inline(always)]
-fn sum4<R: Real>(w: &[R; 4], p: &[[R; 3]; 4]) -> [R; 3] {
-    let mut r = [R::ZERO; 3];
-    for (w, p) in w.iter().zip(p) {
-        for c in 0..3 {
-            r[c] += *w * p[c];
-        }
+fn sum4<R: Real>(w: &[R; 4], p: &[R::V3; 4]) -> R::V3 {
+    let mut r = R::V3::zero();
+    for (&w, &p) in w.iter().zip(p) {
+        r = r.mul_add(w, p);
     }
     r
 }
@@ -194,9 +200,14 @@ impl<R: Real> CurveCache<R> {
             square: [R::ZERO; 3],
             own_square: false,
             patch: usize::MAX,
-            x0: [R::ZERO; 3],
-            d: [[R::ZERO; 3]; 20],
-            n: 0,
+            x0: R::V3::zero(),
+            slot: 0,
+            loaded: [Loaded {
+                patch: usize::MAX,
+                x0: R::V3::zero(),
+                d: [R::V3::zero(); 20],
+                n: 0,
+            }; SLOTS],
             rows: Collapsed::none(),
             cols: Collapsed::none(),
             last: (usize::MAX, R::from_f64(f64::NAN)),
@@ -231,11 +242,11 @@ impl<R: Real> CurveCache<R> {
         if let (Some((s, t)), true) = (local, self.own_square) {
             if self.rows.cubic && self.rows.at == t {
                 self.last = (ptex, u);
-                return Some(add(&self.x0, &self.rows.cubic_at(s)));
+                return Some(self.x0.add(self.rows.cubic_at(s)).to_array());
             }
             if self.cols.cubic && self.cols.at == s {
                 self.last = (ptex, u);
-                return Some(add(&self.x0, &self.cols.cubic_at(t)));
+                return Some(self.x0.add(self.cols.cubic_at(t)).to_array());
             }
         }
         self.miss(surface, ptex, u, v, local)
@@ -283,11 +294,18 @@ impl<R: Real> CurveCache<R> {
         Some((square_local(u, scale, iu)?, square_local(v, scale, iv)?))
     }
 
-    /// Gathers the points of the patch of leaf `c`, relative to its first.
+    /// Makes the patch of leaf `c` the cached one, its points gathered relative to its first
+    /// unless a slot holds them.
     fn load(&mut self, surface: &LimitSurface<R>, c: Cell) {
         let t = &surface.table;
         let p = c.patch as usize;
-        let (x0, n) = gather_relative(surface, p, &mut self.d);
+        let slot = slot_of(p);
+        let l = &mut self.loaded[slot];
+        if l.patch != p {
+            (l.x0, l.n) = gather_relative(surface, p, &mut l.d);
+            l.patch = p;
+        }
+        let x0 = l.x0;
         let param = &t.params[p];
         self.own_square = param.square() == (c.level, c.iu, c.iv);
         self.square = [
@@ -295,7 +313,7 @@ impl<R: Real> CurveCache<R> {
             R::from_f64(f64::from(c.iu)),
             R::from_f64(f64::from(c.iv)),
         ];
-        (self.ptex, self.patch, self.x0, self.n) = (c.ptex as usize, p, x0, n);
+        (self.ptex, self.patch, self.x0, self.slot) = (c.ptex as usize, p, x0, slot);
         (self.rows, self.cols) = (Collapsed::none(), Collapsed::none());
     }
 
@@ -312,13 +330,14 @@ impl<R: Real> CurveCache<R> {
     ) -> [R; 3] {
         let t = &surface.table;
         let p = self.patch;
+        let l = &self.loaded[self.slot];
         let kind = t.patch_type(p).kind();
         let param = &t.params[p];
         let sharpness = R::from_f32(t.sharpness[p]);
         if matches!(kind, PatchKind::GregoryBasis(_)) {
             // The tensor does not factor.
             let w = patch_position_weights(kind, param, sharpness, u, v);
-            return weighted_sum(&self.x0, &w[..self.n], &self.d[..self.n]);
+            return weighted_sum::<R>(self.x0, &w[..l.n], &l.d[..l.n]).to_array();
         }
         let curve = |dir: usize, x: R| {
             patch_curve(kind, param, sharpness, dir, x).map_or([R::ZERO; 4], |w| w.p)
@@ -331,16 +350,16 @@ impl<R: Real> CurveCache<R> {
             // Columns at this `s`: c_j = Σ_i a_i d_{ji}.
             let a = curve(0, s);
             let shape = patch_curve_shape(kind, param, sharpness, 1);
-            self.cols = Collapsed::new(s, shape, |j, i| (a[i], self.d[4 * j + i]));
+            self.cols = Collapsed::new(s, shape, |j, i| (a[i], l.d[4 * j + i]));
             self.cols.along(tt, || curve(1, tt))
         } else {
             // Rows at this `t`: r_i = Σ_j b_j d_{ji}.
             let b = curve(1, tt);
             let shape = patch_curve_shape(kind, param, sharpness, 0);
-            self.rows = Collapsed::new(tt, shape, |i, j| (b[j], self.d[4 * j + i]));
+            self.rows = Collapsed::new(tt, shape, |i, j| (b[j], l.d[4 * j + i]));
             self.rows.along(s, || curve(0, s))
         };
-        add(&self.x0, &rel)
+        self.x0.add(rel).to_array()
     }
 }
 

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use super::patch_map::clamp01;
 use super::table::PatchTable;
 use crate::patch::{patch_first_weights, patch_position_weights};
-use crate::real::Real;
+use crate::real::{Real, Vec3};
 
 /// A point of the limit surface.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -109,11 +109,11 @@ impl<R: Real> LimitSurface<R> {
         let (u, v) = (clamp01(u), clamp01(v));
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
-        let mut d = [[R::ZERO; 3]; 20];
+        let mut d = [R::V3::zero(); 20];
         let (x0, n) = gather_relative(self, p, &mut d);
         let kind = t.patch_type(p).kind();
         let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
-        Some(weighted_sum(&x0, &w[..n], &d[..n]))
+        Some(weighted_sum::<R>(x0, &w[..n], &d[..n]).to_array())
     }
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
@@ -149,29 +149,23 @@ impl<R: Real> LimitSurface<R> {
 pub(crate) fn gather_relative<R: Real>(
     surface: &LimitSurface<R>,
     p: usize,
-    d: &mut [[R; 3]; 20],
-) -> ([R; 3], usize) {
+    d: &mut [R::V3; 20],
+) -> (R::V3, usize) {
     let cvs = surface.table.patch_cvs(p);
     assert!(cvs.len() <= d.len(), "patch {p} has {} points", cvs.len());
-    let x0 = surface.points[cvs[0] as usize];
+    let x0 = R::V3::load(&surface.points, cvs[0] as usize);
     for (d, &cv) in d.iter_mut().zip(cvs) {
-        let x = surface.points[cv as usize];
-        *d = [x[0] - x0[0], x[1] - x0[1], x[2] - x0[2]];
+        *d = R::V3::load(&surface.points, cv as usize).sub(x0);
     }
     (x0, cvs.len())
 }
 
 /// `x₀ + Σ_k w_k d_k`, summed in order (as [`LimitSurface::eval_raw`] sums positions).
 #[inline(always)]
-pub(crate) fn weighted_sum<R: Real>(x0: &[R; 3], w: &[R], d: &[[R; 3]]) -> [R; 3] {
-    let mut r = [R::ZERO; 3];
-    for (w, d) in w.iter().zip(d) {
-        for c in 0..3 {
-            r[c] += *w * d[c];
-        }
+pub(crate) fn weighted_sum<R: Real>(x0: R::V3, w: &[R], d: &[R::V3]) -> R::V3 {
+    let mut r = R::V3::zero();
+    for (&w, &d) in w.iter().zip(d) {
+        r = r.mul_add(w, d);
     }
-    for c in 0..3 {
-        r[c] += x0[c];
-    }
-    r
+    r.add(x0)
 }
