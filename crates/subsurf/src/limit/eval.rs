@@ -83,21 +83,20 @@ impl<R: Real> LimitSurface<R> {
             patch_first_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
         let cvs = t.patch_cvs(p);
         // Relative to the first control point (see the module documentation).
-        let x0 = self.points[cvs[0] as usize];
-        let mut r = LimitPoint::default();
+        let x0 = R::V3::load(&self.points, cvs[0] as usize);
+        let [mut p, mut du, mut dv] = [R::V3::zero(); 3];
         for (k, &cv) in cvs.iter().enumerate() {
-            let x = self.points[cv as usize];
-            for c in 0..3 {
-                let d = x[c] - x0[c];
-                r.p[c] += wp[k] * d;
-                r.du[c] += wu[k] * d;
-                r.dv[c] += wv[k] * d;
-            }
+            let d = R::V3::load(&self.points, cv as usize).sub(x0);
+            p = p.mul_add(wp[k], d);
+            du = du.mul_add(wu[k], d);
+            dv = dv.mul_add(wv[k], d);
         }
-        for c in 0..3 {
-            r.p[c] += x0[c];
-        }
-        Some(r)
+        Some(LimitPoint {
+            p: p.add(x0).to_array(),
+            du: du.to_array(),
+            dv: dv.to_array(),
+            n: [R::ZERO; 3],
+        })
     }
 
     /// The position of [`LimitSurface::eval_raw`] alone (the same sums, bit for bit), for
