@@ -168,3 +168,80 @@ pub(crate) fn weighted_sum<R: Real>(x0: R::V3, w: &[R], d: &[R::V3]) -> R::V3 {
     }
     r.add(x0)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::limit::PatchOptions;
+
+    /// Positions and derivatives summed as [`Real::V3`] values (SSE lanes for `f32`) equal,
+    /// bit for bit, the component loops `x₀ + Σ w (x − x₀)` in the same order, on every patch
+    /// kind (a pole of valence 7 with a crease, a hole and a boundary) at a scatter of points
+    /// including the ptex faces' corners and sides.
+    #[test]
+    fn lane_sums_equal_component_loops() {
+        let mut mesh = crate::shapes::pole(7);
+        mesh.holes.push(2);
+        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
+        mesh.creases.push(crate::mesh::Crease {
+            v0,
+            v1,
+            sharpness: 2.5,
+        });
+        let t = crate::Topology::new(&mesh).unwrap();
+        let s = LimitSurface::new(
+            PatchTable::build(&t, &PatchOptions::default()).unwrap(),
+            &mesh.positions,
+        );
+        let tab = &s.table;
+        let bits = |a: [f32; 3]| a.map(f32::to_bits);
+        let mut compared = 0;
+        for ptex in 0..tab.num_ptex_faces() {
+            for k in 0..49 {
+                let (u, v) = ((k % 7) as f32 / 6.0, (k / 7) as f32 / 6.0);
+                let Some(p) = tab.patch_map.find(ptex, u, v) else {
+                    assert!(s.eval_position(ptex, u, v).is_none());
+                    continue;
+                };
+                let p = p as usize;
+                let kind = tab.patch_type(p).kind();
+                let sharp = tab.sharpness[p];
+                let [wp, wu, wv] = patch_first_weights(kind, &tab.params[p], sharp, u, v);
+                let cvs = tab.patch_cvs(p);
+                let x0 = s.points[cvs[0] as usize];
+                let mut want = [[0.0f32; 3]; 3];
+                for (k, &cv) in cvs.iter().enumerate() {
+                    let x = s.points[cv as usize];
+                    for c in 0..3 {
+                        let d = x[c] - x0[c];
+                        want[0][c] += wp[k] * d;
+                        want[1][c] += wu[k] * d;
+                        want[2][c] += wv[k] * d;
+                    }
+                }
+                for c in 0..3 {
+                    want[0][c] += x0[c];
+                }
+                let got = s.eval_raw(ptex, u, v).unwrap();
+                assert_eq!(bits(got.p), bits(want[0]), "ptex {ptex} ({u}, {v})");
+                assert_eq!(bits(got.du), bits(want[1]), "ptex {ptex} ({u}, {v})");
+                assert_eq!(bits(got.dv), bits(want[2]), "ptex {ptex} ({u}, {v})");
+                let pos = s.eval_position(ptex, u, v).unwrap();
+                let w = patch_position_weights(kind, &tab.params[p], sharp, u, v);
+                let mut only = [0.0f32; 3];
+                for (k, &cv) in cvs.iter().enumerate() {
+                    let x = s.points[cv as usize];
+                    for c in 0..3 {
+                        only[c] += w[k] * (x[c] - x0[c]);
+                    }
+                }
+                for c in 0..3 {
+                    only[c] += x0[c];
+                }
+                assert_eq!(bits(pos), bits(only), "ptex {ptex} ({u}, {v})");
+                compared += 1;
+            }
+        }
+        assert!(compared > 250, "{compared}");
+    }
+}
