@@ -14,8 +14,10 @@
 //! the first in a patch reuses the rows; a query with the previous one's `u` collapses the
 //! columns `c_j = Σ_i a_i(s) d_{ji}` instead, which the next ones along `v` reuse. The square
 //! of the patch map's last leaf ([`super::patch_map::Cell`]) is tested before walking the
-//! tree again. Across a semi-sharp crease the curve's weights are formed per query; Gregory
-//! patches are summed whole.
+//! tree again, and the points of the last patches loaded stay in eight slots, so a query
+//! that returns to one skips the gather. Across a semi-sharp crease the curve's weights are
+//! formed per query; Gregory patches are summed whole. Points are [`Real::V3`] values (one
+//! SSE register for `f32`), summed lane by lane.
 //!
 //! The sums run in another order than [`super::LimitSurface::eval_position`]'s, so positions
 //! agree with it to rounding (a few units in the last place of the patch's extent), not bit
@@ -125,14 +127,15 @@ pub struct CurveCache<R: Real> {
     last: (usize, R),
 }
 
-/// Patches whose points a cache keeps.
+/// Patches whose points a cache keeps (a power of two).
 const SLOTS: usize = 8;
+const _: () = assert!(SLOTS.is_power_of_two() && SLOTS > 1);
 
-/// The slot of patch `p` (multiplicative hashing: a ptex face's patches need not be
-/// consecutive in the table).
+/// The slot of patch `p`: the top bits of a multiplicative hash (a ptex face's patches need
+/// not be consecutive in the table).
 #[inline(always)]
 fn slot_of(p: usize) -> usize {
-    ((p as u32).wrapping_mul(0x9E37_79B1) >> 29) as usize
+    ((p as u32).wrapping_mul(0x9E37_79B1) >> (32 - SLOTS.trailing_zeros())) as usize
 }
 
 /// A patch's points relative to its first ([`gather_relative`]).
