@@ -79,6 +79,23 @@ pub fn pole(n: usize) -> Mesh {
     Mesh::from_faces(p, &faces)
 }
 
+/// [`pole`]`(n)` with face 2 a hole and a semi-sharp crease (sharpness 2.5) on its first edge:
+/// every patch kind in a small mesh (regular patches with and without boundary folds,
+/// single-crease and Gregory patches), for tests of the evaluators.
+pub fn creased_pole(n: usize) -> Mesh {
+    let mut mesh = pole(n);
+    mesh.holes.push(2);
+    let [v0, v1] = crate::Topology::new(&mesh)
+        .expect("a pole is a valid mesh")
+        .edge_verts[0];
+    mesh.creases.push(crate::mesh::Crease {
+        v0,
+        v1,
+        sharpness: 2.5,
+    });
+    mesh
+}
+
 /// The OBJ files of `dir` whose names start with one of `prefixes` (OpenSubdiv's regression
 /// shapes: `catmark_`, `bilinear_`, …), sorted by name.
 pub fn regression_shapes(

@@ -420,14 +420,7 @@ mod tests {
     /// units in the last place of the surface's extent, in `f32` and in `f64`.
     #[test]
     fn positions_agree_with_the_evaluation() {
-        let mut mesh = crate::shapes::pole(7);
-        mesh.holes.push(2);
-        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
-        mesh.creases.push(crate::mesh::Crease {
-            v0,
-            v1,
-            sharpness: 2.5,
-        });
+        let mesh = crate::shapes::creased_pole(7);
         let t = crate::Topology::new(&mesh).unwrap();
         let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
         let kinds: std::collections::HashSet<_> = (0..table.num_patches())

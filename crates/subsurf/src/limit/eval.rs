@@ -180,14 +180,7 @@ mod tests {
     /// including the ptex faces' corners and sides.
     #[test]
     fn lane_sums_equal_component_loops() {
-        let mut mesh = crate::shapes::pole(7);
-        mesh.holes.push(2);
-        let [v0, v1] = crate::Topology::new(&mesh).unwrap().edge_verts[0];
-        mesh.creases.push(crate::mesh::Crease {
-            v0,
-            v1,
-            sharpness: 2.5,
-        });
+        let mesh = crate::shapes::creased_pole(7);
         let t = crate::Topology::new(&mesh).unwrap();
         let s = LimitSurface::new(
             PatchTable::build(&t, &PatchOptions::default()).unwrap(),
