@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen_at, restencil};
+use crate::refine::{resharpen_at, restencil, unique};
 use crate::topology::Topology;
 
 /// Not visited by the walk.
@@ -188,7 +188,7 @@ impl<R: Real> PatchTable<R> {
             );
             old = Values::of(child);
             resharpen_at(sub, child, &sub_changed);
-            match self.step_rows(sub, &sub_old, child, &old, d) {
+            match self.step_rows(sub, &sub_old, child, &old, d, &sub_changed) {
                 Some(dirty) => rows.push((d, dirty)),
                 None => return Ok(false),
             }
@@ -230,16 +230,13 @@ impl<R: Real> PatchTable<R> {
     ) -> Result<bool> {
         let t = &st.trace.levels[d];
         let visit = &st.visit[d];
-        let mut faces: Vec<u32> = Vec::new();
-        for v in (0..t.num_vertices()).filter(|&v| changed[v]) {
-            faces.extend(
-                t.vertex_faces(v)
-                    .iter()
-                    .filter(|&&f| visit[f as usize] != NONE),
-            );
-        }
-        faces.sort_unstable();
-        faces.dedup();
+        let faces = unique(
+            (0..t.num_vertices())
+                .filter(|&v| changed[v])
+                .flat_map(|v| t.vertex_faces(v).iter().copied())
+                .filter(|&f| visit[f as usize] != NONE),
+            t.num_faces(),
+        );
         let mut tags = vec![VTag::default(); t.num_vertices()];
         let mut tagged = vec![false; t.num_vertices()];
         for &f in &faces {
@@ -303,7 +300,10 @@ impl<R: Real> PatchTable<R> {
 
     /// The rows of step `d` whose inputs changed (parent or child sharpness or rule of the
     /// vertex, of its edges and their children; of the edge and its edge point); `None`
-    /// where the stored stencils do not have the step's rows.
+    /// where the stored stencils do not have the step's rows. Only the edges at `changed`
+    /// (the vertices of `sub` whose values [`refresh_sub`] and [`resharpen_at`] changed) and
+    /// their ends can differ: they alone are tested.
+    #[allow(clippy::too_many_arguments)]
     fn step_rows(
         &self,
         sub: &Topology,
@@ -311,6 +311,7 @@ impl<R: Real> PatchTable<R> {
         child: &Topology,
         child_old: &Values,
         d: usize,
+        changed: &[u32],
     ) -> Option<Dirty> {
         let (nv, nf, nc) = (sub.num_vertices(), sub.num_faces(), sub.num_corners());
         let ne = sub.num_edges();
@@ -320,26 +321,78 @@ impl<R: Real> PatchTable<R> {
         }
         let bits = |a: f32, b: f32| a.to_bits() != b.to_bits();
         let ce = |i: usize| bits(child_old.edge_sharpness[i], child.edge_sharpness[i]);
-        let mut edge_input = vec![false; ne];
+        let near_edges = Bits::of(
+            changed
+                .iter()
+                .flat_map(|&v| sub.vertex_edges(v as usize).iter().copied()),
+            ne,
+        );
+        let mut edge_input = Bits::new(ne);
+        let mut near_verts = Bits::of(changed.iter().copied(), nv);
         let mut edges = Vec::new();
-        for e in 0..ne {
+        for e in near_edges.iter() {
             let own = bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e]);
-            edge_input[e] = own || ce(nc + 2 * e) || ce(nc + 2 * e + 1);
+            if own || ce(nc + 2 * e) || ce(nc + 2 * e + 1) {
+                edge_input.set(e as u32);
+            }
             if own || child_old.vert_rule[nv + nf + e] != child.vert_rule[nv + nf + e] {
                 edges.push(e as u32);
             }
+            for v in sub.edge_verts[e] {
+                near_verts.set(v);
+            }
         }
-        let vertices = (0..nv)
+        let vertices = near_verts
+            .iter()
             .filter(|&v| {
                 bits(sub_old.vert_sharpness[v], sub.vert_sharpness[v])
                     || sub_old.vert_rule[v] != sub.vert_rule[v]
                     || bits(child_old.vert_sharpness[v], child.vert_sharpness[v])
                     || child_old.vert_rule[v] != child.vert_rule[v]
-                    || sub.vertex_edges(v).iter().any(|&e| edge_input[e as usize])
+                    || sub.vertex_edges(v).iter().any(|&e| edge_input.get(e))
             })
             .map(|v| v as u32)
             .collect();
         Some((vertices, edges))
+    }
+}
+
+/// A set of element indices below a bound, one bit each; listed in increasing order.
+struct Bits(Vec<u64>);
+
+impl Bits {
+    fn new(n: usize) -> Bits {
+        Bits(vec![0; n.div_ceil(64)])
+    }
+
+    fn of(ids: impl IntoIterator<Item = u32>, n: usize) -> Bits {
+        let mut b = Bits::new(n);
+        for id in ids {
+            b.set(id);
+        }
+        b
+    }
+
+    fn set(&mut self, id: u32) {
+        self.0[id as usize / 64] |= 1 << (id % 64);
+    }
+
+    fn get(&self, id: u32) -> bool {
+        self.0[id as usize / 64] & (1 << (id % 64)) != 0
+    }
+
+    /// The members, increasing.
+    fn iter(&self) -> impl Iterator<Item = usize> + '_ {
+        self.0.iter().enumerate().flat_map(|(w, &word)| {
+            let mut rest = word;
+            std::iter::from_fn(move || {
+                (rest != 0).then(|| {
+                    let b = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    64 * w + b
+                })
+            })
+        })
     }
 }
 
@@ -383,4 +436,40 @@ fn refresh_sub(
         }
     }
     sub_changed
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Bits;
+    use crate::refine::unique;
+
+    /// `unique` keeps each value once, where it first occurs, and `Bits` lists a set in
+    /// increasing order: both against sorting and deduplicating, on values across word
+    /// boundaries (0, 63, 64, the last).
+    #[test]
+    fn unique_and_bits_match_sort_and_dedup() {
+        let n = 200usize;
+        let ids: Vec<u32> = (0..500u32)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> 7) % n as u32)
+            .chain([0, 63, 64, 199, 63])
+            .collect();
+        let mut want = ids.clone();
+        want.sort_unstable();
+        want.dedup();
+        let got = unique(ids.iter().copied(), n);
+        let mut sorted = got.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, want);
+        let first: Vec<u32> = ids
+            .iter()
+            .enumerate()
+            .filter(|&(i, x)| !ids[..i].contains(x))
+            .map(|(_, &x)| x)
+            .collect();
+        assert_eq!(got, first);
+        let b = Bits::of(ids.iter().copied(), n);
+        let listed: Vec<u32> = b.iter().map(|i| i as u32).collect();
+        assert_eq!(listed, want);
+        assert!((0..n as u32).all(|i| b.get(i) == want.contains(&i)));
+    }
 }

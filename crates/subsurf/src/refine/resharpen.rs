@@ -24,12 +24,12 @@ const SHARP_BITS: u16 =
 /// value). Visits the changed vertices' edges only.
 pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
     let nc = p.num_corners();
-    let mut edges: Vec<u32> = changed
-        .iter()
-        .flat_map(|&v| p.vertex_edges(v as usize).iter().copied())
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
+    let edges = unique(
+        changed
+            .iter()
+            .flat_map(|&v| p.vertex_edges(v as usize).iter().copied()),
+        p.num_edges(),
+    );
     let mut around = Vec::new();
     for &e in &edges {
         for end in 0..2 {
@@ -43,6 +43,22 @@ pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
     for &e in &edges {
         edge_point(p, c, e as usize);
     }
+}
+
+/// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
+/// possible value instead of a sort (each element the edit visits is worked on once; the
+/// order of the work does not change its result).
+pub(crate) fn unique(ids: impl IntoIterator<Item = u32>, n: usize) -> Vec<u32> {
+    let mut seen = vec![0u64; n.div_ceil(64)];
+    let mut out = Vec::new();
+    for id in ids {
+        let (w, b) = (id as usize / 64, 1u64 << (id % 64));
+        if seen[w] & b == 0 {
+            seen[w] |= b;
+            out.push(id);
+        }
+    }
+    out
 }
 
 /// Sharpness, tags and rule of the child of parent vertex `v`, from its child edges.
