@@ -100,32 +100,41 @@ impl Values {
     }
 
     /// Per vertex: changed itself or by one of its edges. `None` when nothing changed.
-    /// One pass over the arrays, edges first (an edge marks both ends).
-    fn changes(&self, t: &Topology) -> Option<Vec<bool>> {
+    /// With `at`, only the edges and vertices listed there can have changed (the rest are
+    /// not compared); without, every one is.
+    fn changes(&self, t: &Topology, at: Option<&(Vec<usize>, Vec<usize>)>) -> Option<Vec<bool>> {
         let mut verts = vec![false; t.num_vertices()];
         let mut any = false;
-        for (e, ((&a, &b), (&ta, &tb))) in self
-            .edge_sharpness
-            .iter()
-            .zip(&t.edge_sharpness)
-            .zip(self.edge_tags.iter().zip(&t.edge_tags))
-            .enumerate()
-        {
-            if a.to_bits() != b.to_bits() || ta != tb {
+        let edge = |e: usize| {
+            self.edge_sharpness[e].to_bits() != t.edge_sharpness[e].to_bits()
+                || self.edge_tags[e] != t.edge_tags[e]
+        };
+        let vertex = |v: usize| {
+            self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
+                || self.vert_tags[v] != t.vert_tags[v]
+                || self.vert_rule[v] != t.vert_rule[v]
+        };
+        let mut mark = |e_changed: bool, ends: [u32; 2]| {
+            if e_changed {
                 any = true;
-                for v in t.edge_verts[e] {
+                for v in ends {
                     verts[v as usize] = true;
                 }
             }
+        };
+        match at {
+            Some((edges, _)) => edges.iter().for_each(|&e| mark(edge(e), t.edge_verts[e])),
+            None => (0..t.num_edges()).for_each(|e| mark(edge(e), t.edge_verts[e])),
         }
-        for (v, c) in verts.iter_mut().enumerate() {
-            if self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
-                || self.vert_tags[v] != t.vert_tags[v]
-                || self.vert_rule[v] != t.vert_rule[v]
-            {
-                *c = true;
+        let mut mark = |v: usize| {
+            if vertex(v) {
+                verts[v] = true;
                 any = true;
             }
+        };
+        match at {
+            Some((_, vs)) => vs.iter().for_each(|&v| mark(v)),
+            None => (0..t.num_vertices()).for_each(mark),
         }
         any.then_some(verts)
     }
@@ -156,8 +165,11 @@ impl<R: Real> PatchTable<R> {
         st.trace.levels[0] = base;
         let mut rows: Vec<(usize, Dirty)> = Vec::new();
         let mut patches: Vec<(u32, PatchType, u8, f32)> = Vec::new();
+        // What of level `d` can differ from `old`: anything on the base; below, what
+        // `resharpen_at` wrote.
+        let mut written = None;
         for d in 0..num_levels {
-            let Some(changed) = old.changes(&st.trace.levels[d]) else {
+            let Some(changed) = old.changes(&st.trace.levels[d], written.as_ref()) else {
                 break;
             };
             if !self.redecide(
@@ -187,7 +199,7 @@ impl<R: Real> PatchTable<R> {
                 &changed,
             );
             old = Values::of(child);
-            resharpen_at(sub, child, &sub_changed);
+            written = Some(resharpen_at(sub, child, &sub_changed));
             match self.step_rows(sub, &sub_old, child, &old, d, &sub_changed) {
                 Some(dirty) => rows.push((d, dirty)),
                 None => return Ok(false),

@@ -21,8 +21,13 @@ const SHARP_BITS: u16 =
 /// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
 /// took new sharpness (same topology): the children of the edges at those vertices, the
 /// vertices' children and those edges' edge points (no other child element reads a changed
-/// value). Visits the changed vertices' edges only.
-pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
+/// value). Visits the changed vertices' edges only. Returns the elements of `c` it wrote:
+/// `(edges, vertices)`; no other value of `c` changed.
+pub(crate) fn resharpen_at(
+    p: &Topology,
+    c: &mut Topology,
+    changed: &[u32],
+) -> (Vec<usize>, Vec<usize>) {
     let nc = p.num_corners();
     let edges = unique(
         changed
@@ -43,6 +48,15 @@ pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) {
     for &e in &edges {
         edge_point(p, c, e as usize);
     }
+    let child_edges = edges
+        .iter()
+        .flat_map(|&e| [nc + 2 * e as usize, nc + 2 * e as usize + 1])
+        .collect();
+    let points = p.num_vertices() + super::last_level::face_points(p);
+    let child_vertices = (changed.iter().map(|&v| v as usize))
+        .chain(edges.iter().map(|&e| points + e as usize))
+        .collect();
+    (child_edges, child_vertices)
 }
 
 /// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
