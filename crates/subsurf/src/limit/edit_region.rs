@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen_at, restencil, unique};
+use crate::refine::{resharpen_at, restencil, unique, Bits};
 use crate::topology::Topology;
 
 /// Not visited by the walk.
@@ -369,45 +369,6 @@ impl<R: Real> PatchTable<R> {
     }
 }
 
-/// A set of element indices below a bound, one bit each; listed in increasing order.
-struct Bits(Vec<u64>);
-
-impl Bits {
-    fn new(n: usize) -> Bits {
-        Bits(vec![0; n.div_ceil(64)])
-    }
-
-    fn of(ids: impl IntoIterator<Item = u32>, n: usize) -> Bits {
-        let mut b = Bits::new(n);
-        for id in ids {
-            b.set(id);
-        }
-        b
-    }
-
-    fn set(&mut self, id: u32) {
-        self.0[id as usize / 64] |= 1 << (id % 64);
-    }
-
-    fn get(&self, id: u32) -> bool {
-        self.0[id as usize / 64] & (1 << (id % 64)) != 0
-    }
-
-    /// The members, increasing.
-    fn iter(&self) -> impl Iterator<Item = usize> + '_ {
-        self.0.iter().enumerate().flat_map(|(w, &word)| {
-            let mut rest = word;
-            std::iter::from_fn(move || {
-                (rest != 0).then(|| {
-                    let b = rest.trailing_zeros() as usize;
-                    rest &= rest - 1;
-                    64 * w + b
-                })
-            })
-        })
-    }
-}
-
 /// The sub-mesh `sub` of `level` (its vertices `verts`, edges `edges` in the level) given
 /// the level's current values, as [`super::sparse`] makes it: elements whose faces are all
 /// kept take the level's values, the border stays an infinitely sharp boundary. Only the
@@ -448,40 +409,4 @@ fn refresh_sub(
         }
     }
     sub_changed
-}
-
-#[cfg(test)]
-mod tests {
-    use super::Bits;
-    use crate::refine::unique;
-
-    /// `unique` keeps each value once, where it first occurs, and `Bits` lists a set in
-    /// increasing order: both against sorting and deduplicating, on values across word
-    /// boundaries (0, 63, 64, the last).
-    #[test]
-    fn unique_and_bits_match_sort_and_dedup() {
-        let n = 200usize;
-        let ids: Vec<u32> = (0..500u32)
-            .map(|i| (i.wrapping_mul(2_654_435_761) >> 7) % n as u32)
-            .chain([0, 63, 64, 199, 63])
-            .collect();
-        let mut want = ids.clone();
-        want.sort_unstable();
-        want.dedup();
-        let got = unique(ids.iter().copied(), n);
-        let mut sorted = got.clone();
-        sorted.sort_unstable();
-        assert_eq!(sorted, want);
-        let first: Vec<u32> = ids
-            .iter()
-            .enumerate()
-            .filter(|&(i, x)| !ids[..i].contains(x))
-            .map(|(_, &x)| x)
-            .collect();
-        assert_eq!(got, first);
-        let b = Bits::of(ids.iter().copied(), n);
-        let listed: Vec<u32> = b.iter().map(|i| i as u32).collect();
-        assert_eq!(listed, want);
-        assert!((0..n as u32).all(|i| b.get(i) == want.contains(&i)));
-    }
 }

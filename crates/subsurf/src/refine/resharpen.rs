@@ -60,19 +60,56 @@ pub(crate) fn resharpen_at(
 }
 
 /// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
-/// possible value instead of a sort (each element the edit visits is worked on once; the
-/// order of the work does not change its result).
+/// possible value ([`Bits`]) instead of a sort (each element the edit visits is worked on
+/// once; the order of the work does not change its result).
 pub(crate) fn unique(ids: impl IntoIterator<Item = u32>, n: usize) -> Vec<u32> {
-    let mut seen = vec![0u64; n.div_ceil(64)];
-    let mut out = Vec::new();
-    for id in ids {
-        let (w, b) = (id as usize / 64, 1u64 << (id % 64));
-        if seen[w] & b == 0 {
-            seen[w] |= b;
-            out.push(id);
-        }
+    let mut seen = Bits::new(n);
+    ids.into_iter()
+        .filter(|&id| {
+            let new = !seen.get(id);
+            seen.set(id);
+            new
+        })
+        .collect()
+}
+
+/// A set of element indices below a bound, one bit each; listed in increasing order.
+pub(crate) struct Bits(Vec<u64>);
+
+impl Bits {
+    pub(crate) fn new(n: usize) -> Bits {
+        Bits(vec![0; n.div_ceil(64)])
     }
-    out
+
+    pub(crate) fn of(ids: impl IntoIterator<Item = u32>, n: usize) -> Bits {
+        let mut b = Bits::new(n);
+        for id in ids {
+            b.set(id);
+        }
+        b
+    }
+
+    pub(crate) fn set(&mut self, id: u32) {
+        self.0[id as usize / 64] |= 1 << (id % 64);
+    }
+
+    pub(crate) fn get(&self, id: u32) -> bool {
+        self.0[id as usize / 64] & (1 << (id % 64)) != 0
+    }
+
+    /// The members, increasing.
+    pub(crate) fn iter(&self) -> impl Iterator<Item = usize> + '_ {
+        self.0.iter().enumerate().flat_map(|(w, &word)| {
+            let mut rest = word;
+            std::iter::from_fn(move || {
+                (rest != 0).then(|| {
+                    let b = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    64 * w + b
+                })
+            })
+        })
+    }
 }
 
 /// Sharpness, tags and rule of the child of parent vertex `v`, from its child edges.
@@ -202,4 +239,39 @@ fn splice<W: Real>(
         );
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{unique, Bits};
+
+    /// `unique` keeps each value once, where it first occurs, and `Bits` lists a set in
+    /// increasing order: both against sorting and deduplicating, on values across word
+    /// boundaries (0, 63, 64, the last).
+    #[test]
+    fn unique_and_bits_match_sort_and_dedup() {
+        let n = 200usize;
+        let ids: Vec<u32> = (0..500u32)
+            .map(|i| (i.wrapping_mul(2_654_435_761) >> 7) % n as u32)
+            .chain([0, 63, 64, 199, 63])
+            .collect();
+        let mut want = ids.clone();
+        want.sort_unstable();
+        want.dedup();
+        let got = unique(ids.iter().copied(), n);
+        let mut sorted = got.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, want);
+        let first: Vec<u32> = ids
+            .iter()
+            .enumerate()
+            .filter(|&(i, x)| !ids[..i].contains(x))
+            .map(|(_, &x)| x)
+            .collect();
+        assert_eq!(got, first);
+        let b = Bits::of(ids.iter().copied(), n);
+        let listed: Vec<u32> = b.iter().map(|i| i as u32).collect();
+        assert_eq!(listed, want);
+        assert!((0..n as u32).all(|i| b.get(i) == want.contains(&i)));
+    }
 }
