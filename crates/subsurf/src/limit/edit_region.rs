@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen_at, restencil, unique, Bits};
+use crate::refine::{resharpen_at, restencil, unique, Bits, Rewritten};
 use crate::topology::Topology;
 
 /// Not visited by the walk.
@@ -100,9 +100,9 @@ impl Values {
     }
 
     /// Per vertex: changed itself or by one of its edges. `None` when nothing changed.
-    /// With `at`, only the edges and vertices listed there can have changed (the rest are
-    /// not compared); without, every one is.
-    fn changes(&self, t: &Topology, at: Option<&(Vec<usize>, Vec<usize>)>) -> Option<Vec<bool>> {
+    /// With `at`, only the elements written there can have changed (the rest are not
+    /// compared); without, every one is.
+    fn changes(&self, t: &Topology, at: Option<&Rewritten>) -> Option<Vec<bool>> {
         let mut verts = vec![false; t.num_vertices()];
         let mut any = false;
         let edge = |e: usize| {
@@ -123,7 +123,7 @@ impl Values {
             }
         };
         match at {
-            Some((edges, _)) => edges.iter().for_each(|&e| mark(edge(e), t.edge_verts[e])),
+            Some(w) => (w.child_edges.iter()).for_each(|&e| mark(edge(e), t.edge_verts[e])),
             None => (0..t.num_edges()).for_each(|e| mark(edge(e), t.edge_verts[e])),
         }
         let mut mark = |v: usize| {
@@ -133,7 +133,7 @@ impl Values {
             }
         };
         match at {
-            Some((_, vs)) => vs.iter().for_each(|&v| mark(v)),
+            Some(w) => w.child_vertices.iter().for_each(|&v| mark(v)),
             None => (0..t.num_vertices()).for_each(mark),
         }
         any.then_some(verts)
@@ -199,8 +199,10 @@ impl<R: Real> PatchTable<R> {
                 &changed,
             );
             old = Values::of(child);
-            written = Some(resharpen_at(sub, child, &sub_changed));
-            match self.step_rows(sub, &sub_old, child, &old, d, &sub_changed) {
+            let w = resharpen_at(sub, child, &sub_changed);
+            let rows_changed = self.step_rows(sub, &sub_old, child, &old, d, &sub_changed, &w);
+            written = Some(w);
+            match rows_changed {
                 Some(dirty) => rows.push((d, dirty)),
                 None => return Ok(false),
             }
@@ -313,8 +315,8 @@ impl<R: Real> PatchTable<R> {
     /// The rows of step `d` whose inputs changed (parent or child sharpness or rule of the
     /// vertex, of its edges and their children; of the edge and its edge point); `None`
     /// where the stored stencils do not have the step's rows. Only the edges at `changed`
-    /// (the vertices of `sub` whose values [`refresh_sub`] and [`resharpen_at`] changed) and
-    /// their ends can differ: they alone are tested.
+    /// (the vertices of `sub` whose values [`refresh_sub`] changed), which [`resharpen_at`]
+    /// rewrote (`w`), and their ends can differ: they alone are tested.
     #[allow(clippy::too_many_arguments)]
     fn step_rows(
         &self,
@@ -324,6 +326,7 @@ impl<R: Real> PatchTable<R> {
         child_old: &Values,
         d: usize,
         changed: &[u32],
+        w: &Rewritten,
     ) -> Option<Dirty> {
         let (nv, nf, nc) = (sub.num_vertices(), sub.num_faces(), sub.num_corners());
         let ne = sub.num_edges();
@@ -333,12 +336,8 @@ impl<R: Real> PatchTable<R> {
         }
         let bits = |a: f32, b: f32| a.to_bits() != b.to_bits();
         let ce = |i: usize| bits(child_old.edge_sharpness[i], child.edge_sharpness[i]);
-        let near_edges = Bits::of(
-            changed
-                .iter()
-                .flat_map(|&v| sub.vertex_edges(v as usize).iter().copied()),
-            ne,
-        );
+        // Increasing, as the rows are listed.
+        let near_edges = Bits::of(w.edges.iter().copied(), ne);
         let mut edge_input = Bits::new(ne);
         let mut near_verts = Bits::of(changed.iter().copied(), nv);
         let mut edges = Vec::new();

@@ -55,7 +55,7 @@ pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
 use masks::{level_stencils_with, LevelRows};
-pub(crate) use resharpen::{resharpen_at, restencil, unique, Bits};
+pub(crate) use resharpen::{resharpen_at, restencil, unique, Bits, Rewritten};
 use smooth_frame::StepPlan;
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;

@@ -21,13 +21,9 @@ const SHARP_BITS: u16 =
 /// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
 /// took new sharpness (same topology): the children of the edges at those vertices, the
 /// vertices' children and those edges' edge points (no other child element reads a changed
-/// value). Visits the changed vertices' edges only. Returns the elements of `c` it wrote:
-/// `(edges, vertices)`; no other value of `c` changed.
-pub(crate) fn resharpen_at(
-    p: &Topology,
-    c: &mut Topology,
-    changed: &[u32],
-) -> (Vec<usize>, Vec<usize>) {
+/// value). Visits the changed vertices' edges only. Returns what it wrote ([`Rewritten`]);
+/// no other value of `c` changed.
+pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) -> Rewritten {
     let nc = p.num_corners();
     let edges = unique(
         changed
@@ -56,7 +52,21 @@ pub(crate) fn resharpen_at(
     let child_vertices = (changed.iter().map(|&v| v as usize))
         .chain(edges.iter().map(|&e| points + e as usize))
         .collect();
-    (child_edges, child_vertices)
+    Rewritten {
+        edges,
+        child_edges,
+        child_vertices,
+    }
+}
+
+/// What [`resharpen_at`] wrote.
+pub(crate) struct Rewritten {
+    /// The parent's edges at the changed vertices (each once).
+    pub edges: Vec<u32>,
+    /// Their child edges in the child level.
+    pub child_edges: Vec<usize>,
+    /// The children of the changed vertices and the edge points of `edges`.
+    pub child_vertices: Vec<usize>,
 }
 
 /// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
