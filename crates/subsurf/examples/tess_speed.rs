@@ -4,11 +4,13 @@
 //! `testdata/shapes/catmark_car.obj`, `1e-3`, 21 runs). Prints medians in milliseconds, on all
 //! threads (`RAYON_NUM_THREADS` sets how many):
 //!
-//! - `one call`: `RatePolicy::rates` (its rate curves laid out, measured, turned into rates)
-//!   and the tessellation with the check of every triangle (`tess::check`);
-//! - `per frame`: the same with the rate curves laid out once (`RateCurves::new` reads only the
-//!   patch table, so a renderer keeps them, as `subsurf-gpu`'s `GpuRates` does): measure, rates,
-//!   checked tessellation;
+//! - `one call`: `RatePolicy::rates` (its rate curves measured and turned into rates; the
+//!   table lays them out on its first call and keeps them, `PatchTable::rate_curves`, so a
+//!   table's first call adds the `layout` stage below) and the tessellation with the check of
+//!   every triangle (`tess::check`);
+//! - `per frame`: the same with the caller's own layout (`RateCurves::new` reads only the
+//!   patch table, as `subsurf-gpu`'s `GpuRates` keeps it): measure, rates, checked
+//!   tessellation;
 //! - the stages of one plan: layout, measure, rates from the measures, plan, chord check,
 //!   evaluation of the output;
 //! - a frame under the screen-space policy (no check: what a renderer re-tessellates when its
@@ -179,7 +181,7 @@ fn main() {
         rayon::current_num_threads()
     );
     println!(
-        "  one call: rates {:.2} ms, tessellation checked {:.2} ms, both {:.2} ms",
+        "  one call (layout kept with the table): rates {:.2} ms, tessellation checked {:.2} ms, both {:.2} ms",
         median(one_call.0),
         median(one_call.1),
         median(one_call.2)

@@ -180,6 +180,10 @@ pub struct PatchTable<R = f32> {
     /// region ([`PatchTable::build_face_levels`], [`super::tolerance`]); `None` when
     /// `options.isolation_level` applies everywhere.
     pub face_levels: Option<Vec<u8>>,
+    /// The rate curves' layout, formed on first use ([`PatchTable::rate_curves`]) and kept
+    /// (shared by clones): it reads only the base topology, the ptex faces and which of them
+    /// have patches, which a crease edit keeps (an edit that rebuilds makes a new table).
+    pub(crate) rate_curves: std::sync::OnceLock<std::sync::Arc<crate::tess::RateCurves>>,
 }
 
 /// Patch counts by type.
@@ -575,11 +579,20 @@ impl<R: Real> PatchTable<R> {
             patch_map: PatchMap { roots, nodes },
             edit_state,
             face_levels,
+            rate_curves: std::sync::OnceLock::new(),
         })
     }
 }
 
 impl<R: Real> PatchTable<R> {
+    /// The layout of the rate curves of this table's surface ([`crate::tess::RateCurves::new`]),
+    /// formed by the first call and kept with the table: a renderer that chooses its rates
+    /// every frame ([`crate::tess::RatePolicy::rates`]) lays the curves out once.
+    pub fn rate_curves(&self) -> &crate::tess::RateCurves {
+        self.rate_curves
+            .get_or_init(|| std::sync::Arc::new(crate::tess::RateCurves::new(self)))
+    }
+
     /// Number of patches.
     pub fn num_patches(&self) -> usize {
         self.kinds.len()

@@ -363,6 +363,34 @@ mod tests {
         eprintln!("worst difference: {worst:.3} of the rounding allowed");
     }
 
+    /// A table lays its rate curves out once and keeps them (a clone shares them); after
+    /// crease edits, in place or rebuilt, the kept layout is the one a new layout gives.
+    #[test]
+    fn the_table_keeps_its_layout() {
+        let mesh = crate::shapes::creased_pole(5);
+        let t = crate::Topology::new(&mesh).unwrap();
+        let mut table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let first: *const RateCurves = table.rate_curves();
+        assert_eq!(*table.rate_curves(), RateCurves::new(&table));
+        assert!(std::ptr::eq(first, table.rate_curves()));
+        assert!(std::ptr::eq(first, table.clone().rate_curves()));
+        let c = mesh.creases[0];
+        let mut outcomes = Vec::new();
+        for sharpness in [5.0, 6.0, 7.5, 1.0] {
+            let edit = crate::limit::SharpnessEdit::Edge {
+                v0: c.v0,
+                v1: c.v1,
+                sharpness,
+            };
+            outcomes.push(table.apply_sharpness(&[edit]).unwrap());
+            assert_eq!(*table.rate_curves(), RateCurves::new(&table), "{sharpness}");
+        }
+        assert!(
+            outcomes.contains(&crate::limit::EditOutcome::Updated),
+            "{outcomes:?}"
+        );
+    }
+
     /// Measures of another mesh's curves are refused, naming the policy; uniform rates need
     /// none.
     #[test]

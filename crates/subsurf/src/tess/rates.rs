@@ -125,16 +125,17 @@ impl RatePolicy {
     /// rate curves measured on the CPU.
     pub fn rates(&self, surface: &LimitSurface, origin: &str) -> Result<EdgeRates> {
         self.validate(&surface.table.base, origin)?;
+        let none = RateCurves::default();
         let (curves, measures) = match self.measure() {
             Some(m) => {
-                let curves = RateCurves::new(&surface.table);
-                let measures = curves.measure(surface, &m);
-                (curves, measures)
+                // Laid out once per table and kept with it.
+                let curves = surface.table.rate_curves();
+                (curves, curves.measure(surface, &m))
             }
-            None => (RateCurves::default(), Vec::new()),
+            None => (&none, Vec::new()),
         };
         let diagonal = crate::mesh::bbox_diagonal(&surface.points);
-        self.rates_from_measures(&surface.table, diagonal, &curves, &measures, origin)
+        self.rates_from_measures(&surface.table, diagonal, curves, &measures, origin)
     }
 
     /// The rates of a surface whose rate curves `curves` ([`RateCurves::new`] of `table`)
