@@ -41,14 +41,17 @@ pub struct ScreenCamera {
 
 impl ScreenCamera {
     /// Pixel coordinates of `p`, or `None` behind the eye.
+    #[inline]
     pub fn project(&self, p: [f32; 3]) -> Option<[f32; 2]> {
         let m = &self.view_proj;
-        let c: [f32; 4] =
-            [0, 1, 2, 3].map(|r| m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r]);
-        if c[3] <= 1e-12 {
+        // Row `r` of the clip coordinates, `m[0][r] p0 + m[1][r] p1 + m[2][r] p2 + m[3][r]`
+        // (written out: the array adaptor was not inlined in the measure's loop).
+        let row = |r: usize| m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r];
+        let w = row(3);
+        if w <= 1e-12 {
             return None;
         }
-        let (x, y) = (c[0] / c[3], c[1] / c[3]);
+        let (x, y) = (row(0) / w, row(1) / w);
         Some([
             (x * 0.5 + 0.5) * self.width as f32,
             (0.5 - y * 0.5) * self.height as f32,
