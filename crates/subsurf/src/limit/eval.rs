@@ -72,27 +72,40 @@ impl<R: Real> LimitSurface<R> {
     /// `None` in a hole, for a ptex index out of range or a non-finite parameter. `u` and `v`
     /// are clamped to `[0, 1]`.
     pub fn eval_raw(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
+        self.eval_raw_in(&mut LastPatch::new(), ptex, u, v)
+    }
+
+    /// [`Self::eval_raw`] through `last`: a query in the patch `last` holds skips the gather
+    /// (the same points, the same sums, bit for bit).
+    fn eval_raw_in(
+        &self,
+        last: &mut LastPatch<R>,
+        ptex: usize,
+        u: R,
+        v: R,
+    ) -> Option<LimitPoint<R>> {
         if !(u.is_finite() && v.is_finite()) {
             return None;
         }
         let (u, v) = (clamp01(u), clamp01(v));
         let t = &self.table;
         let p = t.patch_map.find(ptex, u, v)? as usize;
+        if last.patch != p {
+            (last.x0, last.n) = gather_relative(self, p, &mut last.d);
+            last.patch = p;
+        }
         let kind = t.patch_type(p).kind();
         let [wp, wu, wv] =
             patch_first_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
-        let cvs = t.patch_cvs(p);
         // Relative to the first control point (see the module documentation).
-        let x0 = R::V3::load(&self.points, cvs[0] as usize);
         let [mut p, mut du, mut dv] = [R::V3::zero(); 3];
-        for (k, &cv) in cvs.iter().enumerate() {
-            let d = R::V3::load(&self.points, cv as usize).sub(x0);
+        for (k, &d) in last.d[..last.n].iter().enumerate() {
             p = p.mul_add(wp[k], d);
             du = du.mul_add(wu[k], d);
             dv = dv.mul_add(wv[k], d);
         }
         Some(LimitPoint {
-            p: p.add(x0).to_array(),
+            p: p.add(last.x0).to_array(),
             du: du.to_array(),
             dv: dv.to_array(),
             n: [R::ZERO; 3],
@@ -117,13 +130,24 @@ impl<R: Real> LimitSurface<R> {
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
     pub fn eval(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
-        let mut r = self.eval_raw(ptex, u, v)?;
+        self.eval_in(&mut LastPatch::new(), ptex, u, v)
+    }
+
+    /// [`Self::eval`] through `last` ([`Self::eval_raw_in`]).
+    pub(crate) fn eval_in(
+        &self,
+        last: &mut LastPatch<R>,
+        ptex: usize,
+        u: R,
+        v: R,
+    ) -> Option<LimitPoint<R>> {
+        let mut r = self.eval_raw_in(last, ptex, u, v)?;
         let (u, v) = (clamp01(u), clamp01(v));
-        let fallback = || {
+        let mut fallback = || {
             // Step a little towards the face centre, where the tangent plane is regular.
             let (h, s) = (R::from_f64(0.5), R::from_f64(1e-3));
             let (a, b) = (u + (h - u) * s, v + (h - v) * s);
-            let q = self.eval_raw(ptex, a, b)?;
+            let q = self.eval_raw_in(last, ptex, a, b)?;
             unit(cross(q.du, q.dv))
         };
         r.n = match unit(cross(r.du, r.dv)) {
@@ -133,12 +157,42 @@ impl<R: Real> LimitSurface<R> {
         Some(r)
     }
 
-    /// [`LimitSurface::eval`] for many `(ptex, u, v)` in parallel (rayon).
+    /// [`LimitSurface::eval`] for many `(ptex, u, v)` in parallel (rayon), in chunks that
+    /// each keep the patch they last evaluated (neighbouring queries mostly share patches).
     pub fn eval_batch(&self, queries: &[(u32, R, R)]) -> Vec<Option<LimitPoint<R>>> {
-        queries
-            .par_iter()
-            .map(|&(f, u, v)| self.eval(f as usize, u, v))
-            .collect()
+        let mut out = vec![None; queries.len()];
+        out.par_chunks_mut(BATCH)
+            .zip(queries.par_chunks(BATCH))
+            .for_each(|(out, q)| {
+                let mut last = LastPatch::new();
+                for (o, &(f, u, v)) in out.iter_mut().zip(q) {
+                    *o = self.eval_in(&mut last, f as usize, u, v);
+                }
+            });
+        out
+    }
+}
+
+/// Queries per chunk of [`LimitSurface::eval_batch`].
+pub(crate) const BATCH: usize = 512;
+
+/// The points of the patch a walk last evaluated, relative to its first ([`gather_relative`]).
+pub(crate) struct LastPatch<R: Real> {
+    /// The patch (`usize::MAX`: none).
+    patch: usize,
+    x0: R::V3,
+    d: [R::V3; 20],
+    n: usize,
+}
+
+impl<R: Real> LastPatch<R> {
+    pub(crate) fn new() -> Self {
+        LastPatch {
+            patch: usize::MAX,
+            x0: R::V3::zero(),
+            d: [R::V3::zero(); 20],
+            n: 0,
+        }
     }
 }
 
@@ -236,5 +290,22 @@ mod tests {
             }
         }
         assert!(compared > 250, "{compared}");
+        // A batch walks its chunks through one kept patch: the same bits as each query alone
+        // (queries in order, so neighbours share patches, and scattered).
+        let n = tab.num_ptex_faces() as u32;
+        let queries: Vec<(u32, f32, f32)> = (0..n * 49)
+            .map(|k| (k / 49, (k % 7) as f32 / 6.0, ((k / 7) % 7) as f32 / 6.0))
+            .chain((0..200).map(|k| ((k * 7) % n, (k % 13) as f32 / 12.0, 0.3)))
+            .collect();
+        let batch = s.eval_batch(&queries);
+        for (&(f, u, v), got) in queries.iter().zip(&batch) {
+            let want = s.eval(f as usize, u, v);
+            assert_eq!(want.is_some(), got.is_some());
+            if let (Some(a), Some(b)) = (want, got) {
+                for (x, y) in [(a.p, b.p), (a.du, b.du), (a.dv, b.dv), (a.n, b.n)] {
+                    assert_eq!(bits(x), bits(y), "ptex {f} ({u}, {v})");
+                }
+            }
+        }
     }
 }

@@ -475,13 +475,22 @@ impl LimitSurface {
         &self,
         queries: &[(u32, f32, f32)],
     ) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
-        let evaluated: Vec<_> = queries
-            .par_iter()
-            .map(|&(f, u, v)| self.eval(f as usize, u, v).unwrap_or_default())
-            .collect();
-        (
-            evaluated.iter().map(|e| e.p).collect(),
-            evaluated.iter().map(|e| e.n).collect(),
-        )
+        use crate::limit::eval::{LastPatch, BATCH};
+        let mut positions = vec![[0.0f32; 3]; queries.len()];
+        let mut normals = vec![[0.0f32; 3]; queries.len()];
+        // In chunks, each keeping the patch it last evaluated (`eval_batch`'s walk).
+        positions
+            .par_chunks_mut(BATCH)
+            .zip(normals.par_chunks_mut(BATCH))
+            .zip(queries.par_chunks(BATCH))
+            .for_each(|((p, n), q)| {
+                let mut last = LastPatch::new();
+                for ((p, n), &(f, u, v)) in p.iter_mut().zip(n).zip(q) {
+                    if let Some(e) = self.eval_in(&mut last, f as usize, u, v) {
+                        (*p, *n) = (e.p, e.n);
+                    }
+                }
+            });
+        (positions, normals)
     }
 }
