@@ -72,18 +72,13 @@ impl<R: Real> LimitSurface<R> {
     /// `None` in a hole, for a ptex index out of range or a non-finite parameter. `u` and `v`
     /// are clamped to `[0, 1]`.
     pub fn eval_raw(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
-        self.eval_raw_in(&mut LastPatch::new(), ptex, u, v)
+        self.eval_raw_in(&mut LastPatch::new(), (ptex, u, v))
     }
 
     /// [`Self::eval_raw`] through `last`: a query in the patch `last` holds skips the gather
     /// (the same points, the same sums, bit for bit).
-    fn eval_raw_in(
-        &self,
-        last: &mut LastPatch<R>,
-        ptex: usize,
-        u: R,
-        v: R,
-    ) -> Option<LimitPoint<R>> {
+    fn eval_raw_in(&self, last: &mut LastPatch<R>, q: (usize, R, R)) -> Option<LimitPoint<R>> {
+        let (ptex, u, v) = q;
         if !(u.is_finite() && v.is_finite()) {
             return None;
         }
@@ -130,24 +125,23 @@ impl<R: Real> LimitSurface<R> {
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
     pub fn eval(&self, ptex: usize, u: R, v: R) -> Option<LimitPoint<R>> {
-        self.eval_in(&mut LastPatch::new(), ptex, u, v)
+        self.eval_in(&mut LastPatch::new(), (ptex, u, v))
     }
 
     /// [`Self::eval`] through `last` ([`Self::eval_raw_in`]).
     pub(crate) fn eval_in(
         &self,
         last: &mut LastPatch<R>,
-        ptex: usize,
-        u: R,
-        v: R,
+        q: (usize, R, R),
     ) -> Option<LimitPoint<R>> {
-        let mut r = self.eval_raw_in(last, ptex, u, v)?;
+        let (ptex, u, v) = q;
+        let mut r = self.eval_raw_in(last, q)?;
         let (u, v) = (clamp01(u), clamp01(v));
         let mut fallback = || {
             // Step a little towards the face centre, where the tangent plane is regular.
             let (h, s) = (R::from_f64(0.5), R::from_f64(1e-3));
             let (a, b) = (u + (h - u) * s, v + (h - v) * s);
-            let q = self.eval_raw_in(last, ptex, a, b)?;
+            let q = self.eval_raw_in(last, (ptex, a, b))?;
             unit(cross(q.du, q.dv))
         };
         r.n = match unit(cross(r.du, r.dv)) {
@@ -166,7 +160,7 @@ impl<R: Real> LimitSurface<R> {
             .for_each(|(out, q)| {
                 let mut last = LastPatch::new();
                 for (o, &(f, u, v)) in out.iter_mut().zip(q) {
-                    *o = self.eval_in(&mut last, f as usize, u, v);
+                    *o = self.eval_in(&mut last, (f as usize, u, v));
                 }
             });
         out

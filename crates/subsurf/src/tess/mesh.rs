@@ -486,7 +486,7 @@ impl LimitSurface {
             .for_each(|((p, n), q)| {
                 let mut last = LastPatch::new();
                 for ((p, n), &(f, u, v)) in p.iter_mut().zip(n).zip(q) {
-                    if let Some(e) = self.eval_in(&mut last, f as usize, u, v) {
+                    if let Some(e) = self.eval_in(&mut last, (f as usize, u, v)) {
                         (*p, *n) = (e.p, e.n);
                     }
                 }
