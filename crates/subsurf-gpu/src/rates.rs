@@ -78,7 +78,8 @@ impl GpuRates {
         table: &PatchTable,
         limits: ChunkLimits,
     ) -> Result<Self> {
-        let curves = RateCurves::new(table);
+        // The table's own layout (formed once per table, shared with the CPU path).
+        let curves = table.rate_curves().clone();
         let samples = limit.samples(ctx, &curves.queries, false)?;
         let n = curves.num_curves();
         let measures = storage_buffer_init(ctx, "rate measures", &vec![0u8; 4 * n.max(1)])?;

@@ -23,7 +23,7 @@
 //! agree with it to rounding (a few units in the last place of the patch's extent), not bit
 //! for bit; the rate curves and the chord check only compare distances far above that.
 
-use super::eval::{gather_relative, weighted_sum};
+use super::eval::LastPatch;
 use super::patch_map::{clamp01, square_local, Cell};
 use super::LimitSurface;
 use crate::patch::basis::{
@@ -118,7 +118,7 @@ pub struct CurveCache<R: Real> {
     /// Points of the patches last loaded, by [`slot_of`] their index: a query that returns
     /// to a patch (the check's samples alternate between the few large patches of a ptex
     /// face; a face's isolines cross the same ones) skips the gather.
-    loaded: [Loaded<R>; SLOTS],
+    loaded: [LastPatch<R>; SLOTS],
     /// Rows collapsed at a `t` (along `s`); at NaN when none.
     rows: Collapsed<R>,
     /// Columns collapsed at an `s` (along `t`); at NaN when none.
@@ -136,16 +136,6 @@ const _: () = assert!(SLOTS.is_power_of_two() && SLOTS > 1);
 #[inline(always)]
 fn slot_of(p: usize) -> usize {
     ((p as u32).wrapping_mul(0x9E37_79B1) >> (32 - SLOTS.trailing_zeros())) as usize
-}
-
-/// A patch's points relative to its first ([`gather_relative`]).
-#[derive(Debug, Clone, Copy)]
-struct Loaded<R: Real> {
-    /// The patch (`usize::MAX`: none).
-    patch: usize,
-    x0: R::V3,
-    d: [R::V3; 20],
-    n: usize,
 }
 
 impl<R: Real> Default for CurveCache<R> {
@@ -205,12 +195,7 @@ impl<R: Real> CurveCache<R> {
             patch: usize::MAX,
             x0: R::V3::zero(),
             slot: 0,
-            loaded: [Loaded {
-                patch: usize::MAX,
-                x0: R::V3::zero(),
-                d: [R::V3::zero(); 20],
-                n: 0,
-            }; SLOTS],
+            loaded: [LastPatch::new(); SLOTS],
             rows: Collapsed::none(),
             cols: Collapsed::none(),
             last: (usize::MAX, R::from_f64(f64::NAN)),
@@ -303,12 +288,8 @@ impl<R: Real> CurveCache<R> {
         let t = &surface.table;
         let p = c.patch as usize;
         let slot = slot_of(p);
-        let l = &mut self.loaded[slot];
-        if l.patch != p {
-            (l.x0, l.n) = gather_relative(surface, p, &mut l.d);
-            l.patch = p;
-        }
-        let x0 = l.x0;
+        self.loaded[slot].load(surface, p);
+        let x0 = self.loaded[slot].x0();
         let param = &t.params[p];
         self.own_square = param.square() == (c.level, c.iu, c.iv);
         self.square = [
@@ -340,7 +321,7 @@ impl<R: Real> CurveCache<R> {
         if matches!(kind, PatchKind::GregoryBasis(_)) {
             // The tensor does not factor.
             let w = patch_position_weights(kind, param, sharpness, u, v);
-            return weighted_sum::<R>(self.x0, &w[..l.n], &l.d[..l.n]).to_array();
+            return l.sum(&w).to_array();
         }
         let curve = |dir: usize, x: R| {
             patch_curve(kind, param, sharpness, dir, x).map_or([R::ZERO; 4], |w| w.p)
@@ -353,13 +334,13 @@ impl<R: Real> CurveCache<R> {
             // Columns at this `s`: c_j = Σ_i a_i d_{ji}.
             let a = curve(0, s);
             let shape = patch_curve_shape(kind, param, sharpness, 1);
-            self.cols = Collapsed::new(s, shape, |j, i| (a[i], l.d[4 * j + i]));
+            self.cols = Collapsed::new(s, shape, |j, i| (a[i], l.point(4 * j + i)));
             self.cols.along(tt, || curve(1, tt))
         } else {
             // Rows at this `t`: r_i = Σ_j b_j d_{ji}.
             let b = curve(1, tt);
             let shape = patch_curve_shape(kind, param, sharpness, 0);
-            self.rows = Collapsed::new(tt, shape, |i, j| (b[j], l.d[4 * j + i]));
+            self.rows = Collapsed::new(tt, shape, |i, j| (b[j], l.point(4 * j + i)));
             self.rows.along(s, || curve(0, s))
         };
         self.x0.add(rel).to_array()

@@ -78,29 +78,21 @@ impl<R: Real> LimitSurface<R> {
     /// [`Self::eval_raw`] through `last`: a query in the patch `last` holds skips the gather
     /// (the same points, the same sums, bit for bit).
     fn eval_raw_in(&self, last: &mut LastPatch<R>, q: (usize, R, R)) -> Option<LimitPoint<R>> {
-        let (ptex, u, v) = q;
-        if !(u.is_finite() && v.is_finite()) {
-            return None;
-        }
-        let (u, v) = (clamp01(u), clamp01(v));
+        let (p, u, v) = self.locate(q)?;
+        last.load(self, p);
         let t = &self.table;
-        let p = t.patch_map.find(ptex, u, v)? as usize;
-        if last.patch != p {
-            (last.x0, last.n) = gather_relative(self, p, &mut last.d);
-            last.patch = p;
-        }
         let kind = t.patch_type(p).kind();
         let [wp, wu, wv] =
             patch_first_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
         // Relative to the first control point (see the module documentation).
         let [mut p, mut du, mut dv] = [R::V3::zero(); 3];
-        for (k, &d) in last.d[..last.n].iter().enumerate() {
+        for (k, &d) in last.points().iter().enumerate() {
             p = p.mul_add(wp[k], d);
             du = du.mul_add(wu[k], d);
             dv = dv.mul_add(wv[k], d);
         }
         Some(LimitPoint {
-            p: p.add(last.x0).to_array(),
+            p: p.add(last.x0()).to_array(),
             du: du.to_array(),
             dv: dv.to_array(),
             n: [R::ZERO; 3],
@@ -110,17 +102,25 @@ impl<R: Real> LimitSurface<R> {
     /// The position of [`LimitSurface::eval_raw`] alone (the same sums, bit for bit), for
     /// callers that need no derivatives.
     pub fn eval_position(&self, ptex: usize, u: R, v: R) -> Option<[R; 3]> {
+        let (p, u, v) = self.locate((ptex, u, v))?;
+        let mut last = LastPatch::new();
+        last.load(self, p);
+        let t = &self.table;
+        let kind = t.patch_type(p).kind();
+        let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
+        Some(last.sum(&w).to_array())
+    }
+
+    /// The patch of query `(ptex, u, v)` and its parameters clamped to `[0, 1]`; `None` in
+    /// a hole, for a ptex index out of range or a non-finite parameter.
+    #[inline]
+    fn locate(&self, (ptex, u, v): (usize, R, R)) -> Option<(usize, R, R)> {
         if !(u.is_finite() && v.is_finite()) {
             return None;
         }
         let (u, v) = (clamp01(u), clamp01(v));
-        let t = &self.table;
-        let p = t.patch_map.find(ptex, u, v)? as usize;
-        let mut d = [R::V3::zero(); 20];
-        let (x0, n) = gather_relative(self, p, &mut d);
-        let kind = t.patch_type(p).kind();
-        let w = patch_position_weights(kind, &t.params[p], R::from_f32(t.sharpness[p]), u, v);
-        Some(weighted_sum::<R>(x0, &w[..n], &d[..n]).to_array())
+        let p = self.table.patch_map.find(ptex, u, v)? as usize;
+        Some((p, u, v))
     }
 
     /// Position, derivatives and normal at `(u, v)` of ptex face `ptex`.
@@ -129,11 +129,7 @@ impl<R: Real> LimitSurface<R> {
     }
 
     /// [`Self::eval`] through `last` ([`Self::eval_raw_in`]).
-    pub(crate) fn eval_in(
-        &self,
-        last: &mut LastPatch<R>,
-        q: (usize, R, R),
-    ) -> Option<LimitPoint<R>> {
+    fn eval_in(&self, last: &mut LastPatch<R>, q: (usize, R, R)) -> Option<LimitPoint<R>> {
         let (ptex, u, v) = q;
         let mut r = self.eval_raw_in(last, q)?;
         let (u, v) = (clamp01(u), clamp01(v));
@@ -155,22 +151,35 @@ impl<R: Real> LimitSurface<R> {
     /// each keep the patch they last evaluated (neighbouring queries mostly share patches).
     pub fn eval_batch(&self, queries: &[(u32, R, R)]) -> Vec<Option<LimitPoint<R>>> {
         let mut out = vec![None; queries.len()];
+        self.eval_each(queries, &mut out, |o, e| *o = Some(e));
+        out
+    }
+
+    /// Each query's [`LimitSurface::eval`] handed to `put` with its output (left alone in a
+    /// hole), in parallel chunks that each keep the patch they last evaluated.
+    pub(crate) fn eval_each<T: Send>(
+        &self,
+        queries: &[(u32, R, R)],
+        out: &mut [T],
+        put: impl Fn(&mut T, LimitPoint<R>) + Sync,
+    ) {
+        /// Queries per chunk.
+        const BATCH: usize = 512;
         out.par_chunks_mut(BATCH)
             .zip(queries.par_chunks(BATCH))
             .for_each(|(out, q)| {
                 let mut last = LastPatch::new();
                 for (o, &(f, u, v)) in out.iter_mut().zip(q) {
-                    *o = self.eval_in(&mut last, (f as usize, u, v));
+                    if let Some(e) = self.eval_in(&mut last, (f as usize, u, v)) {
+                        put(o, e);
+                    }
                 }
             });
-        out
     }
 }
 
-/// Queries per chunk of [`LimitSurface::eval_batch`].
-pub(crate) const BATCH: usize = 512;
-
-/// The points of the patch a walk last evaluated, relative to its first ([`gather_relative`]).
+/// The points of the patch a walk last evaluated, relative to its first ([`LastPatch::load`]).
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct LastPatch<R: Real> {
     /// The patch (`usize::MAX`: none).
     patch: usize,
@@ -188,33 +197,55 @@ impl<R: Real> LastPatch<R> {
             n: 0,
         }
     }
-}
 
-/// The control points of patch `p` of `surface` relative to its first (`x − x₀`, as
-/// [`LimitSurface::eval_raw`] sums them) into `d`: the first point and the number of points.
-#[inline(always)]
-pub(crate) fn gather_relative<R: Real>(
-    surface: &LimitSurface<R>,
-    p: usize,
-    d: &mut [R::V3; 20],
-) -> (R::V3, usize) {
-    let cvs = surface.table.patch_cvs(p);
-    assert!(cvs.len() <= d.len(), "patch {p} has {} points", cvs.len());
-    let x0 = R::V3::load(&surface.points, cvs[0] as usize);
-    for (d, &cv) in d.iter_mut().zip(cvs) {
-        *d = R::V3::load(&surface.points, cv as usize).sub(x0);
+    /// Holds patch `p` of `surface`: unless it is the one held, its control points are
+    /// gathered relative to its first (`x − x₀`, as [`LimitSurface::eval_raw`] sums them).
+    #[inline(always)]
+    pub(crate) fn load(&mut self, surface: &LimitSurface<R>, p: usize) {
+        if self.patch == p {
+            return;
+        }
+        let cvs = surface.table.patch_cvs(p);
+        assert!(
+            cvs.len() <= self.d.len(),
+            "patch {p} has {} points",
+            cvs.len()
+        );
+        let x0 = R::V3::load(&surface.points, cvs[0] as usize);
+        for (d, &cv) in self.d.iter_mut().zip(cvs) {
+            *d = R::V3::load(&surface.points, cv as usize).sub(x0);
+        }
+        (self.patch, self.x0, self.n) = (p, x0, cvs.len());
     }
-    (x0, cvs.len())
-}
 
-/// `x₀ + Σ_k w_k d_k`, summed in order (as [`LimitSurface::eval_raw`] sums positions).
-#[inline(always)]
-pub(crate) fn weighted_sum<R: Real>(x0: R::V3, w: &[R], d: &[R::V3]) -> R::V3 {
-    let mut r = R::V3::zero();
-    for (&w, &d) in w.iter().zip(d) {
-        r = r.mul_add(w, d);
+    /// The held patch's first point.
+    #[inline(always)]
+    pub(crate) fn x0(&self) -> R::V3 {
+        self.x0
     }
-    r.add(x0)
+
+    /// The held patch's points relative to its first.
+    #[inline(always)]
+    pub(crate) fn points(&self) -> &[R::V3] {
+        &self.d[..self.n]
+    }
+
+    /// Point `k` of the held patch relative to its first (`k` below its point count).
+    #[inline(always)]
+    pub(crate) fn point(&self, k: usize) -> R::V3 {
+        self.d[k]
+    }
+
+    /// `x₀ + Σ_k w_k d_k` over the held patch's points, in order (as
+    /// [`LimitSurface::eval_raw`] sums positions).
+    #[inline(always)]
+    pub(crate) fn sum(&self, w: &[R]) -> R::V3 {
+        let mut r = R::V3::zero();
+        for (&w, &d) in w.iter().zip(self.points()) {
+            r = r.mul_add(w, d);
+        }
+        r.add(self.x0)
+    }
 }
 
 #[cfg(test)]

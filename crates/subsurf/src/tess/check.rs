@@ -21,9 +21,8 @@
 //! narrower than the triangles (within `2^-s` of a semi-sharp corner), which finer rates
 //! resolve once they pass its width: such a face's rates are doubled, up to 8x those of its
 //! first miss, and then left (no chord error there: the surface is not continuous at that
-//! scale). The first plan's output is evaluated before its check, whose corner positions it
-//! gives, and is the tessellation when no face misses (the usual case); after a raise the last
-//! plan is evaluated.
+//! scale). Each plan's output is evaluated before its check, whose corner positions it gives;
+//! the last plan's is the tessellation.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 use crate::error::Result;
@@ -112,7 +111,7 @@ fn chord_errors_at(
                 // A sample another ptex face evaluates is taken again from this one: the
                 // chords are this face's (a table whose neighbouring patches part by more
                 // than the tolerance is not mended by finer rates).
-                let x = [0, 1, 2].map(|k| {
+                let mut corner = |k: usize| {
                     let i = tri[k] as usize;
                     if p.queries[i].0 == ptex {
                         return positions[i];
@@ -122,7 +121,9 @@ fn chord_errors_at(
                         *e = (tri[k], at(c[k][0], c[k][1]).unwrap_or(positions[i]));
                     }
                     e.1
-                });
+                };
+                // Written out: the array adaptor was not always inlined around this closure.
+                let x = [corner(0), corner(1), corner(2)];
                 let mut w = 0.0f64;
                 for i in 0..3 {
                     let j = (i + 1) % 3;
@@ -217,11 +218,11 @@ pub fn tessellate_within_tolerance(
     let mut first = vec![0u32; t.num_faces()];
     let mut last = vec![0.0f64; t.num_faces()];
     let mut stuck = vec![false; t.num_faces()];
-    // The output of the first plan, evaluated first: its positions are the check's, and it
-    // is the tessellation when no face is raised (the usual case).
-    let mut output = Some(surface.eval_queries(&p.queries));
+    // Each plan's output is evaluated first: its positions are the check's, and the last
+    // plan's is the tessellation (every plan is evaluated once).
+    let mut output = surface.eval_queries(&p.queries);
     for _ in 1..ROUNDS {
-        let known = output.as_ref().map(|(positions, _)| &positions[..]);
+        let known = Some(&output.0[..]);
         let errors = chord_errors_at(surface, &p, &face_of_ptex, only.as_deref(), known);
         if rates.faces.is_empty() {
             rates.faces = vec![0; t.num_faces()];
@@ -293,17 +294,15 @@ pub fn tessellate_within_tolerance(
         }
         p = plan(table, &rates, origin)?;
         only = Some(again);
-        output = None;
+        output = surface.eval_queries(&p.queries);
     }
     let uv = std::mem::take(&mut p.triangle_uv);
-    let tessellation = match output {
-        Some((positions, normals)) => AdaptiveTessellation {
-            positions,
-            normals,
-            triangles: p.triangles,
-            edge_rates: p.edge_rates,
-        },
-        None => surface.eval_plan(p),
+    let (positions, normals) = output;
+    let tessellation = AdaptiveTessellation {
+        positions,
+        normals,
+        triangles: p.triangles,
+        edge_rates: p.edge_rates,
     };
     Ok((rates, tessellation, uv))
 }

@@ -475,22 +475,10 @@ impl LimitSurface {
         &self,
         queries: &[(u32, f32, f32)],
     ) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
-        use crate::limit::eval::{LastPatch, BATCH};
-        let mut positions = vec![[0.0f32; 3]; queries.len()];
-        let mut normals = vec![[0.0f32; 3]; queries.len()];
-        // In chunks, each keeping the patch it last evaluated (`eval_batch`'s walk).
-        positions
-            .par_chunks_mut(BATCH)
-            .zip(normals.par_chunks_mut(BATCH))
-            .zip(queries.par_chunks(BATCH))
-            .for_each(|((p, n), q)| {
-                let mut last = LastPatch::new();
-                for ((p, n), &(f, u, v)) in p.iter_mut().zip(n).zip(q) {
-                    if let Some(e) = self.eval_in(&mut last, (f as usize, u, v)) {
-                        (*p, *n) = (e.p, e.n);
-                    }
-                }
-            });
+        let mut out = vec![([0.0f32; 3], [0.0f32; 3]); queries.len()];
+        self.eval_each(queries, &mut out, |o, e| *o = (e.p, e.n));
+        let positions = out.iter().map(|o| o.0).collect();
+        let normals = out.iter().map(|o| o.1).collect();
         (positions, normals)
     }
 }
