@@ -139,7 +139,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mesh = subsurf::io::read_path(path)?;
     let osd_mesh = OsdMesh::from(&mesh);
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+    // Every single-threaded run on one core: the main thread (the C++ and Rust peers' frames)
+    // and the one-thread pool's worker (setups, one shots, subsurf's frames) bound to CPU 0,
+    // so that no peer's frame finds its tables in the other core's cache or migrates. Unbound,
+    // the worker ran wherever the kernel put it: subsurf's level-3 frame read 0.46-0.94 ms
+    // between processes (subdiv-kernels' 1.07-1.21 ms), bound 0.45-0.54 ms.
+    // The cold one-shot processes inherit the binding.
+    osd_ref::bind_to_cpu(0);
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .start_handler(|_| osd_ref::bind_to_cpu(0))
+        .build()?;
     // Each worker of the two-thread pool on a core of its own (see `osd_ref::bind_to_cpu`).
     let two = rayon::ThreadPoolBuilder::new()
         .num_threads(2)

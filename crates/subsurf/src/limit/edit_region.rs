@@ -35,6 +35,8 @@ use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
 use crate::refine::{resharpen_at, restencil, unique, Bits, Rewritten};
 use crate::topology::Topology;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::mpsc;
 
 /// Not visited by the walk.
 const NONE: u32 = u32::MAX;
@@ -143,15 +145,22 @@ impl Values {
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
 type Dirty = (Vec<u32>, Vec<u32>);
 
+/// A level written by the walk, handed to the decisions: `(level, topology, its values
+/// before the edit, per vertex whether it changed)`.
+type Ready<'a> = (usize, &'a Topology, Values, Vec<bool>);
+
 impl<R: Real> PatchTable<R> {
     /// Applies the edited base topology `base` incrementally (module documentation); returns
     /// `false`, the table unchanged but for its kept levels, where the structure changes.
+    ///
+    /// The walk down the levels (new values of the sub-mesh and the child level, the rows
+    /// to form again) and the decisions of each level's faces run side by side: a level is
+    /// handed to the decisions as soon as the walk has written it, and is not written again.
     pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<bool> {
         let Some(state) = self.edit_state.take() else {
             return Ok(false);
         };
         let mut st = std::sync::Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
-        let num_levels = st.trace.levels.len();
         let max_level = self.options.level_for(&base) as usize;
         let leaf_options = LeafOptions {
             single_crease: self.options.single_crease,
@@ -161,52 +170,42 @@ impl<R: Real> PatchTable<R> {
         let mask = FeatureMask::new(self.options.single_crease);
         let num_level_points = *self.level_offsets.last().unwrap_or(&0);
 
-        let mut old = Values::of(&st.trace.levels[0]);
+        let old = Values::of(&st.trace.levels[0]);
         st.trace.levels[0] = base;
-        let mut rows: Vec<(usize, Dirty)> = Vec::new();
-        let mut patches: Vec<(u32, PatchType, u8, f32)> = Vec::new();
-        // What of level `d` can differ from `old`: anything on the base; below, what
-        // `resharpen_at` wrote.
-        let mut written = None;
-        for d in 0..num_levels {
-            let Some(changed) = old.changes(&st.trace.levels[d], written.as_ref()) else {
-                break;
-            };
-            if !self.redecide(
-                &st,
-                d,
-                &old,
-                &changed,
-                &mask,
-                &leaf_options,
-                num_level_points,
-                &mut patches,
-            )? {
-                return Ok(false);
-            }
-            if d + 1 == num_levels {
-                break;
-            }
-            let (head, tail) = st.trace.levels.split_at_mut(d + 1);
-            let (level, child) = (&head[d], &mut tail[0]);
-            let sub = &mut st.trace.subs[d];
-            let sub_old = Values::of(sub);
-            let sub_changed = refresh_sub(
-                level,
-                sub,
-                &self.level_inputs[d],
-                &st.trace.sub_edges[d],
-                &changed,
-            );
-            old = Values::of(child);
-            let w = resharpen_at(sub, child, &sub_changed);
-            let rows_changed = self.step_rows(sub, &sub_old, child, &old, d, &sub_changed, &w);
-            written = Some(w);
-            match rows_changed {
-                Some(dirty) => rows.push((d, dirty)),
-                None => return Ok(false),
-            }
-        }
+        let EditState {
+            trace,
+            visit,
+            leaf_patch,
+        } = &mut st;
+        let stop = AtomicBool::new(false);
+        let (ready, levels) = mpsc::channel::<Ready<'_>>();
+        let this = &*self;
+        let (rows, patches) = rayon::join(
+            || this.walk(trace, old, ready, &stop),
+            || {
+                let mut patches = Vec::new();
+                for (d, t, old, changed) in levels {
+                    let o = this.redecide(
+                        t,
+                        (&visit[d], &leaf_patch[d]),
+                        d,
+                        &old,
+                        &changed,
+                        (&mask, &leaf_options),
+                        num_level_points,
+                        &mut patches,
+                    );
+                    if !matches!(o, Ok(true)) {
+                        stop.store(true, Ordering::Relaxed);
+                        return o.map(|_| None);
+                    }
+                }
+                Ok(Some(patches))
+            },
+        );
+        let (Some(rows), Some(patches)) = (rows, patches?) else {
+            return Ok(false);
+        };
         // Every check passed: the table is changed from here on.
         for (d, (vertex, edge)) in rows {
             let (sub, child) = (&st.trace.subs[d], &st.trace.levels[d + 1]);
@@ -227,23 +226,77 @@ impl<R: Real> PatchTable<R> {
         Ok(true)
     }
 
-    /// Makes the decisions of the visited faces of level `d` around the `changed` vertices
+    /// The walk down the levels of `trace`, whose base was `old` before the edit: each
+    /// level's changes, its sub-mesh's new values, the child level's sharpness, tags and
+    /// rules, the step's rows to form again. Every level with changes is sent to `ready`
+    /// once written. `None` where the stored stencils do not have a step's rows, or when
+    /// `stop` is set (a decision found a change of structure).
+    fn walk<'a>(
+        &self,
+        trace: &'a mut Trace,
+        mut old: Values,
+        ready: mpsc::Sender<Ready<'a>>,
+        stop: &AtomicBool,
+    ) -> Option<Vec<(usize, Dirty)>> {
+        let Trace {
+            levels,
+            subs,
+            sub_edges,
+            ..
+        } = trace;
+        let mut levels = levels.iter_mut();
+        let mut level: &'a Topology = levels.next()?;
+        let mut rows = Vec::new();
+        // What of a level can differ from `old`: anything on the base; below, what
+        // `resharpen_at` wrote.
+        let mut written = None;
+        for (d, sub) in subs.iter_mut().enumerate() {
+            let Some(changed) = old.changes(level, written.as_ref()) else {
+                // Nothing changed here: every deeper level is unchanged.
+                return Some(rows);
+            };
+            let child = levels.next()?;
+            let sub_old = Values::of(sub);
+            let sub_changed =
+                refresh_sub(level, sub, &self.level_inputs[d], &sub_edges[d], &changed);
+            // The level is final: its faces are decided while the walk goes on.
+            ready.send((d, level, old, changed)).ok()?;
+            old = Values::of(child);
+            let w = resharpen_at(sub, child, &sub_changed);
+            rows.push((
+                d,
+                self.step_rows(sub, &sub_old, child, &old, d, &sub_changed, &w)?,
+            ));
+            written = Some(w);
+            level = child;
+            if stop.load(Ordering::Relaxed) {
+                return None;
+            }
+        }
+        // The last level: decided, never refined.
+        if let Some(changed) = old.changes(level, written.as_ref()) {
+            let d = rows.len();
+            ready.send((d, level, old, changed)).ok()?;
+        }
+        Some(rows)
+    }
+
+    /// Makes the decisions of the visited faces of level `d` (topology `t`, its faces'
+    /// visits and leaves' patches `(visit, leaf_patch)`) around the `changed` vertices
     /// again: `false` where one differs (or an end cap's points change); the new types of
     /// the leaves are pushed to `out`.
     #[allow(clippy::too_many_arguments)]
     fn redecide(
         &self,
-        st: &EditState,
+        t: &Topology,
+        (visit, leaf_patch): (&[u32], &[u32]),
         d: usize,
         old: &Values,
         changed: &[bool],
-        mask: &FeatureMask,
-        o: &LeafOptions,
+        (mask, o): (&FeatureMask, &LeafOptions),
         num_level_points: u32,
         out: &mut Vec<(u32, PatchType, u8, f32)>,
     ) -> Result<bool> {
-        let t = &st.trace.levels[d];
-        let visit = &st.visit[d];
         let faces = unique(
             (0..t.num_vertices())
                 .filter(|&v| changed[v])
@@ -270,7 +323,7 @@ impl<R: Real> PatchTable<R> {
             if refine {
                 continue;
             }
-            let p = st.leaf_patch[d][visit[f] as usize];
+            let p = leaf_patch[visit[f] as usize];
             if p == NONE {
                 return Err(Error::Internal(format!(
                     "leaf {f} of level {d} has no patch"
