@@ -168,9 +168,9 @@ impl<R: Real> PatchTable<R> {
             *self = PatchTable::build_face_levels(&t, &self.options, levels)?;
             return Ok(EditOutcome::Rebuilt);
         }
-        if self.edit_state.is_some() && self.set_sharpness_incremental(t.clone())? {
+        let Some(t) = self.set_sharpness_incremental(t)? else {
             return Ok(EditOutcome::Updated);
-        }
+        };
         *self = PatchTable::build_within_real(
             &t,
             &self.options,

@@ -33,7 +33,7 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen_at, restencil, unique, Bits, Rewritten};
+use crate::refine::{resharpen_at, restencil, unique, Before, Bits, Moved, Rewritten};
 use crate::topology::Topology;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -46,16 +46,25 @@ const CHOSEN: u32 = u32::MAX - 1;
 /// The levels of a table kept for incremental edits.
 #[derive(Debug, Clone)]
 pub struct EditState {
+    /// The levels, but for level 0 (left empty): the table's base.
     trace: Trace,
     /// `visit[d][f]`: [`CHOSEN`], the leaf index of face `f` of level `d`, or [`NONE`].
     visit: Vec<Vec<u32>>,
     /// `leaf_patch[d][i]`: the patch of leaf `i` of level `d`.
     leaf_patch: Vec<Vec<u32>>,
+    /// `in_sub[d]`: the vertex and the edge of `trace.subs[d]` that each vertex and edge of
+    /// level `d` is, or [`NONE`].
+    in_sub: Vec<(Vec<u32>, Vec<u32>)>,
 }
 
 impl EditState {
-    /// The state of a construction: its `trace` and the `(level, leaf)` of each patch.
-    pub(crate) fn new(trace: Trace, patch_leaves: &[(u32, u32)]) -> EditState {
+    /// The state of a construction: its `trace`, the `(level, leaf)` of each patch and the
+    /// level vertex of each vertex of each sub-mesh (`inputs`, [`super::sparse::Hierarchy`]).
+    pub(crate) fn new(
+        mut trace: Trace,
+        patch_leaves: &[(u32, u32)],
+        inputs: &[Vec<u32>],
+    ) -> EditState {
         let visit = (0..trace.levels.len())
             .map(|d| {
                 let mut v = vec![NONE; trace.levels[d].num_faces()];
@@ -73,92 +82,51 @@ impl EditState {
         for (p, &(d, i)) in patch_leaves.iter().enumerate() {
             leaf_patch[d as usize][i as usize] = p as u32;
         }
+        let inverse = |to: &[u32], n: usize| {
+            let mut m = vec![NONE; n];
+            for (i, &x) in to.iter().enumerate() {
+                m[x as usize] = i as u32;
+            }
+            m
+        };
+        let in_sub = (trace.sub_edges.iter().zip(inputs).enumerate())
+            .map(|(d, (edges, verts))| {
+                let t = &trace.levels[d];
+                (
+                    inverse(verts, t.num_vertices()),
+                    inverse(edges, t.num_edges()),
+                )
+            })
+            .collect();
+        // Level 0 is the table's base.
+        trace.levels[0] = Topology::default();
         EditState {
             trace,
             visit,
             leaf_patch,
+            in_sub,
         }
-    }
-}
-
-/// The sharpness arrays of a topology, to tell what an update changed.
-struct Values {
-    edge_sharpness: Vec<f32>,
-    edge_tags: Vec<u8>,
-    vert_sharpness: Vec<f32>,
-    vert_tags: Vec<u16>,
-    vert_rule: Vec<u8>,
-}
-
-impl Values {
-    fn of(t: &Topology) -> Values {
-        Values {
-            edge_sharpness: t.edge_sharpness.clone(),
-            edge_tags: t.edge_tags.clone(),
-            vert_sharpness: t.vert_sharpness.clone(),
-            vert_tags: t.vert_tags.clone(),
-            vert_rule: t.vert_rule.clone(),
-        }
-    }
-
-    /// Per vertex: changed itself or by one of its edges. `None` when nothing changed.
-    /// With `at`, only the elements written there can have changed (the rest are not
-    /// compared); without, every one is.
-    fn changes(&self, t: &Topology, at: Option<&Rewritten>) -> Option<Vec<bool>> {
-        let mut verts = vec![false; t.num_vertices()];
-        let mut any = false;
-        let edge = |e: usize| {
-            self.edge_sharpness[e].to_bits() != t.edge_sharpness[e].to_bits()
-                || self.edge_tags[e] != t.edge_tags[e]
-        };
-        let vertex = |v: usize| {
-            self.vert_sharpness[v].to_bits() != t.vert_sharpness[v].to_bits()
-                || self.vert_tags[v] != t.vert_tags[v]
-                || self.vert_rule[v] != t.vert_rule[v]
-        };
-        let mut mark = |e_changed: bool, ends: [u32; 2]| {
-            if e_changed {
-                any = true;
-                for v in ends {
-                    verts[v as usize] = true;
-                }
-            }
-        };
-        match at {
-            Some(w) => (w.child_edges.iter()).for_each(|&e| mark(edge(e), t.edge_verts[e])),
-            None => (0..t.num_edges()).for_each(|e| mark(edge(e), t.edge_verts[e])),
-        }
-        let mut mark = |v: usize| {
-            if vertex(v) {
-                verts[v] = true;
-                any = true;
-            }
-        };
-        match at {
-            Some(w) => w.child_vertices.iter().for_each(|&v| mark(v)),
-            None => (0..t.num_vertices()).for_each(mark),
-        }
-        any.then_some(verts)
     }
 }
 
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
 type Dirty = (Vec<u32>, Vec<u32>);
 
-/// A level written by the walk, handed to the decisions: `(level, topology, its values
-/// before the edit, per vertex whether it changed)`.
-type Ready<'a> = (usize, &'a Topology, Values, Vec<bool>);
+/// A level written by the walk, handed to the decisions: `(level, topology, what the edit
+/// changed in it)`.
+type Ready<'a> = (usize, &'a Topology, Moved);
 
 impl<R: Real> PatchTable<R> {
-    /// Applies the edited base topology `base` incrementally (module documentation); returns
-    /// `false`, the table unchanged but for its kept levels, where the structure changes.
+    /// Applies the edited base topology `base` incrementally (module documentation).
+    /// Returns `base` back, the table unchanged but for its kept levels, where the
+    /// structure changes (or no levels are kept).
     ///
     /// The walk down the levels (new values of the sub-mesh and the child level, the rows
     /// to form again) and the decisions of each level's faces run side by side: a level is
     /// handed to the decisions as soon as the walk has written it, and is not written again.
-    pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<bool> {
+    pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<Option<Topology>> {
         let Some(state) = self.edit_state.take() else {
-            return Ok(false);
+            return Ok(Some(base));
         };
         let mut st = std::sync::Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
         let max_level = self.options.level_for(&base) as usize;
@@ -170,26 +138,27 @@ impl<R: Real> PatchTable<R> {
         let mask = FeatureMask::new(self.options.single_crease);
         let num_level_points = *self.level_offsets.last().unwrap_or(&0);
 
-        let old = Values::of(&st.trace.levels[0]);
-        st.trace.levels[0] = base;
+        // The base is level 0 of the walk.
+        let old = Before::all(&self.base);
+        let old_base = std::mem::replace(&mut self.base, base);
         let EditState {
             trace,
             visit,
             leaf_patch,
+            in_sub,
         } = &mut st;
         let stop = AtomicBool::new(false);
         let (ready, levels) = mpsc::channel::<Ready<'_>>();
         let this = &*self;
         let (rows, patches) = rayon::join(
-            || this.walk(trace, old, ready, &stop),
+            || this.walk(&this.base, trace, in_sub, &old, ready, &stop),
             || {
                 let mut patches = Vec::new();
-                for (d, t, old, changed) in levels {
+                for (d, t, changed) in levels {
                     let o = this.redecide(
                         t,
                         (&visit[d], &leaf_patch[d]),
                         d,
-                        &old,
                         &changed,
                         (&mask, &leaf_options),
                         num_level_points,
@@ -203,8 +172,12 @@ impl<R: Real> PatchTable<R> {
                 Ok(Some(patches))
             },
         );
-        let (Some(rows), Some(patches)) = (rows, patches?) else {
-            return Ok(false);
+        let (rows, patches) = match (rows, patches) {
+            (Some(rows), Ok(Some(patches))) => (rows, patches),
+            (_, decided) => {
+                let edited = std::mem::replace(&mut self.base, old_base);
+                return decided.map(|_| Some(edited));
+            }
         };
         // Every check passed: the table is changed from here on.
         for (d, (vertex, edge)) in rows {
@@ -221,62 +194,54 @@ impl<R: Real> PatchTable<R> {
             })
             .map_err(|e| Error::Internal(format!("crease edit of patch {p}: {e}")))?;
         }
-        self.base = st.trace.levels[0].clone();
         self.edit_state = Some(std::sync::Arc::new(st));
-        Ok(true)
+        Ok(None)
     }
 
-    /// The walk down the levels of `trace`, whose base was `old` before the edit: each
-    /// level's changes, its sub-mesh's new values, the child level's sharpness, tags and
-    /// rules, the step's rows to form again. Every level with changes is sent to `ready`
-    /// once written. `None` where the stored stencils do not have a step's rows, or when
-    /// `stop` is set (a decision found a change of structure).
+    /// The walk down the levels of `trace` from `base`, which had the values `old` before
+    /// the edit: each level's changes, its sub-mesh's new values, the child level's sharpness,
+    /// tags and rules, the step's rows to form again. Every level with changes is sent to
+    /// `ready` once written. `None` where the stored stencils do not have a step's rows, or
+    /// when `stop` is set (a decision found a change of structure).
     fn walk<'a>(
         &self,
+        base: &'a Topology,
         trace: &'a mut Trace,
-        mut old: Values,
+        in_sub: &[(Vec<u32>, Vec<u32>)],
+        old: &Before,
         ready: mpsc::Sender<Ready<'a>>,
         stop: &AtomicBool,
     ) -> Option<Vec<(usize, Dirty)>> {
-        let Trace {
-            levels,
-            subs,
-            sub_edges,
-            ..
-        } = trace;
-        let mut levels = levels.iter_mut();
-        let mut level: &'a Topology = levels.next()?;
+        let Trace { levels, subs, .. } = trace;
+        let mut levels = levels.iter_mut().skip(1);
+        let mut level = base;
+        let mut moved = old.moved(level);
         let mut rows = Vec::new();
-        // What of a level can differ from `old`: anything on the base; below, what
-        // `resharpen_at` wrote.
-        let mut written = None;
         for (d, sub) in subs.iter_mut().enumerate() {
-            let Some(changed) = old.changes(level, written.as_ref()) else {
-                // Nothing changed here: every deeper level is unchanged.
+            // Nothing changed here: every deeper level is unchanged.
+            let Some(changed) = moved else {
                 return Some(rows);
             };
             let child = levels.next()?;
-            let sub_old = Values::of(sub);
-            let sub_changed =
-                refresh_sub(level, sub, &self.level_inputs[d], &sub_edges[d], &changed);
+            let (sub_changed, sub_before) = refresh_sub(level, sub, &in_sub[d], &changed);
+            let sub_moved = sub_before.moved(sub);
             // The level is final: its faces are decided while the walk goes on.
-            ready.send((d, level, old, changed)).ok()?;
-            old = Values::of(child);
-            let w = resharpen_at(sub, child, &sub_changed);
+            ready.send((d, level, changed)).ok()?;
+            let mut before = Before::new(child);
+            let w = resharpen_at(sub, child, &sub_changed, &mut before);
+            moved = before.moved(child);
             rows.push((
                 d,
-                self.step_rows(sub, &sub_old, child, &old, d, &sub_changed, &w)?,
+                self.step_rows(sub, sub_moved.as_ref(), moved.as_ref(), d, &sub_changed, &w)?,
             ));
-            written = Some(w);
             level = child;
             if stop.load(Ordering::Relaxed) {
                 return None;
             }
         }
         // The last level: decided, never refined.
-        if let Some(changed) = old.changes(level, written.as_ref()) {
-            let d = rows.len();
-            ready.send((d, level, old, changed)).ok()?;
+        if let Some(changed) = moved {
+            ready.send((rows.len(), level, changed)).ok()?;
         }
         Some(rows)
     }
@@ -291,16 +256,14 @@ impl<R: Real> PatchTable<R> {
         t: &Topology,
         (visit, leaf_patch): (&[u32], &[u32]),
         d: usize,
-        old: &Values,
-        changed: &[bool],
+        changed: &Moved,
         (mask, o): (&FeatureMask, &LeafOptions),
         num_level_points: u32,
         out: &mut Vec<(u32, PatchType, u8, f32)>,
     ) -> Result<bool> {
         let faces = unique(
-            (0..t.num_vertices())
-                .filter(|&v| changed[v])
-                .flat_map(|v| t.vertex_faces(v).iter().copied())
+            (changed.list.iter())
+                .flat_map(|&v| t.vertex_faces(v as usize).iter().copied())
                 .filter(|&f| visit[f as usize] != NONE),
             t.num_faces(),
         );
@@ -336,11 +299,7 @@ impl<R: Real> PatchTable<R> {
             }
             // An end cap reads of its corners' sharpness only whether they are infinitely
             // sharp (the rest is topology, [`super::endcap`]).
-            let inf = |s: f32| s >= crate::SHARPNESS_INFINITE;
-            let corner_moved = t.face_vertices(f).iter().any(|&v| {
-                let v = v as usize;
-                inf(old.vert_sharpness[v]) != inf(t.vert_sharpness[v])
-            });
+            let corner_moved = t.face_vertices(f).iter().any(|&v| changed.inf.get(v));
             if kind == PatchType::Gregory && corner_moved {
                 let off = self.level_offsets[d];
                 let first = self.patch_cvs(p as usize)[0] - num_level_points;
@@ -365,18 +324,17 @@ impl<R: Real> PatchTable<R> {
         Ok(true)
     }
 
-    /// The rows of step `d` whose inputs changed (parent or child sharpness or rule of the
-    /// vertex, of its edges and their children; of the edge and its edge point); `None`
+    /// The rows of step `d` (from `sub`) whose inputs changed (parent or child sharpness or
+    /// rule of the vertex, of its edges and their children; of the edge and its edge point),
+    /// given what changed in the sub-mesh and in the child level (`None`: nothing); `None`
     /// where the stored stencils do not have the step's rows. Only the edges at `changed`
     /// (the vertices of `sub` whose values [`refresh_sub`] changed), which [`resharpen_at`]
     /// rewrote (`w`), and their ends can differ: they alone are tested.
-    #[allow(clippy::too_many_arguments)]
     fn step_rows(
         &self,
         sub: &Topology,
-        sub_old: &Values,
-        child: &Topology,
-        child_old: &Values,
+        sub_moved: Option<&Moved>,
+        child_moved: Option<&Moved>,
         d: usize,
         changed: &[u32],
         w: &Rewritten,
@@ -387,19 +345,21 @@ impl<R: Real> PatchTable<R> {
         if old.vertex.num_rows() != nv || old.edge.num_rows() != ne {
             return None;
         }
-        let bits = |a: f32, b: f32| a.to_bits() != b.to_bits();
-        let ce = |i: usize| bits(child_old.edge_sharpness[i], child.edge_sharpness[i]);
+        let has = |m: Option<&Moved>, of: fn(&Moved) -> &Bits, i: usize| {
+            m.is_some_and(|m| of(m).get(i as u32))
+        };
+        let ce = |i: usize| has(child_moved, |m| &m.edge_sharp, i);
         // Increasing, as the rows are listed.
         let near_edges = Bits::of(w.edges.iter().copied(), ne);
         let mut edge_input = Bits::new(ne);
         let mut near_verts = Bits::of(changed.iter().copied(), nv);
         let mut edges = Vec::new();
         for e in near_edges.iter() {
-            let own = bits(sub_old.edge_sharpness[e], sub.edge_sharpness[e]);
+            let own = has(sub_moved, |m| &m.edge_sharp, e);
             if own || ce(nc + 2 * e) || ce(nc + 2 * e + 1) {
                 edge_input.set(e as u32);
             }
-            if own || child_old.vert_rule[nv + nf + e] != child.vert_rule[nv + nf + e] {
+            if own || has(child_moved, |m| &m.rule, nv + nf + e) {
                 edges.push(e as u32);
             }
             for v in sub.edge_verts[e] {
@@ -409,10 +369,8 @@ impl<R: Real> PatchTable<R> {
         let vertices = near_verts
             .iter()
             .filter(|&v| {
-                bits(sub_old.vert_sharpness[v], sub.vert_sharpness[v])
-                    || sub_old.vert_rule[v] != sub.vert_rule[v]
-                    || bits(child_old.vert_sharpness[v], child.vert_sharpness[v])
-                    || child_old.vert_rule[v] != child.vert_rule[v]
+                has(sub_moved, |m| &m.sharp_or_rule, v)
+                    || has(child_moved, |m| &m.sharp_or_rule, v)
                     || sub.vertex_edges(v).iter().any(|&e| edge_input.get(e))
             })
             .map(|v| v as u32)
@@ -421,37 +379,44 @@ impl<R: Real> PatchTable<R> {
     }
 }
 
-/// The sub-mesh `sub` of `level` (its vertices `verts`, edges `edges` in the level) given
-/// the level's current values, as [`super::sparse`] makes it: elements whose faces are all
-/// kept take the level's values, the border stays an infinitely sharp boundary. Only the
-/// elements at `changed` level vertices are visited (a changed edge marks both ends; a
-/// border vertex's tags change only with a changed edge of its own). Returns those
-/// vertices, numbered in `sub`.
+/// The sub-mesh `sub` of `level` given the level's current values, as [`super::sparse`]
+/// makes it: elements whose faces are all kept take the level's values, the border stays an
+/// infinitely sharp boundary. `in_sub` numbers the level's vertices and edges in `sub`. Only
+/// the elements at the `changed` level vertices are visited (a changed edge marks both
+/// ends; a border vertex's tags change only with a changed edge of its own). Returns those
+/// vertices, numbered in `sub`, and the values of what was written before it was.
 fn refresh_sub(
     level: &Topology,
     sub: &mut Topology,
-    verts: &[u32],
-    edges: &[u32],
-    changed: &[bool],
-) -> Vec<u32> {
-    for (e, &le) in edges.iter().enumerate() {
-        let le = le as usize;
-        let [a, b] = level.edge_verts[le];
-        if !(changed[a as usize] && changed[b as usize]) {
-            continue;
-        }
-        if sub.edge_faces(e).len() == level.edge_faces(le).len() {
-            sub.edge_sharpness[e] = level.edge_sharpness[le];
-            sub.edge_tags[e] = level.edge_tags[le];
+    (sub_vertex, sub_edge): &(Vec<u32>, Vec<u32>),
+    changed: &Moved,
+) -> (Vec<u32>, Before) {
+    let mut before = Before::new(sub);
+    for &a in &changed.list {
+        for &le in level.vertex_edges(a as usize) {
+            let (le, e) = (le as usize, sub_edge[le as usize]);
+            let [x, y] = level.edge_verts[le];
+            // An edge whose ends both changed, visited from its first end.
+            if e == NONE || x != a || !changed.vertices.get(y) {
+                continue;
+            }
+            let e = e as usize;
+            if sub.edge_faces(e).len() == level.edge_faces(le).len() {
+                before.edge(sub, e);
+                sub.edge_sharpness[e] = level.edge_sharpness[le];
+                sub.edge_tags[e] = level.edge_tags[le];
+            }
         }
     }
-    let mut sub_changed = Vec::new();
-    for (v, &lv) in verts.iter().enumerate() {
-        let lv = lv as usize;
-        if !changed[lv] {
+    let mut sub_changed = Vec::with_capacity(changed.list.len());
+    for &lv in &changed.list {
+        let (lv, v) = (lv as usize, sub_vertex[lv as usize]);
+        if v == NONE {
             continue;
         }
-        sub_changed.push(v as u32);
+        sub_changed.push(v);
+        let v = v as usize;
+        before.vertex(sub, v);
         if sub.vertex_faces(v).len() == level.vertex_faces(lv).len() {
             sub.vert_sharpness[v] = level.vert_sharpness[lv];
             sub.vert_tags[v] = level.vert_tags[lv];
@@ -460,5 +425,5 @@ fn refresh_sub(
             border_vertex(sub, v);
         }
     }
-    sub_changed
+    (sub_changed, before)
 }

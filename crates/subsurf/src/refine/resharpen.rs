@@ -8,6 +8,7 @@
 use super::last_level::ChildSharpness;
 use super::level::{child_end_at_vertex, child_half, edge_point_tags, vertex_child_tags};
 use super::masks::{LevelRows, LevelStencils, Scratch};
+use super::moved::Before;
 use super::stencil::StencilTable;
 use crate::real::Real;
 use crate::topology::tags;
@@ -21,9 +22,15 @@ const SHARP_BITS: u16 =
 /// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
 /// took new sharpness (same topology): the children of the edges at those vertices, the
 /// vertices' children and those edges' edge points (no other child element reads a changed
-/// value). Visits the changed vertices' edges only. Returns what it wrote ([`Rewritten`]);
-/// no other value of `c` changed.
-pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) -> Rewritten {
+/// value). Visits the changed vertices' edges only; every element of `c` it writes is
+/// recorded in `before` first, and no other value of `c` changes. Returns the edges of `p`
+/// it visited ([`Rewritten`]).
+pub(crate) fn resharpen_at(
+    p: &Topology,
+    c: &mut Topology,
+    changed: &[u32],
+    before: &mut Before,
+) -> Rewritten {
     let nc = p.num_corners();
     let edges = unique(
         changed
@@ -35,38 +42,26 @@ pub(crate) fn resharpen_at(p: &Topology, c: &mut Topology, changed: &[u32]) -> R
     for &e in &edges {
         for end in 0..2 {
             let i = nc + 2 * e as usize + end;
+            before.edge(c, i);
             (c.edge_sharpness[i], c.edge_tags[i]) = child_half(p, e as usize, end, &mut around);
         }
     }
     for &v in changed {
+        before.vertex(c, v as usize);
         child_vertex(p, c, v as usize);
     }
+    let points = p.num_vertices() + super::last_level::face_points(p);
     for &e in &edges {
+        before.vertex(c, points + e as usize);
         edge_point(p, c, e as usize);
     }
-    let child_edges = edges
-        .iter()
-        .flat_map(|&e| [nc + 2 * e as usize, nc + 2 * e as usize + 1])
-        .collect();
-    let points = p.num_vertices() + super::last_level::face_points(p);
-    let child_vertices = (changed.iter().map(|&v| v as usize))
-        .chain(edges.iter().map(|&e| points + e as usize))
-        .collect();
-    Rewritten {
-        edges,
-        child_edges,
-        child_vertices,
-    }
+    Rewritten { edges }
 }
 
-/// What [`resharpen_at`] wrote.
+/// What [`resharpen_at`] visited.
 pub(crate) struct Rewritten {
     /// The parent's edges at the changed vertices (each once).
     pub edges: Vec<u32>,
-    /// Their child edges in the child level.
-    pub child_edges: Vec<usize>,
-    /// The children of the changed vertices and the edge points of `edges`.
-    pub child_vertices: Vec<usize>,
 }
 
 /// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
