@@ -150,6 +150,9 @@ impl<R: Real> PatchTable<R> {
         let stop = AtomicBool::new(false);
         let (ready, levels) = mpsc::channel::<Ready<'_>>();
         let this = &*self;
+        // The walk never waits on the decisions, and ends (dropping `ready`) on its own: run
+        // after it on one thread, or blocked beside it on another, the decisions see every
+        // level it sent and then the end of the channel.
         let (rows, patches) = rayon::join(
             || this.walk(&this.base, trace, in_sub, &old, ready, &stop),
             || {
