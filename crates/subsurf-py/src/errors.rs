@@ -1,5 +1,5 @@
 //! Library errors as the package's Python exceptions (defined in `subsurf/_errors.py`):
-//! `MeshError(ValueError)` with `.face`, `.corner`, `.vertex`; `ParseError(ValueError)` with
+//! `MeshError(ValueError)` with `.face`, `.corner`, `.vertex` (`.edit` for a sharpness edit); `ParseError(ValueError)` with
 //! `.path`, `.line` (`.location` for glTF, `.prim` and `.attribute` for USD); `GpuError(RuntimeError)`; `SubsurfError` for the rest.
 
 use pyo3::exceptions::PyRuntimeError;
@@ -55,11 +55,20 @@ pub fn mesh_error(py: Python<'_>, e: &MeshError) -> PyErr {
         MeshError::CreaseEdgeMissing { v0, .. } => (None, None, Some(*v0 as usize)),
         _ => (None, None, None),
     };
+    let edit = match e {
+        MeshError::BadSharpnessEdit { edit, .. } => Some(*edit),
+        _ => None,
+    };
     raise(
         py,
         "MeshError",
         e.to_string(),
-        &[("face", face), ("corner", corner), ("vertex", vertex)],
+        &[
+            ("face", face),
+            ("corner", corner),
+            ("vertex", vertex),
+            ("edit", edit),
+        ],
     )
 }
 

@@ -1,14 +1,19 @@
 //! `LimitSurface`: the limit surface of a mesh, built once, its control points updatable. A
 //! Catmull-Clark or bilinear mesh gets the patch table (`PatchTable` + `LimitSurface`, ptex
-//! faces, unit-square parameters, float32); a Loop mesh the Loop limit surface (`LoopLimit`,
+//! faces, unit-square parameters, float32), whose crease and corner sharpness can be edited
+//! live (`PatchTable::apply_sharpness`); a Loop mesh the Loop limit surface (`LoopLimit`,
 //! base triangles, `u, v >= 0, u + v <= 1`, evaluated in float64).
+//!
+//! Writers (`update`, `set_sharpness`) release the GIL, then take the positions' lock and the
+//! surface's write lock, and release both before they need the GIL again: a reader waiting for
+//! the surface while holding the GIL cannot block them.
 
-use std::sync::{Arc, RwLock};
+use std::sync::{Arc, Mutex, RwLock};
 
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
+use subsurf::limit::{EditOutcome, LimitSurface, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::{Mesh, Scheme, Topology};
 
 use crate::arrays::{out2, rows, vec1};
@@ -19,8 +24,11 @@ use crate::ops::tess_out;
 /// What the surface is built from: a patch table or the Loop patches.
 enum Kind {
     Quad {
-        table: Arc<PatchTable>,
+        /// The base positions the surface's points were made from.
+        positions: Mutex<Vec<[f32; 3]>>,
+        /// The patch table (with its kept levels, for sharpness edits) and its points.
         surface: RwLock<Arc<LimitSurface>>,
+        num_ptex_faces: usize,
     },
     Loop {
         topo: Arc<Topology>,
@@ -61,10 +69,12 @@ fn build(m: &Mesh, isolation: u32) -> subsurf::Result<Kind> {
             ..Default::default()
         },
     )?;
-    let surface = LimitSurface::new(table.clone(), &m.positions);
+    let num_ptex_faces = table.num_ptex_faces();
+    let surface = LimitSurface::new(table, &m.positions);
     Ok(Kind::Quad {
-        table: Arc::new(table),
+        positions: Mutex::new(m.positions.clone()),
         surface: RwLock::new(Arc::new(surface)),
+        num_ptex_faces,
     })
 }
 
@@ -88,10 +98,7 @@ fn split<T: Copy + numpy::Element>(
 
 type Arrays3 = (Py<PyAny>, Py<PyAny>, Py<PyAny>);
 
-fn out3x<T: numpy::Element>(
-    py: Python<'_>,
-    (p, du, dv): Columns<T>,
-) -> PyResult<Arrays3> {
+fn out3x<T: numpy::Element>(py: Python<'_>, (p, du, dv): Columns<T>) -> PyResult<Arrays3> {
     Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
 }
 
@@ -136,11 +143,17 @@ impl PyLimit {
             ));
         }
         match &self.kind {
-            Kind::Quad { table, surface } => {
-                let t = table.clone();
-                let s = py.detach(move || LimitSurface::new((*t).clone(), &p));
-                *surface.write().map_err(poisoned)? = Arc::new(s);
-            }
+            Kind::Quad {
+                positions, surface, ..
+            } => py.detach(|| {
+                let mut pos = positions.lock().map_err(poisoned)?;
+                let mut s = surface.write().map_err(poisoned)?;
+                // A copy only while an evaluation still holds the surface.
+                let s = Arc::make_mut(&mut s);
+                s.points = s.table.points(&p);
+                *pos = p;
+                Ok::<_, PyErr>(())
+            })?,
             Kind::Loop {
                 topo,
                 isolation,
@@ -183,8 +196,12 @@ impl PyLimit {
             .map(|((&f, &u), &v)| (f, u, v))
             .collect();
         match &self.kind {
-            Kind::Quad { table, surface } => {
-                let count = table.num_ptex_faces();
+            Kind::Quad {
+                surface,
+                num_ptex_faces,
+                ..
+            } => {
+                let count = *num_ptex_faces;
                 for (k, &(f, u, v)) in q.iter().enumerate() {
                     subsurf::limit::query::check_square(k, f as u64, u, v, count)
                         .map_err(|e| value_error(e.to_string()))?;
@@ -216,6 +233,75 @@ impl PyLimit {
                     .map_err(|e| lib_error(py, e, None))?;
                 out3x(py, r)
             }
+        }
+    }
+
+    /// New crease sharpness for the base edges `creases` (vertex pairs, `sharpness` one value
+    /// each) and corner sharpness for the vertices `corners` (`corner_sharpness`), later
+    /// entries of the same element winning: the patch table is updated in place where its
+    /// isolation structure is kept and rebuilt otherwise, equal either way to the table of
+    /// the edited mesh, and the points are made again from the current control points.
+    /// Returns `"unchanged"`, `"updated"` or `"rebuilt"`. Every edit is checked first
+    /// (`MeshError` naming the edit, `.edit`); Loop meshes are refused.
+    fn set_sharpness(
+        &self,
+        py: Python<'_>,
+        creases: PyReadonlyArray2<'_, u32>,
+        sharpness: PyReadonlyArray1<'_, f32>,
+        corners: PyReadonlyArray1<'_, u32>,
+        corner_sharpness: PyReadonlyArray1<'_, f32>,
+    ) -> PyResult<&'static str> {
+        let pairs = rows::<2, u32>(&creases, "creases")?;
+        let s = vec1(&sharpness, "sharpness")?;
+        let cv = vec1(&corners, "corners")?;
+        let cs = vec1(&corner_sharpness, "corner sharpness")?;
+        if pairs.len() != s.len() || cv.len() != cs.len() {
+            return Err(value_error(format!(
+                "{} creases with {} sharpness values, {} corners with {} values",
+                pairs.len(),
+                s.len(),
+                cv.len(),
+                cs.len()
+            )));
+        }
+        let edits: Vec<SharpnessEdit> = (pairs.iter().zip(&s))
+            .map(|(&[v0, v1], &sharpness)| SharpnessEdit::Edge { v0, v1, sharpness })
+            .chain(
+                cv.iter()
+                    .zip(&cs)
+                    .map(|(&vertex, &sharpness)| SharpnessEdit::Vertex { vertex, sharpness }),
+            )
+            .collect();
+        let Kind::Quad {
+            positions, surface, ..
+        } = &self.kind
+        else {
+            return Err(lib_error(
+                py,
+                subsurf::Error::Unsupported(
+                    "sharpness edits of a Loop limit surface (build it again from the edited \
+                     mesh)"
+                        .into(),
+                ),
+                None,
+            ));
+        };
+        let outcome = py.detach(|| {
+            let pos = positions.lock().map_err(|_| None)?;
+            let mut s = surface.write().map_err(|_| None)?;
+            let s = Arc::make_mut(&mut s);
+            let o = s.table.apply_sharpness(&edits).map_err(Some)?;
+            if o != EditOutcome::Unchanged {
+                s.points = s.table.points(&pos);
+            }
+            Ok(o)
+        });
+        match outcome {
+            Ok(EditOutcome::Unchanged) => Ok("unchanged"),
+            Ok(EditOutcome::Updated) => Ok("updated"),
+            Ok(EditOutcome::Rebuilt) => Ok("rebuilt"),
+            Err(Some(e)) => Err(lib_error(py, e, None)),
+            Err(None) => Err(poisoned(())),
         }
     }
 
@@ -252,7 +338,7 @@ impl PyLimit {
     #[getter]
     fn num_ptex_faces(&self) -> usize {
         match &self.kind {
-            Kind::Quad { table, .. } => table.num_ptex_faces(),
+            Kind::Quad { num_ptex_faces, .. } => *num_ptex_faces,
             Kind::Loop { surface, .. } => read(surface).map_or(0, |s| s.num_faces()),
         }
     }

@@ -320,6 +320,8 @@ class LimitSurface:
     ``evaluate(faces, u, v)`` -> (points, du, dv), each (k, 3), NaN at holes.
     ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per face side.
     ``update(points)``: new control points (same count), e.g. after a deformation.
+    ``set_sharpness(creases, sharpness, corners=, corner_sharpness=)``: live crease edits
+    (Catmull-Clark and bilinear meshes).
     """
 
     __slots__ = ("_s",)
@@ -351,6 +353,28 @@ class LimitSurface:
     def update(self, points: Any) -> None:
         """Replaces the control points (the patch table is kept)."""
         self._s.update(_floats(points, 3, "points"))
+
+    def set_sharpness(self, creases: Any = None, sharpness: Any = None, *, corners: Any = None,
+                      corner_sharpness: Any = None) -> str:
+        """New crease sharpness for base edges and corner sharpness for base vertices, as
+        ``Mesh`` takes them (``creases``: (c, 2) vertex pairs with ``sharpness`` (c,) or one
+        value for all, or one (c, 3) array; ``corners``: (c,) vertices with
+        ``corner_sharpness``, or one (c, 2) array; 0 smooth, 10 or more infinitely sharp),
+        later entries of the same element winning. The patch table is updated in place where
+        its isolation structure is kept and rebuilt otherwise; either way the surface is,
+        bit for bit, that of a ``LimitSurface`` of the edited mesh at the current control
+        points. Returns ``"unchanged"``, ``"updated"`` or ``"rebuilt"``.
+
+        Every edit is checked before any work: an edge that is not in the mesh, a vertex out
+        of range or a negative or NaN sharpness raises ``MeshError`` with ``.edit`` (its
+        index: creases first, then corners) and the surface is left as it was. A Loop
+        surface raises ``UnsupportedError``.
+        """
+        if creases is not None and sharpness is not None and np.ndim(sharpness) == 0:
+            sharpness = np.full(len(np.asarray(creases)), sharpness, dtype=np.float64)
+        cp, cs = _tags(creases, sharpness, 2, "creases")
+        cv, csh = _tags(corners, corner_sharpness, 1, "corners")
+        return self._s.set_sharpness(cp.reshape(-1, 2), cs, cv.reshape(-1), csh)
 
 
 class Prep:

@@ -13,12 +13,14 @@ class SubsurfError(Exception):
 
 
 class MeshError(SubsurfError, ValueError):
-    """Bad mesh content. ``.face``, ``.corner`` and ``.vertex`` name the element at fault
-    (``None`` where they do not apply)."""
+    """Bad mesh content. ``.face``, ``.corner`` and ``.vertex`` name the element at fault,
+    ``.edit`` the sharpness edit of ``LimitSurface.set_sharpness`` (``None`` where they do
+    not apply)."""
 
     face: Optional[int] = None
     corner: Optional[int] = None
     vertex: Optional[int] = None
+    edit: Optional[int] = None
 
 
 class ParseError(SubsurfError, ValueError):
