@@ -150,6 +150,8 @@ impl<R: Real> PatchTable<R> {
         let stop = AtomicBool::new(false);
         let (ready, levels) = mpsc::channel::<Ready<'_>>();
         let this = &*self;
+        // The decisions' own part of the levels (the walk never reads the tags).
+        let mut tags = std::mem::take(&mut trace.tags);
         // The walk never waits on the decisions, and ends (dropping `ready`) on its own: run
         // after it on one thread, or blocked beside it on another, the decisions see every
         // level it sent and then the end of the channel.
@@ -157,10 +159,11 @@ impl<R: Real> PatchTable<R> {
             || this.walk(&this.base, trace, in_sub, &old, ready, &stop),
             || {
                 let mut patches = Vec::new();
+                let tags = &mut tags;
                 for (d, t, changed) in levels {
                     let o = this.redecide(
                         t,
-                        (&visit[d], &leaf_patch[d]),
+                        (&visit[d], &leaf_patch[d], &mut tags[d]),
                         d,
                         &changed,
                         (&mask, &leaf_options),
@@ -182,6 +185,7 @@ impl<R: Real> PatchTable<R> {
                 return decided.map(|_| Some(edited));
             }
         };
+        st.trace.tags = tags;
         // Every check passed: the table is changed from here on.
         for (d, (vertex, edge)) in rows {
             let (sub, child) = (&st.trace.subs[d], &st.trace.levels[d + 1]);
@@ -250,14 +254,14 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// Makes the decisions of the visited faces of level `d` (topology `t`, its faces'
-    /// visits and leaves' patches `(visit, leaf_patch)`) around the `changed` vertices
-    /// again: `false` where one differs (or an end cap's points change); the new types of
+    /// visits, leaves' patches and vertex tags `(visit, leaf_patch, tags)`, the tags brought
+    /// up to date here) around the `changed` vertices again: `false` where one differs (or an end cap's points change); the new types of
     /// the leaves are pushed to `out`.
     #[allow(clippy::too_many_arguments)]
     fn redecide(
         &self,
         t: &Topology,
-        (visit, leaf_patch): (&[u32], &[u32]),
+        (visit, leaf_patch, tags): (&[u32], &[u32], &mut [VTag]),
         d: usize,
         changed: &Moved,
         (mask, o): (&FeatureMask, &LeafOptions),
@@ -270,15 +274,10 @@ impl<R: Real> PatchTable<R> {
                 .filter(|&f| visit[f as usize] != NONE),
             t.num_faces(),
         );
-        let mut tags = vec![VTag::default(); t.num_vertices()];
-        let mut tagged = vec![false; t.num_vertices()];
-        for &f in &faces {
-            for &v in t.face_vertices(f as usize) {
-                if !tagged[v as usize] {
-                    tagged[v as usize] = true;
-                    tags[v as usize] = VTag::of(t, v as usize, d == 0);
-                }
-            }
+        // A tag reads the vertex's own values and its edges' sharpness: only the changed
+        // vertices' tags can differ from the kept ones.
+        for &v in &changed.list {
+            tags[v as usize] = VTag::of(t, v as usize, d == 0);
         }
         for &f in &faces {
             let f = f as usize;

@@ -159,6 +159,9 @@ pub struct Trace {
     pub chosen: Vec<Vec<u32>>,
     /// `leaves[d]`: the leaf faces of level `d`, in leaf order.
     pub leaves: Vec<Vec<u32>>,
+    /// `tags[d]`: the feature tags of level `d` ([`Level::tags`]: every corner of a face the
+    /// walk reached).
+    pub tags: Vec<Vec<VTag>>,
 }
 
 /// What is made of a level's leaf faces: `(level, d, offset, faces)`, see [`build`].
@@ -259,6 +262,7 @@ pub fn build_traced<W: Real, T: Send>(
                 tr.leaves.push(leaf_faces);
                 tr.subs.extend(prev_sub.take());
                 tr.levels.push(std::mem::take(&mut level.topo));
+                tr.tags.push(std::mem::take(&mut level.tags));
             }
             break;
         }
@@ -339,6 +343,7 @@ pub fn build_traced<W: Real, T: Send>(
             tr.subs.extend(done_sub);
             tr.sub_edges.push(step.edges);
             tr.levels.push(done.topo);
+            tr.tags.push(done.tags);
         }
     }
     Ok((h, out))
