@@ -281,7 +281,7 @@ impl<R: Real> PatchTable<R> {
         }
         for &f in &faces {
             let f = f as usize;
-            let refine = d < o.max_level && face_has_features(t, &tags, f, d, mask);
+            let refine = d < o.max_level && face_has_features(t, tags, f, d, mask);
             if refine != (visit[f] == CHOSEN) {
                 return Ok(false);
             }
@@ -294,7 +294,7 @@ impl<R: Real> PatchTable<R> {
                     "leaf {f} of level {d} has no patch"
                 )));
             }
-            let (kind, boundary, _, sharpness) = leaf_kind(t, &tags, f, d, o);
+            let (kind, boundary, _, sharpness) = leaf_kind(t, tags, f, d, o);
             let was = self.patch_type(p as usize);
             if (kind == PatchType::Gregory) != (was == PatchType::Gregory) {
                 return Ok(false);
