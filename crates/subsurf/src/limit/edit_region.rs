@@ -33,7 +33,9 @@ use super::table::{PatchTable, PatchType};
 use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
-use crate::refine::{resharpen_at, restencil, unique, Before, Bits, Moved, Rewritten};
+use crate::refine::{
+    edge_values, resharpen_at, restencil, unique, vertex_values, Bits, Moved, Rewritten,
+};
 use crate::topology::Topology;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
@@ -139,7 +141,6 @@ impl<R: Real> PatchTable<R> {
         let num_level_points = *self.level_offsets.last().unwrap_or(&0);
 
         // The base is level 0 of the walk.
-        let old = Before::all(&self.base);
         let old_base = std::mem::replace(&mut self.base, base);
         let EditState {
             trace,
@@ -156,7 +157,7 @@ impl<R: Real> PatchTable<R> {
         // after it on one thread, or blocked beside it on another, the decisions see every
         // level it sent and then the end of the channel.
         let (rows, patches) = rayon::join(
-            || this.walk(&this.base, trace, in_sub, &old, ready, &stop),
+            || this.walk((&old_base, &this.base), trace, in_sub, ready, &stop),
             || {
                 let mut patches = Vec::new();
                 let tags = &mut tags;
@@ -205,24 +206,23 @@ impl<R: Real> PatchTable<R> {
         Ok(None)
     }
 
-    /// The walk down the levels of `trace` from `base`, which had the values `old` before
-    /// the edit: each level's changes, its sub-mesh's new values, the child level's sharpness,
+    /// The walk down the levels of `trace` from the base (`(old, new)`: before and after
+    /// the edit): each level's changes, its sub-mesh's new values, the child level's sharpness,
     /// tags and rules, the step's rows to form again. Every level with changes is sent to
     /// `ready` once written. `None` where the stored stencils do not have a step's rows, or
     /// when `stop` is set (a decision found a change of structure).
     fn walk<'a>(
         &self,
-        base: &'a Topology,
+        (old, base): (&Topology, &'a Topology),
         trace: &'a mut Trace,
         in_sub: &[(Vec<u32>, Vec<u32>)],
-        old: &Before,
         ready: mpsc::Sender<Ready<'a>>,
         stop: &AtomicBool,
     ) -> Option<Vec<(usize, Dirty)>> {
         let Trace { levels, subs, .. } = trace;
         let mut levels = levels.iter_mut().skip(1);
         let mut level = base;
-        let mut moved = old.moved(level);
+        let mut moved = Moved::between(old, level);
         let mut rows = Vec::new();
         for (d, sub) in subs.iter_mut().enumerate() {
             // Nothing changed here: every deeper level is unchanged.
@@ -230,13 +230,12 @@ impl<R: Real> PatchTable<R> {
                 return Some(rows);
             };
             let child = levels.next()?;
-            let (sub_changed, sub_before) = refresh_sub(level, sub, &in_sub[d], &changed);
-            let sub_moved = sub_before.moved(sub);
+            let (sub_changed, sub_moved) = refresh_sub(level, sub, &in_sub[d], &changed);
             // The level is final: its faces are decided while the walk goes on.
             ready.send((d, level, changed)).ok()?;
-            let mut before = Before::new(child);
-            let w = resharpen_at(sub, child, &sub_changed, &mut before);
-            moved = before.moved(child);
+            let mut child_moved = Moved::new(child);
+            let w = resharpen_at(sub, child, &sub_changed, &mut child_moved);
+            moved = child_moved.any();
             rows.push((
                 d,
                 self.step_rows(sub, sub_moved.as_ref(), moved.as_ref(), d, &sub_changed, &w)?,
@@ -386,14 +385,14 @@ impl<R: Real> PatchTable<R> {
 /// infinitely sharp boundary. `in_sub` numbers the level's vertices and edges in `sub`. Only
 /// the elements at the `changed` level vertices are visited (a changed edge marks both
 /// ends; a border vertex's tags change only with a changed edge of its own). Returns those
-/// vertices, numbered in `sub`, and the values of what was written before it was.
+/// vertices, numbered in `sub`, and what changed in `sub` (`None`: nothing).
 fn refresh_sub(
     level: &Topology,
     sub: &mut Topology,
     (sub_vertex, sub_edge): &(Vec<u32>, Vec<u32>),
     changed: &Moved,
-) -> (Vec<u32>, Before) {
-    let mut before = Before::new(sub);
+) -> (Vec<u32>, Option<Moved>) {
+    let mut moved = Moved::new(sub);
     for &a in &changed.list {
         for &le in level.vertex_edges(a as usize) {
             let (le, e) = (le as usize, sub_edge[le as usize]);
@@ -404,9 +403,10 @@ fn refresh_sub(
             }
             let e = e as usize;
             if sub.edge_faces(e).len() == level.edge_faces(le).len() {
-                before.edge(sub, e);
+                let old = edge_values(sub, e);
                 sub.edge_sharpness[e] = level.edge_sharpness[le];
                 sub.edge_tags[e] = level.edge_tags[le];
+                moved.edge(sub, e, old);
             }
         }
     }
@@ -418,7 +418,7 @@ fn refresh_sub(
         }
         sub_changed.push(v);
         let v = v as usize;
-        before.vertex(sub, v);
+        let old = vertex_values(sub, v);
         if sub.vertex_faces(v).len() == level.vertex_faces(lv).len() {
             sub.vert_sharpness[v] = level.vert_sharpness[lv];
             sub.vert_tags[v] = level.vert_tags[lv];
@@ -426,6 +426,7 @@ fn refresh_sub(
         } else {
             border_vertex(sub, v);
         }
+        moved.vertex(sub, v, old);
     }
-    (sub_changed, before)
+    (sub_changed, moved.any())
 }

@@ -56,7 +56,7 @@ pub use loop_level::{check_triangles, refine_tri_topology};
 pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
 use masks::{level_stencils_with, LevelRows};
-pub(crate) use moved::{Before, Moved};
+pub(crate) use moved::{edge_values, vertex_values, Moved};
 pub(crate) use resharpen::{resharpen_at, restencil, unique, Bits, Rewritten};
 use smooth_frame::StepPlan;
 pub use stencil::StencilTable;

@@ -8,7 +8,7 @@
 use super::last_level::ChildSharpness;
 use super::level::{child_end_at_vertex, child_half, edge_point_tags, vertex_child_tags};
 use super::masks::{LevelRows, LevelStencils, Scratch};
-use super::moved::Before;
+use super::moved::{edge_values, vertex_values, Moved};
 use super::stencil::StencilTable;
 use crate::real::Real;
 use crate::topology::tags;
@@ -22,14 +22,14 @@ const SHARP_BITS: u16 =
 /// [`super::refine_topology`], after the vertices `changed` of `p` (and the edges at them)
 /// took new sharpness (same topology): the children of the edges at those vertices, the
 /// vertices' children and those edges' edge points (no other child element reads a changed
-/// value). Visits the changed vertices' edges only; every element of `c` it writes is
-/// recorded in `before` first, and no other value of `c` changes. Returns the edges of `p`
+/// value). Visits the changed vertices' edges only; every element of `c` whose values it
+/// changes is noted in `moved`, and no other value of `c` changes. Returns the edges of `p`
 /// it visited ([`Rewritten`]).
 pub(crate) fn resharpen_at(
     p: &Topology,
     c: &mut Topology,
     changed: &[u32],
-    before: &mut Before,
+    moved: &mut Moved,
 ) -> Rewritten {
     let nc = p.num_corners();
     let edges = unique(
@@ -42,18 +42,22 @@ pub(crate) fn resharpen_at(
     for &e in &edges {
         for end in 0..2 {
             let i = nc + 2 * e as usize + end;
-            before.edge(c, i);
+            let old = edge_values(c, i);
             (c.edge_sharpness[i], c.edge_tags[i]) = child_half(p, e as usize, end, &mut around);
+            moved.edge(c, i, old);
         }
     }
     for &v in changed {
-        before.vertex(c, v as usize);
+        let old = vertex_values(c, v as usize);
         child_vertex(p, c, v as usize);
+        moved.vertex(c, v as usize, old);
     }
     let points = p.num_vertices() + super::last_level::face_points(p);
     for &e in &edges {
-        before.vertex(c, points + e as usize);
+        let i = points + e as usize;
+        let old = vertex_values(c, i);
         edge_point(p, c, e as usize);
+        moved.vertex(c, i, old);
     }
     Rewritten { edges }
 }
