@@ -3,7 +3,8 @@
 //!
 //! The first edit of a table rebuilds it keeping its sparse levels ([`EditState`]: the
 //! topology of every level and of every refined sub-mesh, which faces were refined and which
-//! were leaves). A later edit then walks the levels from the base down:
+//! were leaves, the vertex tags the build computed). A later edit then walks the levels from
+//! the base down:
 //!
 //! 1. the edited base; at each level the elements whose sharpness, tags or rule changed, and
 //!    the vertices they touch (an edge marks both ends);
@@ -21,9 +22,12 @@
 //!    are formed again, the others copied;
 //! 5. a level where nothing changed ends the walk: every deeper level is unchanged.
 //!
-//! The work is that of the changed rows and leaves plus a linear pass over each level's
-//! sharpness arrays down to the depth where the edit decays, instead of refining every
-//! level's topology, stencils and end caps again. A structural change costs a full build.
+//! Steps 2–3 of a level run in a second task while the walk goes on with steps 4 and 1 of
+//! the next level: a level is not written again once the walk has left it. What changed is
+//! noted where it is written ([`crate::refine::Moved`]), so the work is that of the changed
+//! elements, rows and leaves down to the depth where the edit decays, instead of refining
+//! every level's topology, stencils and end caps again. A structural change costs a full
+//! build.
 
 use super::endcap::gregory_points;
 use super::features::{face_has_features, FeatureMask, VTag};
@@ -254,8 +258,8 @@ impl<R: Real> PatchTable<R> {
 
     /// Makes the decisions of the visited faces of level `d` (topology `t`, its faces'
     /// visits, leaves' patches and vertex tags `(visit, leaf_patch, tags)`, the tags brought
-    /// up to date here) around the `changed` vertices again: `false` where one differs (or an end cap's points change); the new types of
-    /// the leaves are pushed to `out`.
+    /// up to date here) around the `changed` vertices again: `false` where one differs (or
+    /// an end cap's points change); the new types of the leaves are pushed to `out`.
     #[allow(clippy::too_many_arguments)]
     fn redecide(
         &self,
