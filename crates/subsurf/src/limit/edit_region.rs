@@ -24,7 +24,7 @@
 //!
 //! Steps 2–3 of a level run in a second task while the walk goes on with steps 4 and 1 of
 //! the next level: a level is not written again once the walk has left it. What changed is
-//! noted where it is written ([`crate::refine::Moved`]), so the work is that of the changed
+//! noted where it is written (`refine/moved.rs`), so the work is that of the changed
 //! elements, rows and leaves down to the depth where the edit decays, instead of refining
 //! every level's topology, stencils and end caps again. A structural change costs a full
 //! build.
