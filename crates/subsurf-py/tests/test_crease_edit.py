@@ -2,6 +2,9 @@
 bit, as a LimitSurface built from the edited mesh (same control points); bad edits are refused
 before any work, naming the edit."""
 
+import threading
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 import pytest
 
@@ -117,7 +120,41 @@ def test_bad_edits_name_the_edit_and_change_nothing():
     assert e.value.edit == 1 and "does not exist" in str(e.value)
     with pytest.raises(ValueError):
         surf.set_sharpness([pairs[0]], [1.0, 2.0])
+    with pytest.raises(ValueError, match="without creases"):
+        surf.set_sharpness(sharpness=2.0)
+    with pytest.raises(ValueError, match="without corners"):
+        surf.set_sharpness(corner_sharpness=[2.0])
     same(surf, ref)
+
+
+def test_edits_while_other_threads_evaluate():
+    """Evaluations in four threads while the main thread edits: no deadlock, every result one
+    of the two surfaces, and the last state that of the last edit."""
+    mesh = subsurf.read(SHAPES / "catmark_car.obj")
+    pairs, own = mesh.creases
+    surf = subsurf.LimitSurface(mesh)
+    q = grid(surf, 5)
+    states = [surf.evaluate(*q)[0]]
+    surf.set_sharpness(pairs, 3.5)
+    states.append(surf.evaluate(*q)[0])
+    assert not np.array_equal(states[0], states[1])
+    stop = threading.Event()
+
+    def evaluate():
+        seen = 0
+        while not stop.is_set():
+            p = surf.evaluate(*q)[0]
+            assert any(np.array_equal(p, s) for s in states)
+            seen += 1
+        return seen
+
+    with ThreadPoolExecutor(4) as pool:
+        futures = [pool.submit(evaluate) for _ in range(4)]
+        for k in range(12):
+            surf.set_sharpness(pairs, own if k % 2 == 0 else 3.5)
+        stop.set()
+        assert sum(f.result(timeout=120) for f in futures) > 0
+    assert np.array_equal(surf.evaluate(*q)[0], states[1])
 
 
 def test_loop_surfaces_refuse_sharpness_edits():

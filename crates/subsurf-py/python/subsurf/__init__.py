@@ -370,6 +370,10 @@ class LimitSurface:
         index: creases first, then corners) and the surface is left as it was. A Loop
         surface raises ``UnsupportedError``.
         """
+        if creases is None and sharpness is not None:
+            raise ValueError("sharpness without creases")
+        if corners is None and corner_sharpness is not None:
+            raise ValueError("corner_sharpness without corners")
         if creases is not None and sharpness is not None and np.ndim(sharpness) == 0:
             sharpness = np.full(len(np.asarray(creases)), sharpness, dtype=np.float64)
         cp, cs = _tags(creases, sharpness, 2, "creases")
