@@ -41,6 +41,7 @@ use crate::refine::{
     edge_values, resharpen_at, restencil, unique, vertex_values, Bits, Moved, Rewritten,
 };
 use crate::topology::Topology;
+use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 
@@ -191,21 +192,44 @@ impl<R: Real> PatchTable<R> {
             }
         };
         st.trace.tags = tags;
-        // Every check passed: the table is changed from here on.
-        for (d, (vertex, edge)) in rows {
-            let (sub, child) = (&st.trace.subs[d], &st.trace.levels[d + 1]);
-            restencil(sub, child, &mut self.level_stencils[d], &vertex, &edge);
-        }
-        for (p, kind, boundary, sharpness) in patches {
-            let p = p as usize;
-            self.kinds[p] = kind as u8;
-            self.sharpness[p] = sharpness;
-            self.params[p] = PatchParam::new(PatchParamFields {
-                boundary,
-                ..self.params[p].fields()
+        let params = (patches.into_iter())
+            .map(|(p, kind, boundary, sharpness)| {
+                let p = p as usize;
+                PatchParam::new(PatchParamFields {
+                    boundary,
+                    ..self.params[p].fields()
+                })
+                .map(|param| (p, kind as u8, sharpness, param))
+                .map_err(|e| Error::Internal(format!("crease edit of patch {p}: {e}")))
             })
-            .map_err(|e| Error::Internal(format!("crease edit of patch {p}: {e}")))?;
+            .collect::<Result<Vec<_>>>()?;
+        // Every check passed: the table is changed from here on, each step's stencils in a
+        // task of their own and the patches beside them.
+        let mut dirty: Vec<Option<Dirty>> = (0..self.level_stencils.len()).map(|_| None).collect();
+        for (d, rows) in rows {
+            dirty[d] = Some(rows);
         }
+        let trace = &st.trace;
+        let (kinds, sharpness, patch_params) =
+            (&mut self.kinds, &mut self.sharpness, &mut self.params);
+        rayon::join(
+            || {
+                (self.level_stencils.par_iter_mut().zip(dirty).enumerate()).for_each(
+                    |(d, (s, rows))| {
+                        if let Some((vertex, edge)) = rows {
+                            restencil(&trace.subs[d], &trace.levels[d + 1], s, &vertex, &edge);
+                        }
+                    },
+                )
+            },
+            || {
+                for (p, kind, s, param) in params {
+                    kinds[p] = kind;
+                    sharpness[p] = s;
+                    patch_params[p] = param;
+                }
+            },
+        );
         self.edit_state = Some(std::sync::Arc::new(st));
         Ok(None)
     }
