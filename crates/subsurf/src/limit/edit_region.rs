@@ -59,19 +59,11 @@ pub struct EditState {
     visit: Vec<Vec<u32>>,
     /// `leaf_patch[d][i]`: the patch of leaf `i` of level `d`.
     leaf_patch: Vec<Vec<u32>>,
-    /// `in_sub[d]`: the vertex and the edge of `trace.subs[d]` that each vertex and edge of
-    /// level `d` is, or [`NONE`].
-    in_sub: Vec<(Vec<u32>, Vec<u32>)>,
 }
 
 impl EditState {
-    /// The state of a construction: its `trace`, the `(level, leaf)` of each patch and the
-    /// level vertex of each vertex of each sub-mesh (`inputs`, [`super::sparse::Hierarchy`]).
-    pub(crate) fn new(
-        mut trace: Trace,
-        patch_leaves: &[(u32, u32)],
-        inputs: &[Vec<u32>],
-    ) -> EditState {
+    /// The state of a construction: its `trace` and the `(level, leaf)` of each patch.
+    pub(crate) fn new(mut trace: Trace, patch_leaves: &[(u32, u32)]) -> EditState {
         let visit = (0..trace.levels.len())
             .map(|d| {
                 let mut v = vec![NONE; trace.levels[d].num_faces()];
@@ -89,29 +81,12 @@ impl EditState {
         for (p, &(d, i)) in patch_leaves.iter().enumerate() {
             leaf_patch[d as usize][i as usize] = p as u32;
         }
-        let inverse = |to: &[u32], n: usize| {
-            let mut m = vec![NONE; n];
-            for (i, &x) in to.iter().enumerate() {
-                m[x as usize] = i as u32;
-            }
-            m
-        };
-        let in_sub = (trace.sub_edges.iter().zip(inputs).enumerate())
-            .map(|(d, (edges, verts))| {
-                let t = &trace.levels[d];
-                (
-                    inverse(verts, t.num_vertices()),
-                    inverse(edges, t.num_edges()),
-                )
-            })
-            .collect();
         // Level 0 is the table's base.
         trace.levels[0] = Topology::default();
         EditState {
             trace,
             visit,
             leaf_patch,
-            in_sub,
         }
     }
 }
@@ -151,7 +126,6 @@ impl<R: Real> PatchTable<R> {
             trace,
             visit,
             leaf_patch,
-            in_sub,
         } = &mut st;
         let stop = AtomicBool::new(false);
         let (ready, levels) = mpsc::channel::<Ready<'_>>();
@@ -162,7 +136,7 @@ impl<R: Real> PatchTable<R> {
         // after it on one thread, or blocked beside it on another, the decisions see every
         // level it sent and then the end of the channel.
         let (rows, patches) = rayon::join(
-            || this.walk((&old_base, &this.base), trace, in_sub, ready, &stop),
+            || this.walk((&old_base, &this.base), trace, ready, &stop),
             || {
                 let mut patches = Vec::new();
                 let tags = &mut tags;
@@ -243,11 +217,15 @@ impl<R: Real> PatchTable<R> {
         &self,
         (old, base): (&Topology, &'a Topology),
         trace: &'a mut Trace,
-        in_sub: &[(Vec<u32>, Vec<u32>)],
         ready: mpsc::Sender<Ready<'a>>,
         stop: &AtomicBool,
     ) -> Option<Vec<(usize, Dirty)>> {
-        let Trace { levels, subs, .. } = trace;
+        let Trace {
+            levels,
+            subs,
+            in_sub,
+            ..
+        } = trace;
         let mut levels = levels.iter_mut().skip(1);
         let mut level = base;
         let mut moved = Moved::between(old, level);

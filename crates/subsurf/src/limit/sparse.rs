@@ -153,8 +153,9 @@ pub struct Trace {
     pub levels: Vec<Topology>,
     /// `subs[d]`: the sub-mesh of level `d` that was refined (its border made sharp).
     pub subs: Vec<Topology>,
-    /// `sub_edges[d][i]`: the level-`d` edge that is edge `i` of `subs[d]`.
-    pub sub_edges: Vec<Vec<u32>>,
+    /// `in_sub[d]`: the vertex and the edge of `subs[d]` that each vertex and edge of level
+    /// `d` is, or [`NONE`].
+    pub in_sub: Vec<(Vec<u32>, Vec<u32>)>,
     /// `chosen[d]`: the faces of level `d` selected for refinement.
     pub chosen: Vec<Vec<u32>>,
     /// `leaves[d]`: the leaf faces of level `d`, in leaf order.
@@ -341,7 +342,7 @@ pub fn build_traced<W: Real, T: Send>(
             tr.chosen.push(chosen);
             tr.leaves.push(leaf_faces);
             tr.subs.extend(done_sub);
-            tr.sub_edges.push(step.edges);
+            tr.in_sub.push(step.in_sub);
             tr.levels.push(done.topo);
             tr.tags.push(done.tags);
         }
@@ -417,8 +418,8 @@ struct Step {
     edge_ok: Vec<bool>,
     /// Per sub-mesh vertex: exact in the level.
     exact: Vec<bool>,
-    /// Sub-mesh edge → level edge.
-    edges: Vec<u32>,
+    /// Level vertex → sub-mesh vertex and level edge → sub-mesh edge, [`NONE`] outside.
+    in_sub: (Vec<u32>, Vec<u32>),
 }
 
 impl Step {
@@ -435,7 +436,10 @@ impl Step {
                 sound: lv.sound.clone(),
                 edge_ok: lv.edge_ok.clone(),
                 exact: lv.exact.clone(),
-                edges: (0..s.num_edges() as u32).collect(),
+                in_sub: (
+                    (0..s.num_vertices() as u32).collect(),
+                    (0..s.num_edges() as u32).collect(),
+                ),
             };
         }
         let faces: Vec<u32> = (0..s.num_faces() as u32)
@@ -573,7 +577,7 @@ impl Step {
             sound,
             edge_ok,
             exact,
-            edges,
+            in_sub: (vmap, emap),
         }
     }
 

@@ -561,7 +561,7 @@ impl<R: Real> PatchTable<R> {
             leaves,
         } = all;
         let edit_state = trace
-            .map(|t| super::edit_region::EditState::new(t, &leaves, &h.inputs))
+            .map(|t| super::edit_region::EditState::new(t, &leaves))
             .map(std::sync::Arc::new);
         Ok(PatchTable::<R> {
             options: *options,
