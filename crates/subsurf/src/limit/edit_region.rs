@@ -241,11 +241,9 @@ impl<R: Real> PatchTable<R> {
             ready.send((d, level, changed)).ok()?;
             let mut child_moved = Moved::new(child);
             let w = resharpen_at(sub, child, &sub_changed, &mut child_moved);
+            let dirty = self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &w)?;
+            rows.push((d, dirty));
             moved = child_moved.any();
-            rows.push((
-                d,
-                self.step_rows(sub, sub_moved.as_ref(), moved.as_ref(), d, &sub_changed, &w)?,
-            ));
             level = child;
             if stop.load(Ordering::Relaxed) {
                 return None;
@@ -333,15 +331,14 @@ impl<R: Real> PatchTable<R> {
 
     /// The rows of step `d` (from `sub`) whose inputs changed (parent or child sharpness or
     /// rule of the vertex, of its edges and their children; of the edge and its edge point),
-    /// given what changed in the sub-mesh and in the child level (`None`: nothing); `None`
-    /// where the stored stencils do not have the step's rows. Only the edges at `changed`
+    /// given what changed in the sub-mesh and in the child level; `None` where the stored stencils do not have the step's rows. Only the edges at `changed`
     /// (the vertices of `sub` whose values [`refresh_sub`] changed), which [`resharpen_at`]
     /// rewrote (`w`), and their ends can differ: they alone are tested.
     fn step_rows(
         &self,
         sub: &Topology,
-        sub_moved: Option<&Moved>,
-        child_moved: Option<&Moved>,
+        sub_moved: &Moved,
+        child_moved: &Moved,
         d: usize,
         changed: &[u32],
         w: &Rewritten,
@@ -352,21 +349,18 @@ impl<R: Real> PatchTable<R> {
         if old.vertex.num_rows() != nv || old.edge.num_rows() != ne {
             return None;
         }
-        let has = |m: Option<&Moved>, of: fn(&Moved) -> &Bits, i: usize| {
-            m.is_some_and(|m| of(m).get(i as u32))
-        };
-        let ce = |i: usize| has(child_moved, |m| &m.edge_sharp, i);
+        let ce = |i: usize| child_moved.edge_sharp.get(i as u32);
         // Increasing, as the rows are listed.
         let near_edges = Bits::of(w.edges.iter().copied(), ne);
         let mut edge_input = Bits::new(ne);
         let mut near_verts = Bits::of(changed.iter().copied(), nv);
         let mut edges = Vec::new();
         for e in near_edges.iter() {
-            let own = has(sub_moved, |m| &m.edge_sharp, e);
+            let own = sub_moved.edge_sharp.get(e as u32);
             if own || ce(nc + 2 * e) || ce(nc + 2 * e + 1) {
                 edge_input.set(e as u32);
             }
-            if own || has(child_moved, |m| &m.rule, nv + nf + e) {
+            if own || child_moved.rule.get((nv + nf + e) as u32) {
                 edges.push(e as u32);
             }
             for v in sub.edge_verts[e] {
@@ -376,8 +370,8 @@ impl<R: Real> PatchTable<R> {
         let vertices = near_verts
             .iter()
             .filter(|&v| {
-                has(sub_moved, |m| &m.sharp_or_rule, v)
-                    || has(child_moved, |m| &m.sharp_or_rule, v)
+                sub_moved.sharp_or_rule.get(v as u32)
+                    || child_moved.sharp_or_rule.get(v as u32)
                     || sub.vertex_edges(v).iter().any(|&e| edge_input.get(e))
             })
             .map(|v| v as u32)
@@ -391,13 +385,13 @@ impl<R: Real> PatchTable<R> {
 /// infinitely sharp boundary. `in_sub` numbers the level's vertices and edges in `sub`. Only
 /// the elements at the `changed` level vertices are visited (a changed edge marks both
 /// ends; a border vertex's tags change only with a changed edge of its own). Returns those
-/// vertices, numbered in `sub`, and what changed in `sub` (`None`: nothing).
+/// vertices, numbered in `sub`, and what changed in `sub`.
 fn refresh_sub(
     level: &Topology,
     sub: &mut Topology,
     (sub_vertex, sub_edge): &(Vec<u32>, Vec<u32>),
     changed: &Moved,
-) -> (Vec<u32>, Option<Moved>) {
+) -> (Vec<u32>, Moved) {
     let mut moved = Moved::new(sub);
     for &a in &changed.list {
         for &le in level.vertex_edges(a as usize) {
@@ -434,5 +428,5 @@ fn refresh_sub(
         }
         moved.vertex(sub, v, old);
     }
-    (sub_changed, moved.any())
+    (sub_changed, moved)
 }
