@@ -162,3 +162,16 @@ def test_loop_surfaces_refuse_sharpness_edits():
     surf = subsurf.LimitSurface(mesh)
     with pytest.raises(subsurf.UnsupportedError):
         surf.set_sharpness([[0, 1]], [1.0])
+
+
+def test_one_sharpness_value_for_every_tag():
+    """One value is every tag's, for a Mesh as for set_sharpness (the shared tag reading)."""
+    mesh = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
+    pairs, _ = mesh.creases
+    one = subsurf.Mesh(mesh.points, (mesh.face_counts, mesh.face_indices), creases=pairs,
+                       crease_sharpness=2.5, corners=[0, 1], corner_sharpness=3.0)
+    assert np.array_equal(one.creases[1], np.full(len(pairs), 2.5, dtype=np.float32))
+    assert np.array_equal(one.corners[1], np.full(2, 3.0, dtype=np.float32))
+    surf = subsurf.LimitSurface(mesh)
+    surf.set_sharpness(pairs, 2.5, corners=[0, 1], corner_sharpness=3.0)
+    same(surf, subsurf.LimitSurface(one))

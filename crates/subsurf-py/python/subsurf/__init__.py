@@ -106,7 +106,11 @@ def _tags(a: Any, sharpness: Any, cols: int, what: str) -> Tuple[np.ndarray, np.
         else:
             raise ValueError(f"{what}: a (c,) array with a sharpness array, or one (c, 2) array")
         p = _indices(pairs, what)
-    s = np.ascontiguousarray(np.asarray(s, dtype=np.float64), dtype=np.float32).reshape(-1)
+    s = np.asarray(s, dtype=np.float64)
+    if s.ndim == 0:
+        # One value for every tag.
+        s = np.full(len(p), s)
+    s = np.ascontiguousarray(s, dtype=np.float32).reshape(-1)
     if len(s) != len(p):
         raise ValueError(f"{what}: {len(p)} tags, {len(s)} sharpness values")
     if np.any(np.isnan(s)):
@@ -121,9 +125,9 @@ class Mesh:
     ----------
     points : (n, 3) float array (float32 or float64; computed in float32)
     faces : (m, k) integer array, list of index lists, or ``(counts, indices)`` as USD stores them
-    creases : (c, 2) vertex pairs with ``crease_sharpness`` (c,), or one (c, 3) array;
-        sharpness 10 or more is infinitely sharp
-    corners : (c,) vertices with ``corner_sharpness``, or one (c, 2) array
+    creases : (c, 2) vertex pairs with ``crease_sharpness`` (c,) or one value for all, or one
+        (c, 3) array; sharpness 10 or more is infinitely sharp
+    corners : (c,) vertices with ``corner_sharpness`` ((c,) or one value), or one (c, 2) array
     holes : face indices
     uvs : (u, 2) float array; ``uv_indices`` one per face corner (default: the face indices)
     scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only; no limit surface yet)
@@ -359,8 +363,8 @@ class LimitSurface:
         """New crease sharpness for base edges and corner sharpness for base vertices, as
         ``Mesh`` takes them (``creases``: (c, 2) vertex pairs with ``sharpness`` (c,) or one
         value for all, or one (c, 3) array; ``corners``: (c,) vertices with
-        ``corner_sharpness``, or one (c, 2) array; 0 smooth, 10 or more infinitely sharp),
-        later entries of the same element winning. The patch table is updated in place where
+        ``corner_sharpness`` ((c,) or one value), or one (c, 2) array; 0 smooth, 10 or more
+        infinitely sharp), later entries of the same element winning. The patch table is updated in place where
         its isolation structure is kept and rebuilt otherwise; either way the surface is,
         bit for bit, that of a ``LimitSurface`` of the edited mesh at the current control
         points. Returns ``"unchanged"``, ``"updated"`` or ``"rebuilt"``.
@@ -374,8 +378,6 @@ class LimitSurface:
             raise ValueError("sharpness without creases")
         if corners is None and corner_sharpness is not None:
             raise ValueError("corner_sharpness without corners")
-        if creases is not None and sharpness is not None and np.ndim(sharpness) == 0:
-            sharpness = np.full(len(np.asarray(creases)), sharpness, dtype=np.float64)
         cp, cs = _tags(creases, sharpness, 2, "creases")
         cv, csh = _tags(corners, corner_sharpness, 1, "corners")
         return self._s.set_sharpness(cp.reshape(-1, 2), cs, cv.reshape(-1), csh)
