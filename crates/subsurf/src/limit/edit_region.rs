@@ -98,6 +98,14 @@ type Dirty = (Vec<u32>, Vec<u32>);
 /// changed in it)`.
 type Ready<'a> = (usize, &'a Topology, Moved);
 
+/// What the walk writes of the kept levels: the levels ([`Trace::levels`], level 0 unused),
+/// the sub-meshes, and the level-to-sub-mesh maps it reads.
+type Kept<'a, 'b> = (
+    &'a mut [Topology],
+    &'b mut [Topology],
+    &'b [(Vec<u32>, Vec<u32>)],
+);
+
 impl<R: Real> PatchTable<R> {
     /// Applies the edited base topology `base` incrementally (module documentation).
     /// Returns `base` back, the table unchanged but for its kept levels, where the
@@ -122,24 +130,30 @@ impl<R: Real> PatchTable<R> {
 
         // The base is level 0 of the walk.
         let old_base = std::mem::replace(&mut self.base, base);
+        // The walk writes the levels and sub-meshes; the decisions read the levels it has
+        // left and write only their own tags.
         let EditState {
             trace,
             visit,
             leaf_patch,
         } = &mut st;
+        let Trace {
+            levels: kept,
+            subs,
+            in_sub,
+            tags,
+            ..
+        } = trace;
         let stop = AtomicBool::new(false);
         let (ready, levels) = mpsc::channel::<Ready<'_>>();
         let this = &*self;
-        // The decisions' own part of the levels (the walk never reads the tags).
-        let mut tags = std::mem::take(&mut trace.tags);
         // The walk never waits on the decisions, and ends (dropping `ready`) on its own: run
         // after it on one thread, or blocked beside it on another, the decisions see every
         // level it sent and then the end of the channel.
         let (rows, patches) = rayon::join(
-            || this.walk((&old_base, &this.base), trace, ready, &stop),
+            || this.walk((&old_base, &this.base), (kept, subs, in_sub), ready, &stop),
             || {
                 let mut patches = Vec::new();
-                let tags = &mut tags;
                 for (d, t, changed) in levels {
                     let o = this.redecide(
                         t,
@@ -165,7 +179,6 @@ impl<R: Real> PatchTable<R> {
                 return decided.map(|_| Some(edited));
             }
         };
-        st.trace.tags = tags;
         let params = (patches.into_iter())
             .map(|(p, kind, boundary, sharpness)| {
                 let p = p as usize;
@@ -208,7 +221,7 @@ impl<R: Real> PatchTable<R> {
         Ok(None)
     }
 
-    /// The walk down the levels of `trace` from the base (`(old, new)`: before and after
+    /// The walk down the kept levels from the base (`(old, new)`: before and after
     /// the edit): each level's changes, its sub-mesh's new values, the child level's sharpness,
     /// tags and rules, the step's rows to form again. Every level with changes is sent to
     /// `ready` once written. `None` where the stored stencils do not have a step's rows, or
@@ -216,16 +229,10 @@ impl<R: Real> PatchTable<R> {
     fn walk<'a>(
         &self,
         (old, base): (&Topology, &'a Topology),
-        trace: &'a mut Trace,
+        (levels, subs, in_sub): Kept<'a, '_>,
         ready: mpsc::Sender<Ready<'a>>,
         stop: &AtomicBool,
     ) -> Option<Vec<(usize, Dirty)>> {
-        let Trace {
-            levels,
-            subs,
-            in_sub,
-            ..
-        } = trace;
         let mut levels = levels.iter_mut().skip(1);
         let mut level = base;
         let mut moved = Moved::between(old, level);
