@@ -38,12 +38,11 @@ use crate::error::{Error, Result};
 use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
 use crate::refine::{
-    edge_values, resharpen_at, restencil, unique, vertex_values, Bits, Moved, Rewritten,
+    edge_values, form_rows, resharpen_at, unique, vertex_values, Bits, Moved, Restenciled,
+    Rewritten,
 };
 use crate::topology::Topology;
-use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc;
 
 /// Not visited by the walk.
 const NONE: u32 = u32::MAX;
@@ -94,9 +93,9 @@ impl EditState {
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
 type Dirty = (Vec<u32>, Vec<u32>);
 
-/// A level written by the walk, handed to the decisions: `(level, topology, what the edit
-/// changed in it)`.
-type Ready<'a> = (usize, &'a Topology, Moved);
+/// What the decisions of one level found: the new type, sharpness and parameter of its
+/// leaves' patches, or `None` where the structure changes.
+type Decided = Result<Option<Vec<(usize, u8, f32, PatchParam)>>>;
 
 /// What the walk writes of the kept levels: the levels ([`Trace::levels`], level 0 unused),
 /// the sub-meshes, and the level-to-sub-mesh maps it reads.
@@ -144,42 +143,87 @@ impl<R: Real> PatchTable<R> {
             tags,
             ..
         } = trace;
-        let stop = AtomicBool::new(false);
-        let (ready, levels) = mpsc::channel::<Ready<'_>>();
+        let stop = &AtomicBool::new(false);
         let this = &*self;
-        // The walk never waits on the decisions, and ends (dropping `ready`) on its own: run
-        // after it on one thread, or blocked beside it on another, the decisions see every
-        // level it sent and then the end of the channel.
-        let (rows, patches) = rayon::join(
-            || this.walk((&old_base, &this.base), (kept, subs, in_sub), ready, &stop),
-            || {
-                let mut patches = Vec::new();
-                for (d, t, changed) in levels {
+        // The walk runs on this thread; each level it has written is decided in a task of its
+        // own (spawned, so that the walk starts at once and the decisions of the last levels
+        // share the threads once the walk is done). A level is not written again once the
+        // walk has left it, and each task writes only its own level's tags and outcome.
+        let mut decided: Vec<Option<Decided>> = (0..visit.len()).map(|_| None).collect();
+        let rows = rayon::in_place_scope(|scope| {
+            let mut slots = (visit.iter().zip(leaf_patch.iter()))
+                .zip(tags.iter_mut().zip(decided.iter_mut()))
+                .enumerate();
+            let (mask, leaf_options) = (&mask, &leaf_options);
+            let mut decide = |d: usize, t, changed: Moved| {
+                let Some((_, ((visit, leaf_patch), (tags, out)))) =
+                    slots.by_ref().find(|&(k, _)| k == d)
+                else {
+                    return;
+                };
+                scope.spawn(move |_| {
+                    let mut patches = Vec::new();
                     let o = this.redecide(
                         t,
-                        (&visit[d], &leaf_patch[d], &mut tags[d]),
+                        (visit, leaf_patch, tags),
                         d,
                         &changed,
-                        (&mask, &leaf_options),
+                        (mask, leaf_options),
                         num_level_points,
                         &mut patches,
                     );
                     if !matches!(o, Ok(true)) {
                         stop.store(true, Ordering::Relaxed);
-                        return o.map(|_| None);
                     }
-                }
-                Ok(Some(patches))
-            },
-        );
-        let (rows, patches) = match (rows, patches) {
-            (Some(rows), Ok(Some(patches))) => (rows, patches),
-            (_, decided) => {
+                    *out = Some(match o {
+                        Ok(true) => this.new_params(patches).map(Some),
+                        o => o.map(|_| None),
+                    });
+                });
+            };
+            this.walk(
+                (&old_base, &this.base),
+                (kept, subs, in_sub),
+                &mut decide,
+                stop,
+            )
+        });
+        // Any level's error, else any change of structure, else the patches of every level.
+        let (mut params, mut keeps, mut error) = (Vec::new(), true, None);
+        for o in decided.into_iter().flatten() {
+            match o {
+                Ok(Some(p)) => params.extend(p),
+                Ok(None) => keeps = false,
+                Err(e) => error = error.or(Some(e)),
+            }
+        }
+        let rows = match (rows, error) {
+            (Some(rows), None) if keeps => rows,
+            (_, error) => {
                 let edited = std::mem::replace(&mut self.base, old_base);
-                return decided.map(|_| Some(edited));
+                return error.map_or(Ok(Some(edited)), Err);
             }
         };
-        let params = (patches.into_iter())
+        // Every check passed: the table is changed from here on.
+        for (d, rows) in rows {
+            rows.apply(&mut self.level_stencils[d]);
+        }
+        for (p, kind, s, param) in params {
+            self.kinds[p] = kind;
+            self.sharpness[p] = s;
+            self.params[p] = param;
+        }
+        self.edit_state = Some(std::sync::Arc::new(st));
+        Ok(None)
+    }
+
+    /// The new type, sharpness and parameter of each patch in `patches` (`(patch, type,
+    /// boundary mask, sharpness)`), checked before anything is written.
+    fn new_params(
+        &self,
+        patches: Vec<(u32, PatchType, u8, f32)>,
+    ) -> Result<Vec<(usize, u8, f32, PatchParam)>> {
+        (patches.into_iter())
             .map(|(p, kind, boundary, sharpness)| {
                 let p = p as usize;
                 PatchParam::new(PatchParamFields {
@@ -189,50 +233,22 @@ impl<R: Real> PatchTable<R> {
                 .map(|param| (p, kind as u8, sharpness, param))
                 .map_err(|e| Error::Internal(format!("crease edit of patch {p}: {e}")))
             })
-            .collect::<Result<Vec<_>>>()?;
-        // Every check passed: the table is changed from here on, each step's stencils in a
-        // task of their own and the patches beside them.
-        let mut dirty: Vec<Option<Dirty>> = (0..self.level_stencils.len()).map(|_| None).collect();
-        for (d, rows) in rows {
-            dirty[d] = Some(rows);
-        }
-        let trace = &st.trace;
-        let (kinds, sharpness, patch_params) =
-            (&mut self.kinds, &mut self.sharpness, &mut self.params);
-        rayon::join(
-            || {
-                (self.level_stencils.par_iter_mut().zip(dirty).enumerate()).for_each(
-                    |(d, (s, rows))| {
-                        if let Some((vertex, edge)) = rows {
-                            restencil(&trace.subs[d], &trace.levels[d + 1], s, &vertex, &edge);
-                        }
-                    },
-                )
-            },
-            || {
-                for (p, kind, s, param) in params {
-                    kinds[p] = kind;
-                    sharpness[p] = s;
-                    patch_params[p] = param;
-                }
-            },
-        );
-        self.edit_state = Some(std::sync::Arc::new(st));
-        Ok(None)
+            .collect()
     }
 
     /// The walk down the kept levels from the base (`(old, new)`: before and after
     /// the edit): each level's changes, its sub-mesh's new values, the child level's sharpness,
-    /// tags and rules, the step's rows to form again. Every level with changes is sent to
-    /// `ready` once written. `None` where the stored stencils do not have a step's rows, or
-    /// when `stop` is set (a decision found a change of structure).
+    /// tags and rules, the step's rows to form again. Every level with changes is handed to
+    /// `decide` (`(level, topology, what changed)`) once written, in increasing order. `None`
+    /// where the stored stencils do not have a step's rows, or when `stop` is set (a decision
+    /// found a change of structure).
     fn walk<'a>(
         &self,
         (old, base): (&Topology, &'a Topology),
         (levels, subs, in_sub): Kept<'a, '_>,
-        ready: mpsc::Sender<Ready<'a>>,
+        decide: &mut dyn FnMut(usize, &'a Topology, Moved),
         stop: &AtomicBool,
-    ) -> Option<Vec<(usize, Dirty)>> {
+    ) -> Option<Vec<(usize, Restenciled<R>)>> {
         let mut levels = levels.iter_mut().skip(1);
         let mut level = base;
         let mut moved = Moved::between(old, level);
@@ -245,11 +261,14 @@ impl<R: Real> PatchTable<R> {
             let child = levels.next()?;
             let (sub_changed, sub_moved) = refresh_sub(level, sub, &in_sub[d], &changed);
             // The level is final: its faces are decided while the walk goes on.
-            ready.send((d, level, changed)).ok()?;
+            decide(d, level, changed);
             let mut child_moved = Moved::new(child);
             let w = resharpen_at(sub, child, &sub_changed, &mut child_moved);
-            let dirty = self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &w)?;
-            rows.push((d, dirty));
+            let (vertex, edge) =
+                self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &w)?;
+            // The rows are formed here, before the decisions are known, and written into
+            // the table only if they keep the structure.
+            rows.push((d, form_rows(sub, child, vertex, edge)));
             moved = child_moved.any();
             level = child;
             if stop.load(Ordering::Relaxed) {
@@ -258,7 +277,7 @@ impl<R: Real> PatchTable<R> {
         }
         // The last level: decided, never refined.
         if let Some(changed) = moved {
-            ready.send((rows.len(), level, changed)).ok()?;
+            decide(rows.len(), level, changed);
         }
         Some(rows)
     }

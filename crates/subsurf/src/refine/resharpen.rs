@@ -149,61 +149,102 @@ fn edge_point(p: &Topology, c: &mut Topology, e: usize) {
     c.vert_rule[i] = rl;
 }
 
-/// Forms the vertex rows `dirty_vertex` and edge rows `dirty_edge` of the step from `p` to
-/// `c` again (as [`super::level_stencils_real`] forms them) in `s`, the step's stencils
-/// before the change: in place where a row keeps its length, else by splicing the table.
-pub(crate) fn restencil<W: Real>(
-    p: &Topology,
-    c: &Topology,
-    s: &mut LevelStencils<W>,
-    dirty_vertex: &[u32],
-    dirty_edge: &[u32],
-) {
-    let rows = LevelRows::new(p, ChildSharpness::of_child(p, c));
-    let mut scratch = Scratch::<W>::default();
-    update_rows(&mut s.vertex, dirty_vertex, |i, add| {
-        rows.vertex(i, &mut scratch, &mut &mut *add)
-    });
-    update_rows(&mut s.edge, dirty_edge, |i, add| {
-        rows.edge(i, &mut &mut *add)
-    });
+/// Rows of one table formed again: the rows (increasing) and their entries, row `k` being
+/// `idx[ends[k - 1]..ends[k]]` / `wts[..]`.
+#[derive(Debug, Default)]
+pub(crate) struct Formed<W> {
+    rows: Vec<u32>,
+    idx: Vec<u32>,
+    wts: Vec<W>,
+    ends: Vec<usize>,
 }
 
-/// Rows `dirty` (increasing) of `t` formed again by `row(i, add)`.
-fn update_rows<W: Real>(
-    t: &mut StencilTable<W>,
-    dirty: &[u32],
-    mut row: impl FnMut(usize, &mut dyn FnMut(u32, W)),
-) {
-    if dirty.is_empty() {
-        return;
+/// The vertex and edge rows of one step formed again ([`form_rows`]), to be written into the
+/// step's stencils by [`Restenciled::apply`].
+#[derive(Debug, Default)]
+pub(crate) struct Restenciled<W> {
+    vertex: Formed<W>,
+    edge: Formed<W>,
+}
+
+/// Forms the vertex rows `dirty_vertex` and edge rows `dirty_edge` (increasing) of the step
+/// from `p` to `c` again, as [`super::level_stencils_real`] forms them. Nothing is written:
+/// the rows are kept for [`Restenciled::apply`], so that they can be formed before it is
+/// known whether they will be used.
+pub(crate) fn form_rows<W: Real>(
+    p: &Topology,
+    c: &Topology,
+    dirty_vertex: Vec<u32>,
+    dirty_edge: Vec<u32>,
+) -> Restenciled<W> {
+    let rows = LevelRows::new(p, ChildSharpness::of_child(p, c));
+    let mut scratch = Scratch::<W>::default();
+    Restenciled {
+        vertex: form(dirty_vertex, |i, add| {
+            rows.vertex(i, &mut scratch, &mut &mut *add)
+        }),
+        edge: form(dirty_edge, |i, add| rows.edge(i, &mut &mut *add)),
     }
-    let (mut idx, mut wts, mut ends) = (Vec::new(), Vec::new(), Vec::with_capacity(dirty.len()));
-    for &r in dirty {
+}
+
+impl<W: Real> Restenciled<W> {
+    /// Writes the rows into `s`, the step's stencils before the change: in place where every
+    /// row keeps its length, else by splicing the table.
+    pub(crate) fn apply(&self, s: &mut LevelStencils<W>) {
+        self.vertex.apply(&mut s.vertex);
+        self.edge.apply(&mut s.edge);
+    }
+}
+
+/// Rows `rows` (increasing) formed by `row(i, add)`.
+fn form<W: Real>(rows: Vec<u32>, mut row: impl FnMut(usize, &mut dyn FnMut(u32, W))) -> Formed<W> {
+    let (mut idx, mut wts, mut ends) = (Vec::new(), Vec::new(), Vec::with_capacity(rows.len()));
+    for &r in &rows {
         row(r as usize, &mut |x, w| {
             idx.push(x);
             wts.push(w);
         });
         ends.push(idx.len());
     }
-    let len = |r: u32| (t.offsets[r as usize + 1] - t.offsets[r as usize]) as usize;
-    let mut start = 0;
-    let kept = dirty.iter().zip(&ends).all(|(&r, &e)| {
-        let same = e - start == len(r);
-        start = e;
-        same
-    });
-    if kept {
-        let mut start = 0;
-        for (&r, &e) in dirty.iter().zip(&ends) {
-            let a = t.offsets[r as usize] as usize;
-            t.indices[a..a + e - start].copy_from_slice(&idx[start..e]);
-            t.weights[a..a + e - start].copy_from_slice(&wts[start..e]);
-            start = e;
-        }
-        return;
+    Formed {
+        rows,
+        idx,
+        wts,
+        ends,
     }
-    *t = splice(t, dirty, &idx, &wts, &ends);
+}
+
+impl<W: Real> Formed<W> {
+    /// Writes the rows into `t`.
+    fn apply(&self, t: &mut StencilTable<W>) {
+        let Formed {
+            rows: dirty,
+            idx,
+            wts,
+            ends,
+        } = self;
+        if dirty.is_empty() {
+            return;
+        }
+        let len = |r: u32| (t.offsets[r as usize + 1] - t.offsets[r as usize]) as usize;
+        let mut start = 0;
+        let kept = dirty.iter().zip(ends).all(|(&r, &e)| {
+            let same = e - start == len(r);
+            start = e;
+            same
+        });
+        if kept {
+            let mut start = 0;
+            for (&r, &e) in dirty.iter().zip(ends) {
+                let a = t.offsets[r as usize] as usize;
+                t.indices[a..a + e - start].copy_from_slice(&idx[start..e]);
+                t.weights[a..a + e - start].copy_from_slice(&wts[start..e]);
+                start = e;
+            }
+            return;
+        }
+        *t = splice(t, dirty, idx, wts, ends);
+    }
 }
 
 /// `old` with rows `dirty` replaced by the rows `idx`/`wts` ending at `ends`; runs of clean
