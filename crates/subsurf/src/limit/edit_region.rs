@@ -43,6 +43,7 @@ use crate::refine::{
 };
 use crate::topology::Topology;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// Not visited by the walk.
 const NONE: u32 = u32::MAX;
@@ -117,7 +118,7 @@ impl<R: Real> PatchTable<R> {
         let Some(state) = self.edit_state.take() else {
             return Ok(Some(base));
         };
-        let mut st = std::sync::Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
+        let mut st = Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
         let max_level = self.options.level_for(&base) as usize;
         let leaf_options = LeafOptions {
             single_crease: self.options.single_crease,
@@ -155,7 +156,7 @@ impl<R: Real> PatchTable<R> {
                 .zip(tags.iter_mut().zip(decided.iter_mut()))
                 .enumerate();
             let (mask, leaf_options) = (&mask, &leaf_options);
-            let mut decide = |d: usize, t, changed: Moved| {
+            let mut decide = |d: usize, t, changed: Arc<Moved>| {
                 let Some((_, ((visit, leaf_patch), (tags, out)))) =
                     slots.by_ref().find(|&(k, _)| k == d)
                 else {
@@ -213,7 +214,7 @@ impl<R: Real> PatchTable<R> {
             self.sharpness[p] = s;
             self.params[p] = param;
         }
-        self.edit_state = Some(std::sync::Arc::new(st));
+        self.edit_state = Some(Arc::new(st));
         Ok(None)
     }
 
@@ -239,19 +240,23 @@ impl<R: Real> PatchTable<R> {
     /// The walk down the kept levels from the base (`(old, new)`: before and after
     /// the edit): each level's changes, its sub-mesh's new values, the child level's sharpness,
     /// tags and rules, the step's rows to form again. Every level with changes is handed to
-    /// `decide` (`(level, topology, what changed)`) once written, in increasing order. `None`
+    /// `decide` (`(level, topology, what changed)`) as soon as its values are final (a child
+    /// level once derived, before the step's rows are found), in increasing order. `None`
     /// where the stored stencils do not have a step's rows, or when `stop` is set (a decision
     /// found a change of structure).
     fn walk<'a>(
         &self,
         (old, base): (&Topology, &'a Topology),
         (levels, subs, in_sub): Kept<'a, '_>,
-        decide: &mut dyn FnMut(usize, &'a Topology, Moved),
+        decide: &mut dyn FnMut(usize, &'a Topology, Arc<Moved>),
         stop: &AtomicBool,
     ) -> Option<Vec<(usize, Restenciled<R>)>> {
         let mut levels = levels.iter_mut().skip(1);
         let mut level = base;
-        let mut moved = Moved::between(old, level);
+        let mut moved = Moved::between(old, level).map(Arc::new);
+        if let Some(m) = &moved {
+            decide(0, level, m.clone());
+        }
         let mut rows = Vec::new();
         for (d, sub) in subs.iter_mut().enumerate() {
             // Nothing changed here: every deeper level is unchanged.
@@ -260,24 +265,25 @@ impl<R: Real> PatchTable<R> {
             };
             let child = levels.next()?;
             let (sub_changed, sub_moved) = refresh_sub(level, sub, &in_sub[d], &changed);
-            // The level is final: its faces are decided while the walk goes on.
-            decide(d, level, changed);
             let mut child_moved = Moved::new(child);
             let w = resharpen_at(sub, child, &sub_changed, &mut child_moved);
+            // The child level is final: its faces are decided while the walk goes on.
+            let child: &'a Topology = child;
+            let child_moved = Arc::new(child_moved);
+            let child_changed = !child_moved.list.is_empty();
+            if child_changed {
+                decide(d + 1, child, child_moved.clone());
+            }
             let (vertex, edge) =
                 self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &w)?;
             // The rows are formed here, before the decisions are known, and written into
             // the table only if they keep the structure.
             rows.push((d, form_rows(sub, child, vertex, edge)));
-            moved = child_moved.any();
+            moved = child_changed.then_some(child_moved);
             level = child;
             if stop.load(Ordering::Relaxed) {
                 return None;
             }
-        }
-        // The last level: decided, never refined.
-        if let Some(changed) = moved {
-            decide(rows.len(), level, changed);
         }
         Some(rows)
     }
