@@ -22,8 +22,11 @@
 //!    are formed again, the others copied;
 //! 5. a level where nothing changed ends the walk: every deeper level is unchanged.
 //!
-//! Steps 2–3 of a level run in a second task while the walk goes on with steps 4 and 1 of
-//! the next level: a level is not written again once the walk has left it. What changed is
+//! The walk runs on the calling thread; steps 2–3 of a level run in a task of their own,
+//! spawned as soon as the walk has derived the level (a level is not written again once
+//! derived), while the walk goes on with steps 4 and 1. The stencil rows are formed during
+//! the walk, and nothing is written into the table until every decision has kept the
+//! structure. What changed is
 //! noted where it is written (`refine/moved.rs`), so the work is that of the changed
 //! elements, rows and leaves down to the depth where the edit decays, instead of refining
 //! every level's topology, stencils and end caps again. A structural change costs a full
@@ -112,8 +115,8 @@ impl<R: Real> PatchTable<R> {
     /// structure changes (or no levels are kept).
     ///
     /// The walk down the levels (new values of the sub-mesh and the child level, the rows
-    /// to form again) and the decisions of each level's faces run side by side: a level is
-    /// handed to the decisions as soon as the walk has written it, and is not written again.
+    /// formed again) and the decisions of each level's faces run side by side: a level is
+    /// handed to its decisions as soon as the walk has derived it, and is not written again.
     pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<Option<Topology>> {
         let Some(state) = self.edit_state.take() else {
             return Ok(Some(base));
