@@ -164,6 +164,64 @@ fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
     );
 }
 
+/// A table built editable is a plain build's, bit for bit, and keeps its levels: its first
+/// edit that keeps the structure is made in place (a plain build's first edit rebuilds), and
+/// equals the fresh build of the edited mesh, on every creased shape (`f32`) and on the car
+/// (`f64`).
+#[test]
+fn editable_builds_make_their_first_edit_in_place() {
+    let mut rng = Lcg(0xed17);
+    let (mut shapes, mut in_place) = (0, 0);
+    for name in shape_names() {
+        let mesh = load_shape(&name);
+        if mesh
+            .creases
+            .iter()
+            .all(|c| !(c.sharpness > 0.0 && c.sharpness < 10.0))
+            || mesh.options.boundary == subsurf::BoundaryInterpolation::None
+        {
+            continue;
+        }
+        shapes += 1;
+        let topo = Topology::new(&mesh).unwrap();
+        let o = PatchOptions::default();
+        let plain = PatchTable::build(&topo, &o).unwrap();
+        let mut editable = PatchTable::build_editable(&topo, &o).unwrap();
+        assert!(editable.is_editable() && !plain.is_editable(), "{name}");
+        assert_same(&format!("{name} editable build"), &editable, &plain);
+        let edits = random_edits(&mesh, &topo, &mut rng, true);
+        let outcome = editable.apply_sharpness(&edits).unwrap();
+        let fresh =
+            PatchTable::build(&Topology::new(&edit_mesh(&mesh, &edits)).unwrap(), &o).unwrap();
+        assert_same(&format!("{name} {edits:?}"), &editable, &fresh);
+        if outcome == EditOutcome::Updated {
+            in_place += 1;
+            // The same edit on the plain build rebuilds it.
+            let mut p = plain.clone();
+            assert_eq!(p.apply_sharpness(&edits).unwrap(), EditOutcome::Rebuilt);
+        }
+    }
+    assert!(
+        shapes >= 5 && in_place >= 3,
+        "{in_place} of {shapes} shapes edited in place"
+    );
+
+    let mesh = load_shape("catmark_car");
+    let topo = Topology::new(&mesh).unwrap();
+    let o = PatchOptions::default();
+    let mut table = PatchTable::<f64>::build_editable_real(&topo, &o).unwrap();
+    assert_same(
+        "car, f64",
+        &table,
+        &PatchTable::<f64>::build_real(&topo, &o).unwrap(),
+    );
+    let edits = SharpnessEdit::creases(&mesh.creases, Some(3.5));
+    assert_eq!(table.apply_sharpness(&edits).unwrap(), EditOutcome::Updated);
+    let m = edit_mesh(&mesh, &edits);
+    let fresh = PatchTable::<f64>::build_real(&Topology::new(&m).unwrap(), &o).unwrap();
+    assert_same("car at 3.5, f64", &table, &fresh);
+}
+
 /// The car's 314 creases from their sharpness to 2, 3.5 and back, on the `f64` table: the
 /// fresh build each way, and the original table at the end (updated in place: moving the
 /// creases from 3.5 to their own 6 keeps the structure).

@@ -17,7 +17,7 @@
 
 use super::budget::Budget;
 use super::sparse::Selection;
-use super::table::PatchTable;
+use super::table::{PatchOptions, PatchTable};
 use crate::error::{Error, MeshError, Result};
 use crate::mesh::Crease;
 use crate::options::BoundaryInterpolation;
@@ -138,11 +138,45 @@ pub enum EditOutcome {
     /// The isolation structure was kept: the table was updated in place
     /// ([`super::edit_region`]).
     Updated,
-    /// The table was rebuilt (the first edit of a table, or a change of structure).
+    /// The table was rebuilt (the first edit of a table that does not keep its levels, or a
+    /// change of structure).
     Rebuilt,
 }
 
+impl PatchTable {
+    /// [`PatchTable::build`], keeping the levels of the construction for crease edits (see
+    /// [`PatchTable::build_editable_real`]).
+    pub fn build_editable(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
+        Self::build_editable_real(base, options)
+    }
+}
+
 impl<R: Real> PatchTable<R> {
+    /// [`PatchTable::build_real`], keeping the levels of the construction (the topology of
+    /// every level and refined sub-mesh, the faces refined and the leaves, the vertex tags)
+    /// for crease edits: the first [`PatchTable::set_sharpness`] that keeps the isolation
+    /// structure is then made in place, as every later one is, where a table from
+    /// [`PatchTable::build_real`] rebuilds itself on its first edit to keep them. The table is
+    /// the same, bit for bit; the levels are kept in memory as long as the table (see the
+    /// README's "Crease edits" for the car's figures).
+    pub fn build_editable_real(base: &Topology, options: &PatchOptions) -> Result<PatchTable<R>> {
+        Self::build_within_real(
+            base,
+            options,
+            Selection::Sparse,
+            Budget::of_available_memory(),
+            true,
+            None,
+        )
+    }
+
+    /// Whether the table keeps its levels, so that a crease edit that keeps the isolation
+    /// structure is made in place ([`PatchTable::build_editable`], or any table after its
+    /// first edit; a table with per-region isolation levels never does).
+    pub fn is_editable(&self) -> bool {
+        self.edit_state.is_some()
+    }
+
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
     /// same element winning) and updates the table to equal a fresh build of the edited mesh
     /// (see the [module documentation](super::edit)). Returns whether the table changed.
@@ -155,7 +189,8 @@ impl<R: Real> PatchTable<R> {
 
     /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
     /// isolation structure is kept ([`super::edit_region`]), else rebuilt. The first edit
-    /// of a table rebuilds it, keeping its levels for the next edits.
+    /// of a table that does not keep its levels ([`PatchTable::is_editable`]) rebuilds it,
+    /// keeping them for the next edits.
     pub fn apply_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<EditOutcome> {
         let t = edited(&self.base, edits)?;
         if t.edge_sharpness == self.base.edge_sharpness

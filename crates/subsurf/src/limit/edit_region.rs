@@ -1,10 +1,10 @@
 //! Incremental crease edits: a table updated in place where new sharpness keeps its isolation
 //! structure, with the result a fresh [`PatchTable::build`] gives, bit for bit.
 //!
-//! The first edit of a table rebuilds it keeping its sparse levels ([`EditState`]: the
-//! topology of every level and of every refined sub-mesh, which faces were refined and which
-//! were leaves, the vertex tags the build computed). A later edit then walks the levels from
-//! the base down:
+//! A table keeps its sparse levels ([`EditState`]: the topology of every level and of every
+//! refined sub-mesh, which faces were refined and which were leaves, the vertex tags the
+//! build computed) when built by [`PatchTable::build_editable`], or from its first edit,
+//! which rebuilds it. An edit then walks the levels from the base down:
 //!
 //! 1. the edited base; at each level the elements whose sharpness, tags or rule changed, and
 //!    the vertices they touch (an edge marks both ends);
