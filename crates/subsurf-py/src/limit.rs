@@ -52,7 +52,7 @@ fn read<T>(lock: &RwLock<Arc<T>>) -> PyResult<Arc<T>> {
     lock.read().map(|s| s.clone()).map_err(poisoned)
 }
 
-fn build(m: &Mesh, isolation: u32) -> subsurf::Result<Kind> {
+fn build(m: &Mesh, isolation: u32, editable: bool) -> subsurf::Result<Kind> {
     let topo = Topology::new(m)?;
     if m.options.scheme == Scheme::Loop {
         let limit = LoopLimit::new(&topo, &m.positions, isolation)?;
@@ -62,13 +62,14 @@ fn build(m: &Mesh, isolation: u32) -> subsurf::Result<Kind> {
             surface: RwLock::new(Arc::new(limit)),
         });
     }
-    let table = PatchTable::build(
-        &topo,
-        &PatchOptions {
-            isolation_level: isolation,
-            ..Default::default()
-        },
-    )?;
+    let options = PatchOptions {
+        isolation_level: isolation,
+        ..Default::default()
+    };
+    let table = match editable {
+        true => PatchTable::build_editable(&topo, &options)?,
+        false => PatchTable::build(&topo, &options)?,
+    };
     let num_ptex_faces = table.num_ptex_faces();
     let surface = LimitSurface::new(table, &m.positions);
     Ok(Kind::Quad {
@@ -105,8 +106,8 @@ fn out3x<T: numpy::Element>(py: Python<'_>, (p, du, dv): Columns<T>) -> PyResult
 #[pymethods]
 impl PyLimit {
     #[new]
-    #[pyo3(signature = (mesh, isolation=4))]
-    fn new(py: Python<'_>, mesh: &PyMesh, isolation: u32) -> PyResult<Self> {
+    #[pyo3(signature = (mesh, isolation=4, editable=false))]
+    fn new(py: Python<'_>, mesh: &PyMesh, isolation: u32, editable: bool) -> PyResult<Self> {
         if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
             return Err(value_error(format!(
                 "isolation {isolation}: at most {}",
@@ -115,7 +116,7 @@ impl PyLimit {
         }
         let m = mesh.inner.clone();
         let kind = py
-            .detach(move || build(&m, isolation))
+            .detach(move || build(&m, isolation, editable))
             .map_err(|e| lib_error(py, e, None))?;
         Ok(PyLimit {
             kind,

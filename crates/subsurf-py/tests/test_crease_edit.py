@@ -90,6 +90,19 @@ def test_car_own_values_update_in_place_and_follow_new_points():
     same(surf, fresh)
 
 
+def test_editable_surfaces_make_their_first_edit_in_place():
+    mesh = subsurf.read(SHAPES / "catmark_car.obj")
+    pairs, own = mesh.creases
+    surf = subsurf.LimitSurface(mesh, editable=True)
+    same(surf, subsurf.LimitSurface(mesh))
+    # The structure is kept from the car's own values to 3.5: in place from the first edit.
+    assert surf.set_sharpness(pairs, 3.5) == "updated"
+    same(surf, subsurf.LimitSurface(edited(mesh, pairs, np.full(len(pairs), 3.5))))
+    assert subsurf.LimitSurface(mesh).set_sharpness(pairs, 3.5) == "rebuilt"
+    with pytest.raises(TypeError, match="editable"):
+        subsurf.LimitSurface(mesh, editable="yes")
+
+
 def test_corner_and_new_crease_edits():
     mesh = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
     faces = mesh.faces()

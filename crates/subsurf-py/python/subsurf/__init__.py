@@ -325,13 +325,19 @@ class LimitSurface:
     ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per face side.
     ``update(points)``: new control points (same count), e.g. after a deformation.
     ``set_sharpness(creases, sharpness, corners=, corner_sharpness=)``: live crease edits
-    (Catmull-Clark and bilinear meshes).
+    (Catmull-Clark and bilinear meshes). With ``editable=True`` the patch table keeps its
+    refinement levels from the start (about 3x its memory), so that the first edit that keeps
+    the isolation structure is made in place as the later ones are; otherwise the first edit
+    rebuilds the table to keep them.
     """
 
     __slots__ = ("_s",)
 
-    def __init__(self, mesh: Mesh, isolation: int = 4) -> None:
-        self._s = _subsurf._LimitSurface(_mesh(mesh), _int(isolation, "isolation"))
+    def __init__(self, mesh: Mesh, isolation: int = 4, editable: bool = False) -> None:
+        if not isinstance(editable, (bool, np.bool_)):
+            raise TypeError(f"editable: expected a bool, got {type(editable).__name__}")
+        self._s = _subsurf._LimitSurface(_mesh(mesh), _int(isolation, "isolation"),
+                                         bool(editable))
 
     @property
     def num_ptex_faces(self) -> int:
