@@ -192,20 +192,27 @@ impl<R: Real> PatchTable<R> {
                 stop,
             )
         });
-        // Any level's error, else any change of structure, else the patches of every level.
-        let (mut params, mut keeps, mut error) = (Vec::new(), true, None);
+        // The first level (from the base down) whose decisions did not keep the structure
+        // decides, as if the levels had been decided in order: a change of structure (the
+        // table is rebuilt) or an error; else the patches of every level.
+        let mut params = Vec::new();
+        let mut ended = None;
         for o in decided.into_iter().flatten() {
             match o {
                 Ok(Some(p)) => params.extend(p),
-                Ok(None) => keeps = false,
-                Err(e) => error = error.or(Some(e)),
+                o => {
+                    ended = Some(o);
+                    break;
+                }
             }
         }
-        let rows = match (rows, error) {
-            (Some(rows), None) if keeps => rows,
-            (_, error) => {
+        let rows = match (rows, ended) {
+            (Some(rows), None) => rows,
+            (_, ended) => {
                 let edited = std::mem::replace(&mut self.base, old_base);
-                return error.map_or(Ok(Some(edited)), Err);
+                return ended
+                    .map_or(Ok(()), |o| o.map(|_| ()))
+                    .map(|_| Some(edited));
             }
         };
         // Every check passed: the table is changed from here on.
