@@ -26,8 +26,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let ctx = GpuContext::new()?;
     let options = PatchOptions::default();
     let edits = |s: Option<f32>| -> Vec<SharpnessEdit> { SharpnessEdit::creases(&mesh.creases, s) };
-    let mut table = PatchTable::build(&Topology::new(&mesh)?, &options)?;
-    table.set_sharpness(&edits(Some(3.5)))?; // keeps the levels for the next edits
+    // Editable: the table keeps its levels, so every edit of the slider is made in place.
+    let mut table = PatchTable::build_editable(&Topology::new(&mesh)?, &options)?;
+    table.set_sharpness(&edits(Some(3.5)))?;
     let mut gpu = GpuLimit::new(&ctx, &table)?;
     let queries: Vec<(u32, f32, f32)> = (0..table.num_ptex_faces() as u32)
         .flat_map(|f| (0..81).map(move |k| (f, (k % 9) as f32 / 8.0, (k / 9) as f32 / 8.0)))
