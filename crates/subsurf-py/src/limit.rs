@@ -55,6 +55,13 @@ fn read<T>(lock: &RwLock<Arc<T>>) -> PyResult<Arc<T>> {
 fn build(m: &Mesh, isolation: u32, editable: bool) -> subsurf::Result<Kind> {
     let topo = Topology::new(m)?;
     if m.options.scheme == Scheme::Loop {
+        if editable {
+            return Err(subsurf::Error::Unsupported(
+                "an editable Loop limit surface (crease edits of Loop surfaces are not \
+                 supported: build it again from the edited mesh)"
+                    .into(),
+            ));
+        }
         let limit = LoopLimit::new(&topo, &m.positions, isolation)?;
         return Ok(Kind::Loop {
             topo: Arc::new(topo),

@@ -175,6 +175,8 @@ def test_loop_surfaces_refuse_sharpness_edits():
     surf = subsurf.LimitSurface(mesh)
     with pytest.raises(subsurf.UnsupportedError):
         surf.set_sharpness([[0, 1]], [1.0])
+    with pytest.raises(subsurf.UnsupportedError, match="editable Loop"):
+        subsurf.LimitSurface(mesh, editable=True)
 
 
 def test_one_sharpness_value_for_every_tag():

@@ -328,7 +328,7 @@ class LimitSurface:
     (Catmull-Clark and bilinear meshes). With ``editable=True`` the patch table keeps its
     refinement levels from the start (about 3x its memory), so that the first edit that keeps
     the isolation structure is made in place as the later ones are; otherwise the first edit
-    rebuilds the table to keep them.
+    rebuilds the table to keep them (Loop surfaces take no edits: ``UnsupportedError``).
     """
 
     __slots__ = ("_s",)
