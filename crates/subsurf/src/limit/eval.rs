@@ -151,32 +151,31 @@ impl<R: Real> LimitSurface<R> {
     /// each keep the patch they last evaluated (neighbouring queries mostly share patches).
     pub fn eval_batch(&self, queries: &[(u32, R, R)]) -> Vec<Option<LimitPoint<R>>> {
         let mut out = vec![None; queries.len()];
-        self.eval_each(queries, &mut out, |o, e| *o = Some(e));
+        out.par_chunks_mut(BATCH)
+            .zip(queries.par_chunks(BATCH))
+            .for_each(|(out, q)| self.eval_chunk(q, |i, e| out[i] = Some(e)));
         out
     }
 
-    /// Each query's [`LimitSurface::eval`] handed to `put` with its output (left alone in a
-    /// hole), in parallel chunks that each keep the patch they last evaluated.
-    pub(crate) fn eval_each<T: Send>(
+    /// Each query of `queries` (one chunk of a batch of [`BATCH`]) evaluated as
+    /// [`LimitSurface::eval`], in order, keeping the patch last evaluated: `put(i, point)` for
+    /// query `i`, unless it is in a hole.
+    pub(crate) fn eval_chunk(
         &self,
         queries: &[(u32, R, R)],
-        out: &mut [T],
-        put: impl Fn(&mut T, LimitPoint<R>) + Sync,
+        mut put: impl FnMut(usize, LimitPoint<R>),
     ) {
-        /// Queries per chunk.
-        const BATCH: usize = 512;
-        out.par_chunks_mut(BATCH)
-            .zip(queries.par_chunks(BATCH))
-            .for_each(|(out, q)| {
-                let mut last = LastPatch::new();
-                for (o, &(f, u, v)) in out.iter_mut().zip(q) {
-                    if let Some(e) = self.eval_in(&mut last, (f as usize, u, v)) {
-                        put(o, e);
-                    }
-                }
-            });
+        let mut last = LastPatch::new();
+        for (i, &(f, u, v)) in queries.iter().enumerate() {
+            if let Some(e) = self.eval_in(&mut last, (f as usize, u, v)) {
+                put(i, e);
+            }
+        }
     }
 }
+
+/// Queries per chunk of a batch evaluation ([`LimitSurface::eval_chunk`]).
+pub(crate) const BATCH: usize = 512;
 
 /// The points of the patch a walk last evaluated, relative to its first ([`LastPatch::load`]).
 #[derive(Debug, Clone, Copy)]

@@ -475,10 +475,13 @@ impl LimitSurface {
         &self,
         queries: &[(u32, f32, f32)],
     ) -> (Vec<[f32; 3]>, Vec<[f32; 3]>) {
-        let mut out = vec![([0.0f32; 3], [0.0f32; 3]); queries.len()];
-        self.eval_each(queries, &mut out, |o, e| *o = (e.p, e.n));
-        let positions = out.iter().map(|o| o.0).collect();
-        let normals = out.iter().map(|o| o.1).collect();
+        use crate::limit::eval::BATCH;
+        let mut positions = vec![[0.0f32; 3]; queries.len()];
+        let mut normals = vec![[0.0f32; 3]; queries.len()];
+        (positions.par_chunks_mut(BATCH))
+            .zip(normals.par_chunks_mut(BATCH))
+            .zip(queries.par_chunks(BATCH))
+            .for_each(|((p, n), q)| self.eval_chunk(q, |i, e| (p[i], n[i]) = (e.p, e.n)));
         (positions, normals)
     }
 }
