@@ -42,7 +42,6 @@ use crate::patch::{PatchParam, PatchParamFields};
 use crate::real::Real;
 use crate::refine::{
     edge_values, form_rows, resharpen_at, unique, vertex_values, Bits, Moved, Restenciled,
-    Rewritten,
 };
 use crate::topology::Topology;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -155,14 +154,14 @@ impl<R: Real> PatchTable<R> {
         // walk has left it, and each task writes only its own level's tags and outcome.
         let mut decided: Vec<Option<Decided>> = (0..visit.len()).map(|_| None).collect();
         let rows = rayon::in_place_scope(|scope| {
-            let mut slots = (visit.iter().zip(leaf_patch.iter()))
+            // Each level's part of the state, taken by its task.
+            let mut slots: Vec<_> = (visit.iter().zip(leaf_patch.iter()))
                 .zip(tags.iter_mut().zip(decided.iter_mut()))
-                .enumerate();
+                .map(Some)
+                .collect();
             let (mask, leaf_options) = (&mask, &leaf_options);
             let mut decide = |d: usize, t, changed: Arc<Moved>| {
-                let Some((_, ((visit, leaf_patch), (tags, out)))) =
-                    slots.by_ref().find(|&(k, _)| k == d)
-                else {
+                let Some(((visit, leaf_patch), (tags, out))) = slots[d].take() else {
                     return;
                 };
                 scope.spawn(move |_| {
@@ -196,24 +195,22 @@ impl<R: Real> PatchTable<R> {
         // decides, as if the levels had been decided in order: a change of structure (the
         // table is rebuilt) or an error; else the patches of every level.
         let mut params = Vec::new();
-        let mut ended = None;
+        let mut keeps = true;
         for o in decided.into_iter().flatten() {
             match o {
                 Ok(Some(p)) => params.extend(p),
-                o => {
-                    ended = Some(o);
+                Ok(None) => {
+                    keeps = false;
                     break;
+                }
+                Err(e) => {
+                    self.base = old_base;
+                    return Err(e);
                 }
             }
         }
-        let rows = match (rows, ended) {
-            (Some(rows), None) => rows,
-            (_, ended) => {
-                let edited = std::mem::replace(&mut self.base, old_base);
-                return ended
-                    .map_or(Ok(()), |o| o.map(|_| ()))
-                    .map(|_| Some(edited));
-            }
+        let (true, Some(rows)) = (keeps, rows) else {
+            return Ok(Some(std::mem::replace(&mut self.base, old_base)));
         };
         // Every check passed: the table is changed from here on.
         for (d, rows) in rows {
@@ -276,7 +273,7 @@ impl<R: Real> PatchTable<R> {
             let child = levels.next()?;
             let (sub_changed, sub_moved) = refresh_sub(level, sub, &in_sub[d], &changed);
             let mut child_moved = Moved::new(child);
-            let w = resharpen_at(sub, child, &sub_changed, &mut child_moved);
+            let visited = resharpen_at(sub, child, &sub_changed, &mut child_moved);
             // The child level is final: its faces are decided while the walk goes on.
             let child: &'a Topology = child;
             let child_moved = Arc::new(child_moved);
@@ -285,7 +282,7 @@ impl<R: Real> PatchTable<R> {
                 decide(d + 1, child, child_moved.clone());
             }
             let (vertex, edge) =
-                self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &w)?;
+                self.step_rows(sub, &sub_moved, &child_moved, d, &sub_changed, &visited)?;
             // The rows are formed here, before the decisions are known, and written into
             // the table only if they keep the structure.
             rows.push((d, form_rows(sub, child, vertex, edge)));
@@ -373,9 +370,10 @@ impl<R: Real> PatchTable<R> {
 
     /// The rows of step `d` (from `sub`) whose inputs changed (parent or child sharpness or
     /// rule of the vertex, of its edges and their children; of the edge and its edge point),
-    /// given what changed in the sub-mesh and in the child level; `None` where the stored stencils do not have the step's rows. Only the edges at `changed`
-    /// (the vertices of `sub` whose values [`refresh_sub`] changed), which [`resharpen_at`]
-    /// rewrote (`w`), and their ends can differ: they alone are tested.
+    /// given what changed in the sub-mesh and in the child level; `None` where the stored
+    /// stencils do not have the step's rows. Only the edges at `changed` (the vertices of
+    /// `sub` whose values [`refresh_sub`] changed), which [`resharpen_at`] rewrote
+    /// (`visited`), and their ends can differ: they alone are tested.
     fn step_rows(
         &self,
         sub: &Topology,
@@ -383,7 +381,7 @@ impl<R: Real> PatchTable<R> {
         child_moved: &Moved,
         d: usize,
         changed: &[u32],
-        w: &Rewritten,
+        visited: &[u32],
     ) -> Option<Dirty> {
         let (nv, nf, nc) = (sub.num_vertices(), sub.num_faces(), sub.num_corners());
         let ne = sub.num_edges();
@@ -393,7 +391,7 @@ impl<R: Real> PatchTable<R> {
         }
         let ce = |i: usize| child_moved.edge_sharp.get(i as u32);
         // Increasing, as the rows are listed.
-        let near_edges = Bits::of(w.edges.iter().copied(), ne);
+        let near_edges = Bits::of(visited.iter().copied(), ne);
         let mut edge_input = Bits::new(ne);
         let mut near_verts = Bits::of(changed.iter().copied(), nv);
         let mut edges = Vec::new();

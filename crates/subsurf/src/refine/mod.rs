@@ -57,7 +57,7 @@ pub use loop_masks::{loop_level_stencils, loop_limit_stencils};
 pub use masks::{level_stencils, level_stencils_real, limit_stencils, LevelStencils};
 use masks::{level_stencils_with, LevelRows};
 pub(crate) use moved::{edge_values, vertex_values, Moved};
-pub(crate) use resharpen::{form_rows, resharpen_at, unique, Bits, Restenciled, Rewritten};
+pub(crate) use resharpen::{form_rows, resharpen_at, unique, Bits, Restenciled};
 use smooth_frame::StepPlan;
 pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;

@@ -24,13 +24,13 @@ const SHARP_BITS: u16 =
 /// vertices' children and those edges' edge points (no other child element reads a changed
 /// value). Visits the changed vertices' edges only; every element of `c` whose values it
 /// changes is noted in `moved`, and no other value of `c` changes. Returns the edges of `p`
-/// it visited ([`Rewritten`]).
+/// it visited: the changed vertices' edges, each once.
 pub(crate) fn resharpen_at(
     p: &Topology,
     c: &mut Topology,
     changed: &[u32],
     moved: &mut Moved,
-) -> Rewritten {
+) -> Vec<u32> {
     let nc = p.num_corners();
     let edges = unique(
         changed
@@ -59,13 +59,7 @@ pub(crate) fn resharpen_at(
         edge_point(p, c, e as usize);
         moved.vertex(c, i, old);
     }
-    Rewritten { edges }
-}
-
-/// What [`resharpen_at`] visited.
-pub(crate) struct Rewritten {
-    /// The parent's edges at the changed vertices (each once).
-    pub edges: Vec<u32>,
+    edges
 }
 
 /// The distinct values of `ids` (each below `n`) in the order they first occur: one bit per
@@ -149,14 +143,12 @@ fn edge_point(p: &Topology, c: &mut Topology, e: usize) {
     c.vert_rule[i] = rl;
 }
 
-/// Rows of one table formed again: the rows (increasing) and their entries, row `k` being
-/// `idx[ends[k - 1]..ends[k]]` / `wts[..]`.
+/// Rows of one table formed again: which rows (increasing), and row `rows[k]` as row `k` of
+/// `table`.
 #[derive(Debug, Default)]
 pub(crate) struct Formed<W> {
     rows: Vec<u32>,
-    idx: Vec<u32>,
-    wts: Vec<W>,
-    ends: Vec<usize>,
+    table: StencilTable<W>,
 }
 
 /// The vertex and edge rows of one step formed again ([`form_rows`]), to be written into the
@@ -198,97 +190,72 @@ impl<W: Real> Restenciled<W> {
 
 /// Rows `rows` (increasing) formed by `row(i, add)`.
 fn form<W: Real>(rows: Vec<u32>, mut row: impl FnMut(usize, &mut dyn FnMut(u32, W))) -> Formed<W> {
-    let (mut idx, mut wts, mut ends) = (Vec::new(), Vec::new(), Vec::with_capacity(rows.len()));
+    let mut table = StencilTable {
+        offsets: Vec::with_capacity(rows.len() + 1),
+        ..Default::default()
+    };
+    table.offsets.push(0);
     for &r in &rows {
         row(r as usize, &mut |x, w| {
-            idx.push(x);
-            wts.push(w);
+            table.indices.push(x);
+            table.weights.push(w);
         });
-        ends.push(idx.len());
+        table.offsets.push(table.indices.len() as u32);
     }
-    Formed {
-        rows,
-        idx,
-        wts,
-        ends,
-    }
+    Formed { rows, table }
 }
 
 impl<W: Real> Formed<W> {
-    /// Writes the rows into `t`.
+    /// Row `k` formed: its entries' range in [`Formed::table`].
+    fn range(&self, k: usize) -> std::ops::Range<usize> {
+        self.table.offsets[k] as usize..self.table.offsets[k + 1] as usize
+    }
+
+    /// Writes the rows into `t`: in place where every row keeps its length, else `t` with
+    /// the rows replaced and the runs of other rows between them copied.
     fn apply(&self, t: &mut StencilTable<W>) {
-        let Formed {
-            rows: dirty,
-            idx,
-            wts,
-            ends,
-        } = self;
-        if dirty.is_empty() {
-            return;
-        }
-        let len = |r: u32| (t.offsets[r as usize + 1] - t.offsets[r as usize]) as usize;
-        let mut start = 0;
-        let kept = dirty.iter().zip(ends).all(|(&r, &e)| {
-            let same = e - start == len(r);
-            start = e;
-            same
-        });
-        if kept {
-            let mut start = 0;
-            for (&r, &e) in dirty.iter().zip(ends) {
-                let a = t.offsets[r as usize] as usize;
-                t.indices[a..a + e - start].copy_from_slice(&idx[start..e]);
-                t.weights[a..a + e - start].copy_from_slice(&wts[start..e]);
-                start = e;
+        let old = |r: u32| t.offsets[r as usize] as usize..t.offsets[r as usize + 1] as usize;
+        if (self.rows.iter().enumerate()).all(|(k, &r)| old(r).len() == self.range(k).len()) {
+            for (k, &r) in self.rows.iter().enumerate() {
+                let (a, b) = (old(r), self.range(k));
+                t.indices[a.clone()].copy_from_slice(&self.table.indices[b.clone()]);
+                t.weights[a].copy_from_slice(&self.table.weights[b]);
             }
             return;
         }
-        *t = splice(t, dirty, idx, wts, ends);
-    }
-}
-
-/// `old` with rows `dirty` replaced by the rows `idx`/`wts` ending at `ends`; runs of clean
-/// rows are copied.
-fn splice<W: Real>(
-    old: &StencilTable<W>,
-    dirty: &[u32],
-    idx: &[u32],
-    wts: &[W],
-    ends: &[usize],
-) -> StencilTable<W> {
-    let mut t = StencilTable {
-        offsets: Vec::with_capacity(old.offsets.len()),
-        indices: Vec::with_capacity(old.indices.len() + idx.len()),
-        weights: Vec::with_capacity(old.weights.len() + idx.len()),
-        num_inputs: old.num_inputs,
-    };
-    t.offsets.push(0);
-    let n = old.num_rows();
-    let (mut r, mut k, mut from) = (0, 0, 0);
-    while r < n {
-        if k < dirty.len() && dirty[k] as usize == r {
-            t.indices.extend_from_slice(&idx[from..ends[k]]);
-            t.weights.extend_from_slice(&wts[from..ends[k]]);
-            t.offsets.push(t.indices.len() as u32);
-            from = ends[k];
-            k += 1;
-            r += 1;
-            continue;
+        let mut out = StencilTable {
+            offsets: Vec::with_capacity(t.offsets.len()),
+            indices: Vec::with_capacity(t.indices.len() + self.table.indices.len()),
+            weights: Vec::with_capacity(t.weights.len() + self.table.indices.len()),
+            num_inputs: t.num_inputs,
+        };
+        out.offsets.push(0);
+        let n = t.num_rows();
+        let (mut r, mut k) = (0, 0);
+        while r < n {
+            if self.rows.get(k).is_some_and(|&d| d as usize == r) {
+                let b = self.range(k);
+                out.indices
+                    .extend_from_slice(&self.table.indices[b.clone()]);
+                out.weights.extend_from_slice(&self.table.weights[b]);
+                out.offsets.push(out.indices.len() as u32);
+                (k, r) = (k + 1, r + 1);
+                continue;
+            }
+            let start = r;
+            r = self.rows.get(k).map_or(n, |&d| d as usize);
+            let (a, b) = (t.offsets[start] as usize, t.offsets[r] as usize);
+            let shift = out.indices.len() as i64 - a as i64;
+            out.indices.extend_from_slice(&t.indices[a..b]);
+            out.weights.extend_from_slice(&t.weights[a..b]);
+            out.offsets.extend(
+                t.offsets[start + 1..=r]
+                    .iter()
+                    .map(|&o| (o as i64 + shift) as u32),
+            );
         }
-        let start = r;
-        let stop = dirty.get(k).map_or(n, |&d| d as usize);
-        r = stop;
-        let (a, b) = (old.offsets[start] as usize, old.offsets[r] as usize);
-        let shift = t.indices.len() as i64 - a as i64;
-        t.indices.extend_from_slice(&old.indices[a..b]);
-        t.weights.extend_from_slice(&old.weights[a..b]);
-        t.offsets.extend(
-            old.offsets[start + 1..=r]
-                .iter()
-                .map(|&o| (o as i64 + shift) as u32),
-        );
+        *t = out;
     }
-    t
 }
 
 #[cfg(test)]
