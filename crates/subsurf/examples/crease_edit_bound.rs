@@ -27,18 +27,13 @@ use subsurf::limit::{EditOutcome, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::refine::StencilTable;
 use subsurf::Topology;
 
-fn median(mut t: Vec<f64>) -> f64 {
-    t.sort_by(f64::total_cmp);
-    t.get(t.len() / 2).copied().unwrap_or(f64::NAN)
-}
+/// One array of a table: its name, its bytes in the target table, the bytes of those that
+/// differ from the other table's at the same place (or lie past its end), the first such
+/// index.
+type Row = (String, usize, usize, Option<usize>);
 
-/// Bytes of `to` that differ from `from` at the same index, or lie past its end; and the
-/// first such index.
-fn differ<T: Copy, B: PartialEq>(
-    from: &[T],
-    to: &[T],
-    bits: impl Fn(T) -> B,
-) -> (usize, Option<usize>) {
+/// Array `to` against `from`, elements compared by `bits`.
+fn differ<T: Copy, B: PartialEq>(name: String, from: &[T], to: &[T], bits: impl Fn(T) -> B) -> Row {
     let mut n = 0;
     let mut first = None;
     for (i, &x) in to.iter().enumerate() {
@@ -47,115 +42,94 @@ fn differ<T: Copy, B: PartialEq>(
             first.get_or_insert(i);
         }
     }
-    (n * std::mem::size_of::<T>(), first)
+    (
+        name,
+        std::mem::size_of_val(to),
+        n * std::mem::size_of::<T>(),
+        first,
+    )
 }
 
-/// `(array, bytes of it in `to`, bytes differing, first differing index)` for every array of
-/// the table.
-fn table_diff(from: &PatchTable, to: &PatchTable) -> Vec<(String, usize, usize, Option<usize>)> {
-    let mut rows = Vec::new();
-    let mut add = |name: String, (n, first): (usize, Option<usize>), total: usize| {
-        rows.push((name, total, n, first));
-    };
-    fn stencils(
-        add: &mut dyn FnMut(String, (usize, Option<usize>), usize),
-        name: &str,
-        a: &StencilTable,
-        b: &StencilTable,
-    ) {
-        add(
-            format!("{name}.offsets"),
-            differ(&a.offsets, &b.offsets, |x| x),
-            4 * b.offsets.len(),
-        );
-        add(
-            format!("{name}.indices"),
-            differ(&a.indices, &b.indices, |x| x),
-            4 * b.indices.len(),
-        );
-        add(
+/// The three arrays of a stencil table.
+fn stencils(name: &str, a: &StencilTable, b: &StencilTable) -> [Row; 3] {
+    [
+        differ(format!("{name}.offsets"), &a.offsets, &b.offsets, |x| x),
+        differ(format!("{name}.indices"), &a.indices, &b.indices, |x| x),
+        differ(
             format!("{name}.weights"),
-            differ(&a.weights, &b.weights, f32::to_bits),
-            4 * b.weights.len(),
-        );
-    }
-    let empty = subsurf::refine::LevelStencils::<f32> {
-        num_parent_vertices: 0,
-        face: StencilTable::default(),
-        vertex: StencilTable::default(),
-        edge: StencilTable::default(),
-    };
+            &a.weights,
+            &b.weights,
+            f32::to_bits,
+        ),
+    ]
+}
+
+/// Every array of the table `to` against `from`.
+fn table_diff(from: &PatchTable, to: &PatchTable) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let empty = StencilTable::default();
     for (d, b) in to.level_stencils.iter().enumerate() {
-        let a = from.level_stencils.get(d).unwrap_or(&empty);
-        stencils(&mut add, &format!("step {d} face"), &a.face, &b.face);
-        stencils(&mut add, &format!("step {d} vertex"), &a.vertex, &b.vertex);
-        stencils(&mut add, &format!("step {d} edge"), &a.edge, &b.edge);
+        let a = from.level_stencils.get(d);
+        for (kind, a, b) in [
+            ("face", a.map(|a| &a.face), &b.face),
+            ("vertex", a.map(|a| &a.vertex), &b.vertex),
+            ("edge", a.map(|a| &a.edge), &b.edge),
+        ] {
+            rows.extend(stencils(
+                &format!("step {d} {kind}"),
+                a.unwrap_or(&empty),
+                b,
+            ));
+        }
     }
     for (d, b) in to.level_inputs.iter().enumerate() {
         let a = from.level_inputs.get(d).map_or(&[][..], |a| &a[..]);
-        add(format!("step {d} inputs"), differ(a, b, |x| x), 4 * b.len());
+        rows.push(differ(format!("step {d} inputs"), a, b, |x| x));
     }
-    stencils(
-        &mut add,
+    rows.extend(stencils(
         "end-cap points",
         &from.local_points,
         &to.local_points,
-    );
-    add(
-        "patch types".into(),
-        differ(&from.kinds, &to.kinds, |x| x),
-        to.kinds.len(),
-    );
-    add(
-        "patch cv offsets".into(),
-        differ(&from.cv_offsets, &to.cv_offsets, |x| x),
-        4 * to.cv_offsets.len(),
-    );
-    add(
-        "patch cvs".into(),
-        differ(&from.cvs, &to.cvs, |x| x),
-        4 * to.cvs.len(),
-    );
-    add(
-        "patch params".into(),
-        differ(&from.params, &to.params, |p| (p.field0, p.field1)),
-        8 * to.params.len(),
-    );
-    add(
-        "patch sharpness".into(),
-        differ(&from.sharpness, &to.sharpness, f32::to_bits),
-        4 * to.sharpness.len(),
-    );
-    add(
-        "patch map roots".into(),
-        differ(&from.patch_map.roots, &to.patch_map.roots, |x| x),
-        4 * to.patch_map.roots.len(),
-    );
-    add(
-        "patch map nodes".into(),
-        differ(&from.patch_map.nodes, &to.patch_map.nodes, |x| x),
-        16 * to.patch_map.nodes.len(),
-    );
+    ));
+    rows.extend([
+        differ("patch types".into(), &from.kinds, &to.kinds, |x| x),
+        differ(
+            "patch cv offsets".into(),
+            &from.cv_offsets,
+            &to.cv_offsets,
+            |x| x,
+        ),
+        differ("patch cvs".into(), &from.cvs, &to.cvs, |x| x),
+        differ("patch params".into(), &from.params, &to.params, |p| {
+            (p.field0, p.field1)
+        }),
+        differ(
+            "patch sharpness".into(),
+            &from.sharpness,
+            &to.sharpness,
+            f32::to_bits,
+        ),
+        differ(
+            "patch map roots".into(),
+            &from.patch_map.roots,
+            &to.patch_map.roots,
+            |x| x,
+        ),
+        differ(
+            "patch map nodes".into(),
+            &from.patch_map.nodes,
+            &to.patch_map.nodes,
+            |x| x,
+        ),
+    ]);
     rows
-}
-
-/// Evicts the caches (a 256 MB sweep).
-fn evict(sweep: &mut [u64]) {
-    for (i, x) in sweep.iter_mut().enumerate().step_by(8) {
-        *x = x.wrapping_add(i as u64);
-    }
-    std::hint::black_box(&sweep);
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
-    let from: f32 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2.0);
-    let runs: usize = args
-        .get(3)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(21)
-        .max(1);
+    let from: f32 = common::arg(&args, 2, 2.0);
+    let runs: usize = common::arg(&args, 3, 21).max(1);
     let mesh = subsurf::io::read_path(path)?;
     let options = PatchOptions::default();
     let at = |s: Option<f32>| -> Result<Topology, subsurf::Error> {
@@ -173,8 +147,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let edits = |s: Option<f32>| SharpnessEdit::creases(&mesh.creases, s);
 
     // The edit A -> 3.5 must change the structure, as the example assumes.
-    let mut probe = a.clone();
-    probe.apply_sharpness(&edits(Some(from)))?;
+    let mut probe = PatchTable::build_editable(&ta, &options)?;
     let outcome = probe.apply_sharpness(&edits(Some(3.5)))?;
     println!(
         "{path}: {} creases, {from} -> 3.5: {outcome:?}; patches {} -> {}, refined points {} -> {}",
@@ -204,21 +177,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("| **all** | {total} | {diff_up} | | {diff_down} |");
 
     // Times, alternating, caches evicted before each ("cold") and not ("warm").
-    let mut sweep = vec![0u64; 32 << 20];
+    let mut sweep = common::Sweep::new();
     let words = diff_up.max(diff_down) / 4;
     let src: Vec<u32> = (0..words as u32).collect();
     let mut dst = vec![0u32; words];
-    // The first edit keeps the levels (untimed).
-    let mut table = PatchTable::build(&at(None)?, &options)?;
-    table.apply_sharpness(&edits(Some(3.5)))?;
-    table.apply_sharpness(&edits(None))?;
+    let mut table = PatchTable::build_editable(&at(None)?, &options)?;
     let (mut build, mut copy, mut edit) = ([vec![], vec![]], [vec![], vec![]], [vec![], vec![]]);
     let mut to_own = false;
     for _ in 0..runs {
         for (k, cold) in [(0, true), (1, false)] {
-            let tick = |sweep: &mut Vec<u64>| {
+            let tick = |sweep: &mut common::Sweep| {
                 if cold {
-                    evict(sweep);
+                    sweep.run();
                 }
                 Instant::now()
             };
@@ -249,9 +219,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rayon::current_num_threads()
     );
     println!("|---|---:|---:|");
-    let [bc, bw] = build.map(median);
-    let [cc, cw] = copy.map(median);
-    let [ec, ew] = edit.map(median);
+    let [bc, bw] = build.map(|mut t| common::median(&mut t));
+    let [cc, cw] = copy.map(|mut t| common::median(&mut t));
+    let [ec, ew] = edit.map(|mut t| common::median(&mut t));
     println!("| fresh build at 3.5 | {bc:.3} | {bw:.3} |");
     println!(
         "| a tenth of it (the goal) | {:.3} | {:.3} |",

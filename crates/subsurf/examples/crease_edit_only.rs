@@ -15,15 +15,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
     let from: Option<f32> = args.get(2).and_then(|s| s.parse().ok());
-    let runs: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(10);
-    let mut sweep = vec![
-        0u64;
-        if args.get(4).is_some_and(|a| a == "cold") {
-            32 << 20
-        } else {
-            0
-        }
-    ];
+    let runs: usize = common::arg(&args, 3, 10);
+    let mut sweep = args
+        .get(4)
+        .is_some_and(|a| a == "cold")
+        .then(common::Sweep::new);
     let mesh = subsurf::io::read_path(path)?;
     let topo = Topology::new(&mesh)?;
     let mut table = PatchTable::build(&topo, &PatchOptions::default())?;
@@ -32,10 +28,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut outcomes = Vec::new();
     for _ in 0..runs {
         for s in [Some(3.5), from] {
-            for (i, x) in sweep.iter_mut().enumerate().step_by(8) {
-                *x = x.wrapping_add(i as u64);
-            }
-            std::hint::black_box(&sweep);
+            sweep.iter_mut().for_each(common::Sweep::run);
             let o = table.apply_sharpness(&edits(s))?;
             if !outcomes.contains(&o) {
                 outcomes.push(o);

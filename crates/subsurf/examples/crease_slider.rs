@@ -17,19 +17,10 @@ use std::time::Instant;
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::Topology;
 
-fn median(times: &mut [f64]) -> f64 {
-    times.sort_by(f64::total_cmp);
-    times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
-    let runs: usize = args
-        .get(2)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(11)
-        .max(1);
+    let runs: usize = common::arg(&args, 2, 11).max(1);
     let mesh = subsurf::io::read_path(path)?;
     let topo = Topology::new(&mesh)?;
     let options = PatchOptions::default();
@@ -81,7 +72,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 build.push(t.elapsed().as_secs_f64() * 1e3);
             }
         }
-        let (e, b, p) = (median(&mut edit), median(&mut build), median(&mut points));
+        let (e, b, p) = (
+            common::median(&mut edit),
+            common::median(&mut build),
+            common::median(&mut points),
+        );
         let a = from.map_or("own".to_string(), |s| format!("{s}"));
         println!(
             "creases {a} -> 3.5 -> {a}, medians of {} edits: edit {e:.2} ms, fresh build \
@@ -126,10 +121,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "build {:.2} ms (its drop {:.2} ms), editable build {:.2} ms (its drop {:.2} ms), \
          medians of {runs}; resident memory per table {rp:.1} MB, editable {re:.1} MB",
-        median(&mut plain),
-        median(&mut drop_plain),
-        median(&mut editable),
-        median(&mut drop_editable),
+        common::median(&mut plain),
+        common::median(&mut drop_plain),
+        common::median(&mut editable),
+        common::median(&mut drop_editable),
     );
     Ok(())
 }

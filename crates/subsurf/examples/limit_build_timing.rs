@@ -25,19 +25,10 @@ fn time_ms<T>(f: impl FnOnce() -> T) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
 }
 
-fn median(times: &mut [f64]) -> f64 {
-    times.sort_by(f64::total_cmp);
-    times.get(times.len() / 2).copied().unwrap_or(f64::NAN)
-}
-
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
-    let runs: usize = args
-        .get(2)
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(21)
-        .max(1);
+    let runs: usize = common::arg(&args, 2, 21).max(1);
     let mesh = subsurf::io::read_path(path)?;
     let topo = Topology::new(&mesh)?;
     let osd_mesh = OsdMesh::from(&mesh);
@@ -86,10 +77,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 theirs.push(time_ms(|| osd_ref::patch_table_only(&osd_mesh, &oo)));
             }
         }
-        let (ms, ms1) = (median(&mut ours), median(&mut ours1));
+        let (ms, ms1) = (common::median(&mut ours), common::median(&mut ours1));
         let osd = match &osd_build {
             Ok(b) => (
-                format!("{:.1}", median(&mut theirs)),
+                format!("{:.1}", common::median(&mut theirs)),
                 b.num_patches.to_string(),
                 b.num_refined_vertices.to_string(),
             ),
@@ -101,7 +92,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let mut t: Vec<f64> = (0..runs.min(3))
                 .map(|_| time_ms(|| Refiner::new(topo.clone(), level as usize)))
                 .collect();
-            format!("{:.0}", median(&mut t))
+            format!("{:.0}", common::median(&mut t))
         } else {
             "-".into()
         };
