@@ -23,6 +23,7 @@ use crate::limit::{GpuLimit, GpuSamples};
 use crate::refine::{auto_pipeline, uniform_init};
 use crate::shaders;
 use crate::shared::RateConfig;
+use std::sync::Arc;
 use subsurf::limit::PatchTable;
 use subsurf::tess::curves::{CurveMeasure, RateCurves, CURVE_POINTS};
 use subsurf::tess::{EdgeRates, RatePolicy};
@@ -35,7 +36,8 @@ const WORD: u64 = 4;
 /// dispatches that measure them (module documentation).
 #[derive(Debug)]
 pub struct GpuRates {
-    curves: RateCurves,
+    /// The table's own layout ([`PatchTable::rate_curves`], shared).
+    curves: Arc<RateCurves>,
     samples: GpuSamples,
     measures: wgpu::Buffer,
     pipeline: wgpu::ComputePipeline,
@@ -79,7 +81,7 @@ impl GpuRates {
         limits: ChunkLimits,
     ) -> Result<Self> {
         // The table's own layout (formed once per table, shared with the CPU path).
-        let curves = table.rate_curves().clone();
+        let curves = Arc::clone(table.rate_curves());
         let samples = limit.samples(ctx, &curves.queries, false)?;
         let n = curves.num_curves();
         let measures = storage_buffer_init(ctx, "rate measures", &vec![0u8; 4 * n.max(1)])?;

@@ -587,8 +587,9 @@ impl<R: Real> PatchTable<R> {
 impl<R: Real> PatchTable<R> {
     /// The layout of the rate curves of this table's surface ([`crate::tess::RateCurves::new`]),
     /// formed by the first call and kept with the table: a renderer that chooses its rates
-    /// every frame ([`crate::tess::RatePolicy::rates`]) lays the curves out once.
-    pub fn rate_curves(&self) -> &crate::tess::RateCurves {
+    /// every frame ([`crate::tess::RatePolicy::rates`]) lays the curves out once; shared, so
+    /// that a holder of it (the GPU rates) keeps it without a copy.
+    pub fn rate_curves(&self) -> &std::sync::Arc<crate::tess::RateCurves> {
         self.rate_curves
             .get_or_init(|| std::sync::Arc::new(crate::tess::RateCurves::new(self)))
     }

@@ -370,10 +370,10 @@ mod tests {
         let mesh = crate::shapes::creased_pole(5);
         let t = crate::Topology::new(&mesh).unwrap();
         let mut table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
-        let first: *const RateCurves = table.rate_curves();
-        assert_eq!(*table.rate_curves(), RateCurves::new(&table));
-        assert!(std::ptr::eq(first, table.rate_curves()));
-        assert!(std::ptr::eq(first, table.clone().rate_curves()));
+        let first: *const RateCurves = &**table.rate_curves();
+        assert_eq!(**table.rate_curves(), RateCurves::new(&table));
+        assert!(std::ptr::eq(first, &**table.rate_curves()));
+        assert!(std::ptr::eq(first, &**table.clone().rate_curves()));
         let c = mesh.creases[0];
         let mut outcomes = Vec::new();
         for sharpness in [5.0, 6.0, 7.5, 1.0] {
@@ -383,7 +383,11 @@ mod tests {
                 sharpness,
             };
             outcomes.push(table.apply_sharpness(&[edit]).unwrap());
-            assert_eq!(*table.rate_curves(), RateCurves::new(&table), "{sharpness}");
+            assert_eq!(
+                **table.rate_curves(),
+                RateCurves::new(&table),
+                "{sharpness}"
+            );
         }
         assert!(
             outcomes.contains(&crate::limit::EditOutcome::Updated),

@@ -132,7 +132,7 @@ impl RatePolicy {
         let (curves, measures) = match self.measure() {
             Some(m) => {
                 // Laid out once per table and kept with it.
-                let curves = surface.table.rate_curves();
+                let curves: &RateCurves = surface.table.rate_curves();
                 (curves, curves.measure(surface, &m))
             }
             None => (&none, Vec::new()),
