@@ -88,6 +88,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     // What keeping the levels costs: build time (the table kept; dropping it is timed apart),
     // and resident memory over 8 tables alive.
+    let make = |editable: bool| match editable {
+        true => PatchTable::build_editable(&topo, &options),
+        false => PatchTable::build(&topo, &options),
+    };
     let [mut plain, mut editable, mut drop_plain, mut drop_editable] = [(); 4].map(|_| Vec::new());
     for _ in 0..runs {
         for (keep, times, drops) in [
@@ -95,10 +99,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             (true, &mut editable, &mut drop_editable),
         ] {
             let t = Instant::now();
-            let table = match keep {
-                true => PatchTable::build_editable(&topo, &options)?,
-                false => PatchTable::build(&topo, &options)?,
-            };
+            let table = make(keep)?;
             times.push(t.elapsed().as_secs_f64() * 1e3);
             let t = Instant::now();
             drop(std::hint::black_box(table));
@@ -108,10 +109,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let resident = |editable: bool| -> Result<f64, Box<dyn std::error::Error>> {
         let before = resident_mb();
         let tables = (0..8)
-            .map(|_| match editable {
-                true => PatchTable::build_editable(&topo, &options),
-                false => PatchTable::build(&topo, &options),
-            })
+            .map(|_| make(editable))
             .collect::<Result<Vec<_>, _>>()?;
         let grown = resident_mb() - before;
         drop(tables);
