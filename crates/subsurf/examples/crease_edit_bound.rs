@@ -23,6 +23,7 @@ mod common;
 
 use std::time::Instant;
 
+use subsurf::limit::sparse::Trace;
 use subsurf::limit::{EditOutcome, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::refine::StencilTable;
 use subsurf::Topology;
@@ -125,6 +126,111 @@ fn table_diff(from: &PatchTable, to: &PatchTable) -> Vec<Row> {
     rows
 }
 
+/// Every array of a topology `to` against `from`, summed into one row.
+fn topology_diff(name: String, from: &Topology, to: &Topology) -> Row {
+    let rows = [
+        differ(String::new(), &from.face_offsets, &to.face_offsets, |x| x),
+        differ(String::new(), &from.face_verts, &to.face_verts, |x| x),
+        differ(String::new(), &from.face_edges, &to.face_edges, |x| x),
+        differ(String::new(), &from.edge_verts, &to.edge_verts, |x| x),
+        differ(
+            String::new(),
+            &from.edge_face_offsets,
+            &to.edge_face_offsets,
+            |x| x,
+        ),
+        differ(String::new(), &from.edge_faces, &to.edge_faces, |x| x),
+        differ(
+            String::new(),
+            &from.edge_face_local,
+            &to.edge_face_local,
+            |x| x,
+        ),
+        differ(
+            String::new(),
+            &from.vert_face_offsets,
+            &to.vert_face_offsets,
+            |x| x,
+        ),
+        differ(String::new(), &from.vert_faces, &to.vert_faces, |x| x),
+        differ(
+            String::new(),
+            &from.vert_face_local,
+            &to.vert_face_local,
+            |x| x,
+        ),
+        differ(
+            String::new(),
+            &from.vert_edge_offsets,
+            &to.vert_edge_offsets,
+            |x| x,
+        ),
+        differ(String::new(), &from.vert_edges, &to.vert_edges, |x| x),
+        differ(
+            String::new(),
+            &from.edge_sharpness,
+            &to.edge_sharpness,
+            f32::to_bits,
+        ),
+        differ(
+            String::new(),
+            &from.vert_sharpness,
+            &to.vert_sharpness,
+            f32::to_bits,
+        ),
+        differ(String::new(), &from.face_is_hole, &to.face_is_hole, |x| x),
+        differ(String::new(), &from.edge_tags, &to.edge_tags, |x| x),
+        differ(String::new(), &from.vert_tags, &to.vert_tags, |x| x),
+        differ(String::new(), &from.vert_rule, &to.vert_rule, |x| x),
+    ];
+    let first = rows.iter().filter_map(|r| r.3).min();
+    let sum = |k: fn(&Row) -> usize| rows.iter().map(k).sum();
+    (name, sum(|r| r.1), sum(|r| r.2), first)
+}
+
+/// The levels kept for edits by `to` against those of `from` (a row per level and kind).
+fn kept_diff(from: &Trace, to: &Trace) -> Vec<Row> {
+    let mut rows = Vec::new();
+    let empty = Topology::default();
+    for (d, b) in to.levels.iter().enumerate().skip(1) {
+        let a = from.levels.get(d).unwrap_or(&empty);
+        rows.push(topology_diff(format!("kept level {d}"), a, b));
+    }
+    for (d, b) in to.subs.iter().enumerate() {
+        let a = from.subs.get(d).unwrap_or(&empty);
+        rows.push(topology_diff(format!("kept sub-mesh {d}"), a, b));
+    }
+    let none = (Vec::new(), Vec::new());
+    for (d, (bv, be)) in to.in_sub.iter().enumerate() {
+        let (av, ae) = from.in_sub.get(d).unwrap_or(&none);
+        let (v, e) = (
+            differ(String::new(), av, bv, |x| x),
+            differ(String::new(), ae, be, |x| x),
+        );
+        rows.push((
+            format!("kept level-to-sub-mesh maps {d}"),
+            v.1 + e.1,
+            v.2 + e.2,
+            v.3.or(e.3),
+        ));
+    }
+    let lists = |name: &str, a: &[Vec<u32>], b: &[Vec<u32>]| -> Vec<Row> {
+        (b.iter().enumerate())
+            .map(|(d, b)| {
+                let a = a.get(d).map_or(&[][..], |a| &a[..]);
+                differ(format!("{name} {d}"), a, b, |x| x)
+            })
+            .collect()
+    };
+    rows.extend(lists("kept refined faces", &from.chosen, &to.chosen));
+    rows.extend(lists("kept leaves", &from.leaves, &to.leaves));
+    for (d, b) in to.tags.iter().enumerate() {
+        let a = from.tags.get(d).map_or(&[][..], |a| &a[..]);
+        rows.push(differ(format!("kept tags {d}"), a, b, |t| (t.bits, t.rule)));
+    }
+    rows
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
@@ -176,51 +282,114 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!("| **all** | {total} | {diff_up} | | {diff_down} |");
 
+    // The levels an editable table keeps must follow its numbering for the next edit.
+    let (ea, eb) = (
+        PatchTable::build_editable(&ta, &options)?,
+        PatchTable::build_editable(&tb, &options)?,
+    );
+    let (Some(ka), Some(kb)) = (ea.kept_levels(), eb.kept_levels()) else {
+        return Err("editable builds keep no levels".into());
+    };
+    println!(
+        "\n| kept for edits | bytes | differing {from} -> 3.5 | first | differing 3.5 -> {from} |"
+    );
+    println!("|---|---:|---:|---:|---:|");
+    let (up, down) = (kept_diff(ka, kb), kept_diff(kb, ka));
+    let (mut kept_total, mut kept_up, mut kept_down) = (0, 0, 0);
+    for ((name, bytes, n, first), (_, _, m, _)) in up.iter().zip(&down) {
+        kept_total += bytes;
+        kept_up += n;
+        kept_down += m;
+        if *n > 0 || *m > 0 {
+            let first = first.map_or("-".into(), |f| f.to_string());
+            println!("| {name} | {bytes} | {n} | {first} | {m} |");
+        }
+    }
+    println!("| **all** | {kept_total} | {kept_up} | | {kept_down} |");
+
     // Times, alternating, caches evicted before each ("cold") and not ("warm").
     let mut sweep = common::Sweep::new();
     let words = diff_up.max(diff_down) / 4;
-    let src: Vec<u32> = (0..words as u32).collect();
-    let mut dst = vec![0u32; words];
+    let kept_words = kept_up.max(kept_down) / 4;
+    let src: Vec<u32> = (0..(words + kept_words) as u32).collect();
+    let mut dst = vec![0u32; words + kept_words];
     let mut table = PatchTable::build_editable(&at(None)?, &options)?;
-    let (mut build, mut copy, mut edit) = ([vec![], vec![]], [vec![], vec![]], [vec![], vec![]]);
+    let (mut build, mut edit) = ([vec![], vec![]], [vec![], vec![]]);
+    let (mut copy, mut copy_all) = ([vec![], vec![]], [vec![], vec![]]);
+    let mut remap_all = [vec![], vec![]];
+    // A power of two at least the refined points, so that a mask keeps an index in it.
+    let points = (*b.level_offsets.last().unwrap_or(&1) as usize).next_power_of_two();
+    let (map, mask): (Vec<u32>, usize) = ((0..points as u32).rev().collect(), points - 1);
     let mut to_own = false;
     for _ in 0..runs {
         for (k, cold) in [(0, true), (1, false)] {
-            let tick = |sweep: &mut common::Sweep| {
+            // Cold: after the sweep; warm: right after an untimed run of the same.
+            let mut time = |f: &mut dyn FnMut() -> Result<(), Box<dyn std::error::Error>>| {
                 if cold {
                     sweep.run();
+                } else {
+                    f()?;
                 }
-                Instant::now()
+                let t = Instant::now();
+                f()?;
+                Ok::<f64, Box<dyn std::error::Error>>(t.elapsed().as_secs_f64() * 1e3)
             };
-            let t = tick(&mut sweep);
-            std::hint::black_box(PatchTable::build(&tb, &options)?);
-            build[k].push(t.elapsed().as_secs_f64() * 1e3);
-            let t = tick(&mut sweep);
-            let half = words / 2;
-            let (d0, d1) = dst.split_at_mut(half);
-            rayon::join(
-                || d0.copy_from_slice(&src[..half]),
-                || d1.copy_from_slice(&src[half..]),
-            );
-            std::hint::black_box(&dst);
-            copy[k].push(t.elapsed().as_secs_f64() * 1e3);
-            let s = if to_own { None } else { Some(3.5) };
-            to_own = !to_own;
-            let t = tick(&mut sweep);
-            let o = table.apply_sharpness(&edits(s))?;
-            edit[k].push(t.elapsed().as_secs_f64() * 1e3);
-            if o != EditOutcome::Updated {
-                return Err(format!("own <-> 3.5 edit not in place: {o:?}").into());
+            build[k].push(time(&mut || {
+                std::hint::black_box(PatchTable::build(&tb, &options)?);
+                Ok(())
+            })?);
+            for (n, times) in [
+                (words, &mut copy[k]),
+                (words + kept_words, &mut copy_all[k]),
+            ] {
+                times.push(time(&mut || {
+                    let half = n / 2;
+                    let (d0, d1) = dst[..n].split_at_mut(half);
+                    rayon::join(
+                        || d0.copy_from_slice(&src[..half]),
+                        || d1.copy_from_slice(&src[half..n]),
+                    );
+                    std::hint::black_box(&dst);
+                    Ok(())
+                })?);
             }
+            // The same words renumbered: each read, translated through a map the size of
+            // the refined points, written (what a splice does to an index it moves).
+            let n = words + kept_words;
+            remap_all[k].push(time(&mut || {
+                let half = n / 2;
+                let (d0, d1) = dst[..n].split_at_mut(half);
+                let renumber = |d: &mut [u32], s: &[u32]| {
+                    for (d, &x) in d.iter_mut().zip(s) {
+                        *d = map[x as usize & mask];
+                    }
+                };
+                rayon::join(
+                    || renumber(d0, &src[..half]),
+                    || renumber(d1, &src[half..n]),
+                );
+                std::hint::black_box(&dst);
+                Ok(())
+            })?);
+            edit[k].push(time(&mut || {
+                let s = if to_own { None } else { Some(3.5) };
+                to_own = !to_own;
+                match table.apply_sharpness(&edits(s))? {
+                    EditOutcome::Updated => Ok(()),
+                    o => Err(format!("own <-> 3.5 edit not in place: {o:?}").into()),
+                }
+            })?);
         }
     }
     println!(
-        "\nmedians of {runs}, {} threads, ms:\n\n| | caches evicted | not evicted |",
+        "\nmedians of {runs}, {} threads, ms:\n\n| | caches evicted | warm |",
         rayon::current_num_threads()
     );
     println!("|---|---:|---:|");
     let [bc, bw] = build.map(|mut t| common::median(&mut t));
     let [cc, cw] = copy.map(|mut t| common::median(&mut t));
+    let [ac, aw] = copy_all.map(|mut t| common::median(&mut t));
+    let [rc, rw] = remap_all.map(|mut t| common::median(&mut t));
     let [ec, ew] = edit.map(|mut t| common::median(&mut t));
     println!("| fresh build at 3.5 | {bc:.3} | {bw:.3} |");
     println!(
@@ -232,11 +401,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "| copying {:.2} MB (the differing bytes) | {cc:.3} | {cw:.3} |",
         (4 * words) as f64 / 1e6
     );
+    println!(
+        "| copying {:.2} MB (the table's and the kept levels' differing bytes) | {ac:.3} | {aw:.3} |",
+        (4 * (words + kept_words)) as f64 / 1e6
+    );
+    println!("| renumbering them (each through an index map) | {rc:.3} | {rw:.3} |");
     println!("| in-place edit, own <-> 3.5 | {ec:.3} | {ew:.3} |");
     println!(
-        "| copy + in-place edit, / build | {:.2}x | {:.2}x |",
+        "| build / (table copy + in-place edit) | {:.2}x | {:.2}x |",
         bc / (cc + ec),
         bw / (cw + ew)
+    );
+    println!(
+        "| build / (table and kept-level copy + in-place edit) | {:.2}x | {:.2}x |",
+        bc / (ac + ec),
+        bw / (aw + ew)
+    );
+    println!(
+        "| build / (table and kept-level renumbering + in-place edit) | {:.2}x | {:.2}x |",
+        bc / (rc + ec),
+        bw / (rw + ew)
     );
     Ok(())
 }

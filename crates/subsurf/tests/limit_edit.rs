@@ -55,6 +55,51 @@ fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
     );
 }
 
+/// Every array of the two topologies is the same, sharpness compared by its bits.
+fn assert_same_topology(what: &str, a: &Topology, b: &Topology) {
+    let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    assert_eq!(a.num_vertices, b.num_vertices, "{what}");
+    assert_eq!(a.face_offsets, b.face_offsets, "{what}");
+    assert_eq!(a.face_verts, b.face_verts, "{what}");
+    assert_eq!(a.face_edges, b.face_edges, "{what}");
+    assert_eq!(a.edge_verts, b.edge_verts, "{what}");
+    assert_eq!(a.edge_face_offsets, b.edge_face_offsets, "{what}");
+    assert_eq!(a.edge_faces, b.edge_faces, "{what}");
+    assert_eq!(a.edge_face_local, b.edge_face_local, "{what}");
+    assert_eq!(a.vert_face_offsets, b.vert_face_offsets, "{what}");
+    assert_eq!(a.vert_faces, b.vert_faces, "{what}");
+    assert_eq!(a.vert_face_local, b.vert_face_local, "{what}");
+    assert_eq!(a.vert_edge_offsets, b.vert_edge_offsets, "{what}");
+    assert_eq!(a.vert_edges, b.vert_edges, "{what}");
+    assert_eq!(bits(&a.edge_sharpness), bits(&b.edge_sharpness), "{what}");
+    assert_eq!(bits(&a.vert_sharpness), bits(&b.vert_sharpness), "{what}");
+    assert_eq!(a.face_is_hole, b.face_is_hole, "{what}");
+    assert_eq!(a.edge_tags, b.edge_tags, "{what}");
+    assert_eq!(a.vert_tags, b.vert_tags, "{what}");
+    assert_eq!(a.vert_rule, b.vert_rule, "{what}");
+}
+
+/// The levels two editable tables keep for edits are the same: an edit leaves them as a
+/// fresh editable build of the edited mesh makes them, so the next edit starts from the
+/// levels of the mesh it edits.
+fn assert_same_kept<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
+    let (Some(x), Some(y)) = (a.kept_levels(), b.kept_levels()) else {
+        panic!("{what}: levels kept by one table only");
+    };
+    assert_eq!(x.levels.len(), y.levels.len(), "{what}: levels");
+    for (d, (p, q)) in x.levels.iter().zip(&y.levels).enumerate().skip(1) {
+        assert_same_topology(&format!("{what}: kept level {d}"), p, q);
+    }
+    assert_eq!(x.subs.len(), y.subs.len(), "{what}: sub-meshes");
+    for (d, (p, q)) in x.subs.iter().zip(&y.subs).enumerate() {
+        assert_same_topology(&format!("{what}: kept sub-mesh {d}"), p, q);
+    }
+    assert_eq!(x.in_sub, y.in_sub, "{what}: level-to-sub-mesh maps");
+    assert_eq!(x.chosen, y.chosen, "{what}: refined faces");
+    assert_eq!(x.leaves, y.leaves, "{what}: leaves");
+    assert_eq!(x.tags, y.tags, "{what}: vertex tags");
+}
+
 /// `mesh` with the edits applied to its tags (the fresh build's input).
 fn edit_mesh(mesh: &Mesh, edits: &[SharpnessEdit]) -> Mesh {
     let mut m = mesh.clone();
@@ -124,7 +169,8 @@ fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg, nudge: bool) -> Vec<Sh
 /// or many at once, single-crease patches on and off, alternately anywhere and within the
 /// creases' sharpness intervals): the edited table is the fresh build of the edited mesh,
 /// bit for bit, whether it was updated in place (structure kept) or rebuilt (structure
-/// changed), and both happen.
+/// changed), and both happen; the levels it keeps for the next edit are those a fresh
+/// editable build keeps.
 #[test]
 fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
     let mut rng = Lcg(0x5eed);
@@ -153,8 +199,15 @@ fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
                 _ => {}
             }
             current = edit_mesh(&current, &edits);
-            let fresh = PatchTable::build(&Topology::new(&current).unwrap(), &options).unwrap();
-            assert_same(&format!("{name} round {round} {edits:?}"), &table, &fresh);
+            let t = Topology::new(&current).unwrap();
+            let fresh = PatchTable::build(&t, &options).unwrap();
+            let what = format!("{name} round {round} {edits:?}");
+            assert_same(&what, &table, &fresh);
+            // A table keeps levels from its first edit that changes it.
+            if table.is_editable() {
+                let editable = PatchTable::build_editable(&t, &options).unwrap();
+                assert_same_kept(&what, &table, &editable);
+            }
         }
     }
     assert!(shapes >= 20, "{shapes} creased shapes");

@@ -177,6 +177,16 @@ impl<R: Real> PatchTable<R> {
         self.edit_state.is_some()
     }
 
+    /// The levels the table keeps for crease edits, as its last build or edit left them (the
+    /// topology of refined levels 1, 2, … and of each refined sub-mesh, the maps between
+    /// them, the faces refined and the leaves, the vertex tags; level 0 is the table's base
+    /// and left empty); `None` where none are kept ([`PatchTable::is_editable`]). Read-only:
+    /// what an edit that changes the structure has to bring up to date with the table
+    /// (`examples/crease_edit_bound`).
+    pub fn kept_levels(&self) -> Option<&super::sparse::Trace> {
+        self.edit_state.as_deref().map(|s| s.trace())
+    }
+
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
     /// same element winning) and updates the table to equal a fresh build of the edited mesh
     /// (see the [module documentation](super::edit)). Returns whether the table changed.

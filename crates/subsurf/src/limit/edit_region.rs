@@ -64,6 +64,11 @@ pub struct EditState {
 }
 
 impl EditState {
+    /// The kept levels.
+    pub(crate) fn trace(&self) -> &Trace {
+        &self.trace
+    }
+
     /// The state of a construction: its `trace` and the `(level, leaf)` of each patch.
     pub(crate) fn new(mut trace: Trace, patch_leaves: &[(u32, u32)]) -> EditState {
         let visit = (0..trace.levels.len())
@@ -317,9 +322,14 @@ impl<R: Real> PatchTable<R> {
             t.num_faces(),
         );
         // A tag reads the vertex's own values and its edges' sharpness: only the changed
-        // vertices' tags can differ from the kept ones.
+        // vertices' tags can differ from the kept ones. A refined level keeps the tags of the
+        // corners of its walked faces (never holes: they are children of refined faces) and
+        // defaults elsewhere, as the build tags them.
         for &v in &changed.list {
-            tags[v as usize] = VTag::of(t, v as usize, d == 0);
+            let v = v as usize;
+            if d == 0 || t.vertex_faces(v).iter().any(|&f| visit[f as usize] != NONE) {
+                tags[v] = VTag::of(t, v, d == 0);
+            }
         }
         for &f in &faces {
             let f = f as usize;
