@@ -70,10 +70,11 @@ fn edited_upload_evaluates_as_a_fresh_upload() {
         let got = evaluate(&ctx, &mut gpu, &table, &mesh);
         assert!(bits(&got) == bits(&want), "creases at {s:?}");
     }
-    // Creases at 1 are isolated less deep: the table is rebuilt and the upload refused.
+    // Creases at 1 are isolated less deep: the table is rebuilt (below level 1, whose faces
+    // are decided differently) and the upload refused.
     assert_eq!(
         table.apply_sharpness(&creases(&mesh, Some(1.0))).unwrap(),
-        EditOutcome::Rebuilt
+        EditOutcome::RebuiltFrom { level: 1 }
     );
     assert!(matches!(
         gpu.apply_edit(&ctx, &table),

@@ -307,7 +307,7 @@ impl PyLimit {
         match outcome {
             Ok(EditOutcome::Unchanged) => Ok("unchanged"),
             Ok(EditOutcome::Updated) => Ok("updated"),
-            Ok(EditOutcome::Rebuilt) => Ok("rebuilt"),
+            Ok(EditOutcome::Rebuilt | EditOutcome::RebuiltFrom { .. }) => Ok("rebuilt"),
             Err(Some(e)) => Err(lib_error(py, e, None)),
             Err(None) => Err(poisoned(())),
         }

@@ -16,6 +16,7 @@
 //! leave it untouched.
 
 use super::budget::Budget;
+use super::edit_region::Incremental;
 use super::sparse::Selection;
 use super::table::{PatchOptions, PatchTable};
 use crate::error::{Error, MeshError, Result};
@@ -139,8 +140,14 @@ pub enum EditOutcome {
     /// ([`super::edit_region`]).
     Updated,
     /// The table was rebuilt (the first edit of a table that does not keep its levels, or a
-    /// change of structure).
+    /// change of structure at the base).
     Rebuilt,
+    /// The isolation structure changed from `level` down: the levels above it were kept and
+    /// the table rebuilt from it ([`super::edit_rebuild`]).
+    RebuiltFrom {
+        /// The first level (from the base) whose faces were decided differently.
+        level: u32,
+    },
 }
 
 impl PatchTable {
@@ -213,8 +220,10 @@ impl<R: Real> PatchTable<R> {
             *self = PatchTable::build_face_levels(&t, &self.options, levels)?;
             return Ok(EditOutcome::Rebuilt);
         }
-        let Some(t) = self.set_sharpness_incremental(t)? else {
-            return Ok(EditOutcome::Updated);
+        let t = match self.set_sharpness_incremental(t)? {
+            Incremental::Updated => return Ok(EditOutcome::Updated),
+            Incremental::Rebuilt(level) => return Ok(EditOutcome::RebuiltFrom { level }),
+            Incremental::Rebuild(t) => *t,
         };
         *self = PatchTable::build_within_real(
             &t,

@@ -48,19 +48,19 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// Not visited by the walk.
-const NONE: u32 = u32::MAX;
+pub(super) const NONE: u32 = u32::MAX;
 /// Refined further.
-const CHOSEN: u32 = u32::MAX - 1;
+pub(super) const CHOSEN: u32 = u32::MAX - 1;
 
 /// The levels of a table kept for incremental edits.
 #[derive(Debug, Clone)]
 pub struct EditState {
     /// The levels, but for level 0 (left empty): the table's base.
-    trace: Trace,
+    pub(super) trace: Trace,
     /// `visit[d][f]`: [`CHOSEN`], the leaf index of face `f` of level `d`, or [`NONE`].
-    visit: Vec<Vec<u32>>,
+    pub(super) visit: Vec<Vec<u32>>,
     /// `leaf_patch[d][i]`: the patch of leaf `i` of level `d`.
-    leaf_patch: Vec<Vec<u32>>,
+    pub(super) leaf_patch: Vec<Vec<u32>>,
 }
 
 impl EditState {
@@ -69,11 +69,21 @@ impl EditState {
         &self.trace
     }
 
-    /// The state of a construction: its `trace` and the `(level, leaf)` of each patch.
-    pub(crate) fn new(mut trace: Trace, patch_leaves: &[(u32, u32)]) -> EditState {
+    /// The state of a construction: its `trace` (level 0 the base, of `base_faces` faces,
+    /// left empty in the trace or not) and the `(level, leaf)` of each patch.
+    pub(crate) fn new(
+        mut trace: Trace,
+        base_faces: usize,
+        patch_leaves: &[(u32, u32)],
+    ) -> EditState {
         let visit = (0..trace.levels.len())
             .map(|d| {
-                let mut v = vec![NONE; trace.levels[d].num_faces()];
+                let faces = if d == 0 {
+                    base_faces
+                } else {
+                    trace.levels[d].num_faces()
+                };
+                let mut v = vec![NONE; faces];
                 for &f in &trace.chosen[d] {
                     v[f as usize] = CHOSEN;
                 }
@@ -98,6 +108,16 @@ impl EditState {
     }
 }
 
+/// How [`PatchTable::set_sharpness_incremental`] applied an edit.
+pub(crate) enum Incremental {
+    /// In place: the structure is kept.
+    Updated,
+    /// Rebuilt from the first level whose structure changed.
+    Rebuilt(u32),
+    /// To be rebuilt in full from this base (the table is unchanged).
+    Rebuild(Box<Topology>),
+}
+
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
 type Dirty = (Vec<u32>, Vec<u32>);
 
@@ -114,16 +134,18 @@ type Kept<'a, 'b> = (
 );
 
 impl<R: Real> PatchTable<R> {
-    /// Applies the edited base topology `base` incrementally (module documentation).
-    /// Returns `base` back, the table unchanged but for its kept levels, where the
-    /// structure changes (or no levels are kept).
+    /// Applies the edited base topology `base` incrementally (module documentation): in
+    /// place where the structure is kept, from the first level whose structure changes
+    /// otherwise ([`super::edit_rebuild`]). Returns `base` back, the table unchanged but for
+    /// its kept levels, where it must be rebuilt in full (no levels kept, or the change is
+    /// at the base).
     ///
     /// The walk down the levels (new values of the sub-mesh and the child level, the rows
     /// formed again) and the decisions of each level's faces run side by side: a level is
     /// handed to its decisions as soon as the walk has derived it, and is not written again.
-    pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<Option<Topology>> {
+    pub(crate) fn set_sharpness_incremental(&mut self, base: Topology) -> Result<Incremental> {
         let Some(state) = self.edit_state.take() else {
-            return Ok(Some(base));
+            return Ok(Incremental::Rebuild(Box::new(base)));
         };
         let mut st = Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
         let max_level = self.options.level_for(&base) as usize;
@@ -197,37 +219,61 @@ impl<R: Real> PatchTable<R> {
             )
         });
         // The first level (from the base down) whose decisions did not keep the structure
-        // decides, as if the levels had been decided in order: a change of structure (the
-        // table is rebuilt) or an error; else the patches of every level.
+        // decides, as if the levels had been decided in order: a change of structure at
+        // that level or an error; else the patches of every level.
         let mut params = Vec::new();
-        let mut keeps = true;
-        for o in decided.into_iter().flatten() {
+        let mut changed_at = None;
+        for (d, o) in decided.into_iter().enumerate() {
             match o {
-                Ok(Some(p)) => params.extend(p),
-                Ok(None) => {
-                    keeps = false;
+                None => {}
+                Some(Ok(Some(p))) => params.extend(p),
+                Some(Ok(None)) => {
+                    changed_at = Some(d);
                     break;
                 }
-                Err(e) => {
+                Some(Err(e)) => {
                     self.base = old_base;
                     return Err(e);
                 }
             }
         }
-        let (true, Some(rows)) = (keeps, rows) else {
-            return Ok(Some(std::mem::replace(&mut self.base, old_base)));
+        let Some(rows) = rows else {
+            return Ok(Incremental::Rebuild(Box::new(std::mem::replace(
+                &mut self.base,
+                old_base,
+            ))));
         };
-        // Every check passed: the table is changed from here on.
-        for (d, rows) in rows {
-            rows.apply(&mut self.level_stencils[d]);
+        match changed_at {
+            // Every check passed: the table is changed from here on.
+            None => {
+                for (d, rows) in rows {
+                    rows.apply(&mut self.level_stencils[d]);
+                }
+                for (p, kind, s, param) in params {
+                    self.kinds[p] = kind;
+                    self.sharpness[p] = s;
+                    self.params[p] = param;
+                }
+                self.edit_state = Some(Arc::new(st));
+                Ok(Incremental::Updated)
+            }
+            // The levels above the change are kept ([`super::edit_rebuild`]); should that
+            // fail, the edited base is rebuilt in full.
+            Some(d) if d > 0 => match self.rebuilt_from(d, st, rows, params) {
+                Ok(table) => {
+                    *self = table;
+                    Ok(Incremental::Rebuilt(d as u32))
+                }
+                Err(_) => Ok(Incremental::Rebuild(Box::new(std::mem::replace(
+                    &mut self.base,
+                    old_base,
+                )))),
+            },
+            Some(_) => Ok(Incremental::Rebuild(Box::new(std::mem::replace(
+                &mut self.base,
+                old_base,
+            )))),
         }
-        for (p, kind, s, param) in params {
-            self.kinds[p] = kind;
-            self.sharpness[p] = s;
-            self.params[p] = param;
-        }
-        self.edit_state = Some(Arc::new(st));
-        Ok(None)
     }
 
     /// The new type, sharpness and parameter of each patch in `patches` (`(patch, type,
@@ -254,8 +300,10 @@ impl<R: Real> PatchTable<R> {
     /// tags and rules, the step's rows to form again. Every level with changes is handed to
     /// `decide` (`(level, topology, what changed)`) as soon as its values are final (a child
     /// level once derived, before the step's rows are found), in increasing order. `None`
-    /// where the stored stencils do not have a step's rows, or when `stop` is set (a decision
-    /// found a change of structure).
+    /// where the stored stencils do not have a step's rows; when `stop` is set (a decision
+    /// found a change of structure), the rows of the steps walked so far (every step above
+    /// the level that changed: its decisions were spawned before its step's rows were
+    /// formed).
     fn walk<'a>(
         &self,
         (old, base): (&Topology, &'a Topology),
@@ -294,7 +342,8 @@ impl<R: Real> PatchTable<R> {
             moved = child_changed.then_some(child_moved);
             level = child;
             if stop.load(Ordering::Relaxed) {
-                return None;
+                // The rows of the steps above a change of structure are kept.
+                return Some(rows);
             }
         }
         Some(rows)

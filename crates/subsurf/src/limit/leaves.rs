@@ -69,6 +69,57 @@ impl<W> LevelPatches<W> {
     }
 }
 
+/// The points of a leaf made before, given to [`LevelPatches::push`].
+#[derive(Debug, Clone, Copy)]
+pub enum LeafPoints<'a, W> {
+    /// A regular leaf's 16 flat point indices.
+    Regular(&'a [u32]),
+    /// An end cap's 20 rows: their 21 offsets into `indices` and `weights`.
+    EndCap {
+        /// The offsets.
+        offsets: &'a [u32],
+        /// Flat point index of each row entry.
+        indices: &'a [u32],
+        /// Weight of each row entry.
+        weights: &'a [W],
+    },
+}
+
+impl<W: Copy + Default> LevelPatches<W> {
+    /// Appends a leaf made before (the leaves of the levels a crease edit keeps,
+    /// [`super::edit_rebuild`]) as the next leaf of the level, in the chunks a construction
+    /// makes; `leaf.first` is set here.
+    pub fn push(&mut self, mut leaf: Leaf, points: LeafPoints<'_, W>) {
+        if self.parts.last().is_none_or(|p| p.leaves.len() == CHUNK) {
+            self.parts.push(Part {
+                local_offsets: vec![0],
+                ..Default::default()
+            });
+        }
+        let last = self.parts.len() - 1;
+        let part = &mut self.parts[last];
+        match points {
+            LeafPoints::Regular(cvs) => {
+                leaf.first = part.cvs.len() as u32;
+                part.cvs.extend_from_slice(cvs);
+            }
+            LeafPoints::EndCap {
+                offsets,
+                indices,
+                weights,
+            } => {
+                leaf.first = (part.local_offsets.len() - 1) as u32;
+                let (a, z) = (offsets[0] as usize, offsets[offsets.len() - 1] as usize);
+                let to = part.local_indices.len() as u32;
+                part.local_indices.extend_from_slice(&indices[a..z]);
+                part.local_weights.extend_from_slice(&weights[a..z]);
+                (part.local_offsets).extend(offsets[1..].iter().map(|&o| o - offsets[0] + to));
+            }
+        }
+        part.leaves.push(leaf);
+    }
+}
+
 /// The patches of a chunk of leaves.
 #[derive(Debug, Clone, Default)]
 pub struct Part<W = f32> {

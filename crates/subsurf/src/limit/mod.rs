@@ -85,6 +85,7 @@
 pub mod budget;
 pub mod curve_eval;
 pub mod edit;
+pub mod edit_rebuild;
 pub mod edit_region;
 pub mod endcap;
 pub mod eval;

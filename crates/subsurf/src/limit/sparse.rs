@@ -126,6 +126,31 @@ pub struct Hierarchy<W = f32> {
 }
 
 impl Level {
+    /// A level of a construction resumed below the levels kept by an edit: its topology
+    /// and exactness flags as kept, tags default (the walk tags the corners it reaches).
+    pub fn resumed(topo: Topology, flags: Flags) -> Level {
+        let (nv, nf) = (topo.num_vertices(), topo.num_faces());
+        Level {
+            tags: vec![VTag::default(); nv],
+            exact: flags.exact,
+            sound: flags.sound,
+            edge_ok: flags.edge_ok,
+            refine: vec![false; nf],
+            child: vec![NONE; nf],
+            levels: Vec::new(),
+            topo,
+        }
+    }
+
+    /// Its exactness flags, taken.
+    fn take_flags(&mut self) -> Flags {
+        Flags {
+            exact: std::mem::take(&mut self.exact),
+            sound: std::mem::take(&mut self.sound),
+            edge_ok: std::mem::take(&mut self.edge_ok),
+        }
+    }
+
     fn new(topo: Topology, base: bool) -> Level {
         let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         Level {
@@ -163,6 +188,21 @@ pub struct Trace {
     /// `tags[d]`: the feature tags of level `d` ([`Level::tags`]: every corner of a face the
     /// walk reached).
     pub tags: Vec<Vec<VTag>>,
+    /// `child[d]`: the first child face of each face of level `d` ([`Level::child`]).
+    pub child: Vec<Vec<u32>>,
+    /// `flags[d]`: the exactness flags of level `d`, which only its structure decides.
+    pub flags: Vec<Flags>,
+}
+
+/// The exactness flags of a level ([`Level::exact`], [`Level::sound`], [`Level::edge_ok`]).
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Flags {
+    /// Per vertex: its value is exact.
+    pub exact: Vec<bool>,
+    /// Per vertex: ring, sharpness, rule and tags are exact.
+    pub sound: Vec<bool>,
+    /// Per edge: complete, sharpness and tags exact.
+    pub edge_ok: Vec<bool>,
 }
 
 /// What is made of a level's leaf faces: `(level, d, offset, faces)`, see [`build`].
@@ -201,7 +241,7 @@ pub fn build_traced<W: Real, T: Send>(
     selection: Selection,
     budget: &mut Budget,
     leaves: &LeafFn<'_, T>,
-    mut trace: Option<&mut Trace>,
+    trace: Option<&mut Trace>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
     if let Some(l) = face_levels {
         if l.len() != base.num_faces() || l.iter().any(|&x| x as usize > max_level) {
@@ -212,21 +252,77 @@ pub fn build_traced<W: Real, T: Send>(
             )));
         }
     }
-    let mut h = Hierarchy {
-        num_vertices: vec![base.num_vertices()],
-        stencils: Vec::new(),
-        inputs: Vec::new(),
-    };
     let mut level = Level::new(base.clone(), true);
     if let Some(l) = face_levels {
         level.levels = l.to_vec();
     }
-    let mut out = Vec::new();
-    let mut visited: Vec<u32> = (0..base.num_faces() as u32).collect();
-    let mut total_vertices = base.num_vertices() as u64;
-    let mut offset = 0u32;
+    let start = Start {
+        d: 0,
+        level,
+        visited: (0..base.num_faces() as u32).collect(),
+        h: Hierarchy {
+            num_vertices: vec![base.num_vertices()],
+            stencils: Vec::new(),
+            inputs: Vec::new(),
+        },
+        out: Vec::new(),
+    };
+    let levels = face_levels.is_some();
+    resume(
+        start, max_level, levels, mask, selection, budget, leaves, trace,
+    )
+}
+
+#[derive(Debug)]
+/// Where a construction starts: level `d`, whose faces `visited` are still to be decided,
+/// and what the levels above it made.
+pub struct Start<W, T> {
+    /// The level.
+    pub d: usize,
+    /// Its topology, exactness flags and (with per-region isolation) face levels.
+    pub level: Level,
+    /// Its faces the walk reaches: every base face, or the children of the faces refined
+    /// at level `d - 1`.
+    pub visited: Vec<u32>,
+    /// The levels above: `num_vertices` up to level `d` included, the `d` steps' stencils
+    /// and inputs.
+    pub h: Hierarchy<W>,
+    /// The leaves' results of the levels above.
+    pub out: Vec<T>,
+}
+
+/// [`build_traced`] from `start` (a crease edit that keeps the levels above `start.d`,
+/// [`super::edit_rebuild`]): the levels `start.d..` are built, and traced where `trace`
+/// holds the levels above. `face_levels`: the start level carries per-face isolation
+/// levels, which children inherit.
+#[allow(clippy::too_many_arguments)]
+pub fn resume<W: Real, T: Send>(
+    start: Start<W, T>,
+    max_level: usize,
+    face_levels: bool,
+    mask: &FeatureMask,
+    selection: Selection,
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+    mut trace: Option<&mut Trace>,
+) -> Result<(Hierarchy<W>, Vec<T>)> {
+    let Start {
+        d: first,
+        mut level,
+        mut visited,
+        mut h,
+        mut out,
+    } = start;
+    if h.num_vertices.len() != first + 1 || h.stencils.len() != first || out.len() != first {
+        return Err(Error::Internal(format!(
+            "sparse refinement started at level {first} with {} levels above",
+            out.len()
+        )));
+    }
+    let mut total_vertices: u64 = h.num_vertices.iter().map(|&n| n as u64).sum();
+    let mut offset = (total_vertices - level.topo.num_vertices() as u64) as u32;
     let mut prev_sub: Option<Topology> = None;
-    for d in 0..=max_level {
+    for d in first..=max_level {
         let cur = &mut level;
         if d > 0 {
             tag_corners(cur, &visited);
@@ -264,6 +360,8 @@ pub fn build_traced<W: Real, T: Send>(
                 tr.subs.extend(prev_sub.take());
                 tr.levels.push(std::mem::take(&mut level.topo));
                 tr.tags.push(std::mem::take(&mut level.tags));
+                tr.child.push(std::mem::take(&mut level.child));
+                tr.flags.push(level.take_flags());
             }
             break;
         }
@@ -311,7 +409,7 @@ pub fn build_traced<W: Real, T: Send>(
             || {
                 let mut next = Level::new(refine_topology(&step.sub), false);
                 step.propagate(&mut next);
-                if face_levels.is_some() {
+                if face_levels {
                     // A child takes its parent's level (the level of their base face).
                     next.levels = vec![0; next.topo.num_faces()];
                     for &f in &chosen {
@@ -337,8 +435,10 @@ pub fn build_traced<W: Real, T: Send>(
         h.inputs.push(step.verts);
         h.num_vertices.push(next.topo.num_vertices());
         let done_sub = prev_sub.replace(step.sub);
-        let done = std::mem::replace(&mut level, next);
+        let mut done = std::mem::replace(&mut level, next);
         if let Some(tr) = trace.as_deref_mut() {
+            tr.flags.push(done.take_flags());
+            tr.child.push(done.child);
             tr.chosen.push(chosen);
             tr.leaves.push(leaf_faces);
             tr.subs.extend(done_sub);

@@ -127,7 +127,7 @@ impl PatchType {
         }
     }
 
-    fn from_u8(x: u8) -> PatchType {
+    pub(crate) fn from_u8(x: u8) -> PatchType {
         match x {
             0 => PatchType::Regular,
             1 => PatchType::SingleCrease,
@@ -480,6 +480,19 @@ impl<R: Real> PatchTable<R> {
             &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
             trace.as_mut(),
         )?;
+        Self::assemble(base, options, h, patches, trace, face_levels)
+    }
+
+    /// The table of `base` from its levels `h` and their leaves' patches: the walk of every
+    /// base face's quadtree, its patches placed in quadtree order; `trace` kept for edits.
+    pub(crate) fn assemble(
+        base: &Topology,
+        options: &PatchOptions,
+        h: sparse::Hierarchy<R>,
+        patches: Vec<LevelPatches<R>>,
+        trace: Option<sparse::Trace>,
+        face_levels: Option<Vec<u8>>,
+    ) -> Result<PatchTable<R>> {
         let mut level_offsets = vec![0u32];
         for &nv in &h.num_vertices {
             let last = *level_offsets.last().unwrap_or(&0);
@@ -561,7 +574,7 @@ impl<R: Real> PatchTable<R> {
             leaves,
         } = all;
         let edit_state = trace
-            .map(|t| super::edit_region::EditState::new(t, &leaves))
+            .map(|t| super::edit_region::EditState::new(t, base.num_faces(), &leaves))
             .map(std::sync::Arc::new);
         Ok(PatchTable::<R> {
             options: *options,
