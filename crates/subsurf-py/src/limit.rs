@@ -247,7 +247,8 @@ impl PyLimit {
     /// New crease sharpness for the base edges `creases` (vertex pairs, `sharpness` one value
     /// each) and corner sharpness for the vertices `corners` (`corner_sharpness`), later
     /// entries of the same element winning: the patch table is updated in place where its
-    /// isolation structure is kept and rebuilt otherwise, equal either way to the table of
+    /// isolation structure is kept and rebuilt otherwise (from the first level whose faces
+    /// are decided differently, the levels above kept), equal either way to the table of
     /// the edited mesh, and the points are made again from the current control points.
     /// Returns `"unchanged"`, `"updated"` or `"rebuilt"`. Every edit is checked first
     /// (`MeshError` naming the edit, `.edit`); Loop meshes are refused.

@@ -7,7 +7,8 @@
 //! 3.5 and back (two edits per run, alternating with a fresh build of each end), the medians
 //! of the edit, of a fresh `PatchTable::build` and of the point update after an edit, and
 //! how the table was updated ([`subsurf::limit::EditOutcome`]): for `A` = 2 the structure
-//! changes (a crease of 3.5 is isolated two levels deeper) and the table is rebuilt; for
+//! changes at level 2 (a crease of 3.5 is isolated two levels deeper) and the table is
+//! rebuilt from level 2 down, for `A` = 3 from level 3 down, the levels above kept; for
 //! `A` = the mesh's own values (6 on the car) it is kept and the table updated in place.
 
 mod common;
@@ -44,7 +45,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     table.set_sharpness(&edits(None))?;
 
-    for from in [Some(2.0), None] {
+    for from in [Some(2.0), Some(3.0), None] {
         // To the first value of the pair (not timed).
         table.set_sharpness(&edits(from))?;
         let (mut edit, mut build, mut points) = (Vec::new(), Vec::new(), Vec::new());

@@ -371,7 +371,8 @@ class LimitSurface:
         value for all, or one (c, 3) array; ``corners``: (c,) vertices with
         ``corner_sharpness`` ((c,) or one value), or one (c, 2) array; 0 smooth, 10 or more
         infinitely sharp), later entries of the same element winning. The patch table is updated in place where
-        its isolation structure is kept and rebuilt otherwise; either way the surface is,
+        its isolation structure is kept and rebuilt otherwise (from the first isolation level
+        whose faces change, the levels above kept); either way the surface is,
         bit for bit, that of a ``LimitSurface`` of the edited mesh at the current control
         points. Returns ``"unchanged"``, ``"updated"`` or ``"rebuilt"``.
 

@@ -10,10 +10,12 @@
 //! exist, a value must be finite and non-negative (values above
 //! [`crate::SHARPNESS_INFINITE`] are clamped, as [`crate::Topology::new`] clamps the tags).
 //!
-//! The table is then updated in place where the edit keeps its isolation structure, and
-//! rebuilt otherwise ([`super::edit_region`]). Edits that change nothing (the same values,
-//! or edges and vertices that boundary and non-manifold sharpening keep infinitely sharp)
-//! leave it untouched.
+//! The table is then updated in place where the edit keeps its isolation structure
+//! ([`super::edit_region`]); where the faces of a level are decided differently, it is
+//! rebuilt from that level down, the levels above kept ([`super::edit_rebuild`]), and in full
+//! where that level is the base. Edits that change nothing (the same values, or edges and
+//! vertices that boundary and non-manifold sharpening keep infinitely sharp) leave it
+//! untouched.
 
 use super::budget::Budget;
 use super::edit_region::Incremental;
@@ -205,9 +207,11 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
-    /// isolation structure is kept ([`super::edit_region`]), else rebuilt. The first edit
-    /// of a table that does not keep its levels ([`PatchTable::is_editable`]) rebuilds it,
-    /// keeping them for the next edits.
+    /// isolation structure is kept ([`super::edit_region`]), rebuilt from the first level
+    /// whose faces are decided differently where that is below the base (the levels above
+    /// kept, [`super::edit_rebuild`]), else rebuilt. The first edit of a table that does not
+    /// keep its levels ([`PatchTable::is_editable`]) rebuilds it, keeping them for the next
+    /// edits.
     pub fn apply_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<EditOutcome> {
         let t = edited(&self.base, edits)?;
         if t.edge_sharpness == self.base.edge_sharpness

@@ -11,7 +11,8 @@
 //! 2. the decisions of the faces around them are made again with the level's feature rules
 //!    ([`super::features`]): a face refined that should not be, a leaf that should be refined
 //!    or whose patch changes between B-spline and end cap, or an end cap whose points change,
-//!    is a change of structure, and the table is rebuilt (with its levels kept);
+//!    is a change of structure at that level: the table is rebuilt from it down, the levels
+//!    above kept ([`super::edit_rebuild`]; in full, with its levels kept, at the base);
 //! 3. otherwise the leaves around them take their new type, boundary mask and crease
 //!    sharpness ([`super::leaves::leaf_kind`]: single-crease ↔ regular, the patch parameter's
 //!    boundary bits);
@@ -29,8 +30,8 @@
 //! structure. What changed is
 //! noted where it is written (`refine/moved.rs`), so the work is that of the changed
 //! elements, rows and leaves down to the depth where the edit decays, instead of refining
-//! every level's topology, stencils and end caps again. A structural change costs a full
-//! build.
+//! every level's topology, stencils and end caps again. A structural change costs the
+//! construction of the levels from the change down.
 
 use super::endcap::gregory_points;
 use super::features::{face_has_features, FeatureMask, VTag};
