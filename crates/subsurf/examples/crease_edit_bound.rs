@@ -7,15 +7,20 @@
 //!
 //! An edit whose result is the fresh build's table, array by array and bit for bit, must
 //! write every element of the target table that differs from the element at the same place
-//! in the table it starts from (or that lies past its end). The example builds both tables,
-//! counts those bytes in each of the table's arrays (in both directions of the slider), and
+//! in the table it starts from (or that lies past its end); so must it for the levels an
+//! editable table keeps (`PatchTable::kept_levels`), which the next edit walks and which
+//! therefore follow the table's numbering. The example builds both tables (plain and
+//! editable), counts those bytes in each array (in both directions of the slider), and
 //! times, in one process and alternating, with the caches evicted before each (a 256 MB
-//! sweep: a slider evaluates and draws between edits) and without (the build that runs
-//! before each edit still evicts much of what the edit reads):
+//! sweep: a slider evaluates and draws between edits) and warm (right after an untimed run of
+//! the same):
 //!
 //! - a fresh `PatchTable::build` of the edited mesh;
-//! - copying that many bytes from one buffer into another already allocated (on all
-//!   threads: the least a rewrite of them costs, before computing any of them);
+//! - copying the table's differing bytes, and the table's and kept levels' together, from
+//!   one buffer into another already allocated (on all threads: the least a rewrite of them
+//!   costs, before computing any of them);
+//! - renumbering the latter (each word read, translated through an index map the size of
+//!   the refined points, written: what a splice does to every index it moves);
 //! - an edit of the same creases that keeps the structure (the mesh's own values <-> 3.5,
 //!   updated in place), for the sharpness walk such an edit also has to do.
 
