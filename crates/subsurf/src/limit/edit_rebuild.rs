@@ -10,7 +10,7 @@
 //! re-formed stencil rows and their leaves their new types, so the construction resumes at
 //! level `d` ([`super::sparse::resume`]): the faces of level `d` are decided, the levels below
 //! refined and their leaves made as a fresh build makes them, and every base face's quadtree
-//! walked again to place the patches ([`PatchTable::assemble`]). The leaves of the kept levels
+//! walked again to place the patches (`PatchTable::assemble`). The leaves of the kept levels
 //! are taken from the table (their points unchanged, their types as the edit decided).
 //!
 //! The table is a fresh build's, bit for bit, as is every level kept for the next edit
