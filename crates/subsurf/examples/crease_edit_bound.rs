@@ -236,6 +236,25 @@ fn kept_diff(from: &Trace, to: &Trace) -> Vec<Row> {
     rows
 }
 
+/// Prints the rows `up` (`from` -> 3.5) beside `down` (back) that differ either way, and the
+/// totals; returns the bytes differing up and down.
+fn print_rows(title: &str, from: f32, up: &[Row], down: &[Row]) -> (usize, usize) {
+    println!("\n| {title} | bytes | differing {from} -> 3.5 | first | differing 3.5 -> {from} |");
+    println!("|---|---:|---:|---:|---:|");
+    let (mut total, mut diff_up, mut diff_down) = (0, 0, 0);
+    for ((name, bytes, n, first), (_, _, m, _)) in up.iter().zip(down) {
+        total += bytes;
+        diff_up += n;
+        diff_down += m;
+        if *n > 0 || *m > 0 {
+            let first = first.map_or("-".into(), |f| f.to_string());
+            println!("| {name} | {bytes} | {n} | {first} | {m} |");
+        }
+    }
+    println!("| **all** | {total} | {diff_up} | | {diff_down} |");
+    (diff_up, diff_down)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = common::mesh_path(&args);
@@ -268,24 +287,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         a.level_offsets.last().unwrap_or(&0),
         b.level_offsets.last().unwrap_or(&0),
     );
-    if outcome != EditOutcome::Rebuilt {
+    if matches!(outcome, EditOutcome::Updated | EditOutcome::Unchanged) {
         println!("(the structure is kept: nothing below applies)");
     }
 
-    println!("\n| array | bytes | differing {from} -> 3.5 | first | differing 3.5 -> {from} |");
-    println!("|---|---:|---:|---:|---:|");
-    let (up, down) = (table_diff(&a, &b), table_diff(&b, &a));
-    let (mut total, mut diff_up, mut diff_down) = (0, 0, 0);
-    for ((name, bytes, n, first), (_, _, m, _)) in up.iter().zip(&down) {
-        total += bytes;
-        diff_up += n;
-        diff_down += m;
-        if *n > 0 || *m > 0 {
-            let first = first.map_or("-".into(), |f| f.to_string());
-            println!("| {name} | {bytes} | {n} | {first} | {m} |");
-        }
-    }
-    println!("| **all** | {total} | {diff_up} | | {diff_down} |");
+    let (diff_up, diff_down) = print_rows("array", from, &table_diff(&a, &b), &table_diff(&b, &a));
 
     // The levels an editable table keeps must follow its numbering for the next edit.
     let (ea, eb) = (
@@ -295,22 +301,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let (Some(ka), Some(kb)) = (ea.kept_levels(), eb.kept_levels()) else {
         return Err("editable builds keep no levels".into());
     };
-    println!(
-        "\n| kept for edits | bytes | differing {from} -> 3.5 | first | differing 3.5 -> {from} |"
+    let (kept_up, kept_down) = print_rows(
+        "kept for edits",
+        from,
+        &kept_diff(ka, kb),
+        &kept_diff(kb, ka),
     );
-    println!("|---|---:|---:|---:|---:|");
-    let (up, down) = (kept_diff(ka, kb), kept_diff(kb, ka));
-    let (mut kept_total, mut kept_up, mut kept_down) = (0, 0, 0);
-    for ((name, bytes, n, first), (_, _, m, _)) in up.iter().zip(&down) {
-        kept_total += bytes;
-        kept_up += n;
-        kept_down += m;
-        if *n > 0 || *m > 0 {
-            let first = first.map_or("-".into(), |f| f.to_string());
-            println!("| {name} | {bytes} | {n} | {first} | {m} |");
-        }
-    }
-    println!("| **all** | {kept_total} | {kept_up} | | {kept_down} |");
 
     // Times, alternating, caches evicted before each ("cold") and not ("warm").
     let mut sweep = common::Sweep::new();
