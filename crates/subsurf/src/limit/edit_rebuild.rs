@@ -186,3 +186,25 @@ impl<R: Real> PatchTable<R> {
         Ok(out)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topology::Topology;
+
+    /// Kept levels without the re-formed rows of every step above the change are refused
+    /// (an internal error: the caller then rebuilds in full), never resumed from.
+    #[test]
+    fn resuming_without_the_rows_above_is_refused() {
+        let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../testdata/shapes/catmark_car.obj");
+        let mesh = crate::io::obj::read_file(&p).unwrap();
+        let t = Topology::new(&mesh).unwrap();
+        let table = PatchTable::build_editable(&t, &Default::default()).unwrap();
+        let st = table.edit_state.as_deref().unwrap().clone();
+        for d in [0, 2, st.trace.levels.len()] {
+            let r = table.rebuilt_from(d, st.clone(), Vec::new(), Vec::new());
+            assert!(matches!(r, Err(Error::Internal(_))), "level {d}");
+        }
+    }
+}
