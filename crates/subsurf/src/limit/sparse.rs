@@ -273,9 +273,9 @@ pub fn build_traced<W: Real, T: Send>(
     )
 }
 
-#[derive(Debug)]
 /// Where a construction starts: level `d`, whose faces `visited` are still to be decided,
 /// and what the levels above it made.
+#[derive(Debug)]
 pub struct Start<W, T> {
     /// The level.
     pub d: usize,
@@ -313,7 +313,12 @@ pub fn resume<W: Real, T: Send>(
         mut h,
         mut out,
     } = start;
-    if h.num_vertices.len() != first + 1 || h.stencils.len() != first || out.len() != first {
+    if h.num_vertices.len() != first + 1
+        || h.num_vertices[first] != level.topo.num_vertices()
+        || h.stencils.len() != first
+        || h.inputs.len() != first
+        || out.len() != first
+    {
         return Err(Error::Internal(format!(
             "sparse refinement started at level {first} with {} levels above",
             out.len()
