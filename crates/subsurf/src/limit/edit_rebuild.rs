@@ -19,7 +19,7 @@
 //! the decisions at level `k` or so).
 
 use super::budget::Budget;
-use super::edit_region::{EditState, CHOSEN, NONE};
+use super::edit_region::{write_params, EditState, NewParams, CHOSEN, NONE};
 use super::features::FeatureMask;
 use super::leaves::{level_patches, Leaf, LeafOptions, LeafPoints, LevelPatches, UNWALKED};
 use super::patch_map::{EMPTY, LEAF};
@@ -37,14 +37,15 @@ impl<R: Real> PatchTable<R> {
     /// The table rebuilt from level `d` down, the levels above kept (module documentation):
     /// `st` is the kept state the walk updated, `rows` the re-formed stencil rows of the
     /// steps it walked (those above `d` are applied), `params` the new type, sharpness and
-    /// parameter of the leaves decided above `d`; the table's base is the edited one. The
-    /// table itself is only read.
+    /// parameter of the leaves decided above `d`, `(mask, leaf_options)` the edit's feature
+    /// rules; the table's base is the edited one. The table itself is only read.
     pub(crate) fn rebuilt_from(
         &self,
         d: usize,
         st: EditState,
         rows: Vec<(usize, Restenciled<R>)>,
-        params: Vec<(usize, u8, f32, PatchParam)>,
+        params: NewParams,
+        (mask, leaf_options): (&FeatureMask, &LeafOptions),
     ) -> Result<PatchTable<R>> {
         if d == 0 || d >= st.trace.levels.len() || rows.iter().filter(|r| r.0 < d).count() != d {
             return Err(Error::Internal(format!(
@@ -63,11 +64,7 @@ impl<R: Real> PatchTable<R> {
             self.sharpness.clone(),
             self.params.clone(),
         );
-        for (p, kind, s, param) in params {
-            leaves.0[p] = kind;
-            leaves.1[p] = s;
-            leaves.2[p] = param;
-        }
+        write_params(params, (&mut leaves.0, &mut leaves.1, &mut leaves.2));
         let out = (0..d)
             .map(|k| self.kept_patches(k, &st, &leaves))
             .collect::<Result<Vec<_>>>()?;
@@ -98,21 +95,7 @@ impl<R: Real> PatchTable<R> {
             stencils,
             inputs,
         };
-        trace.levels.truncate(d);
-        trace.subs.truncate(d);
-        trace.in_sub.truncate(d);
-        trace.chosen.truncate(d);
-        trace.leaves.truncate(d);
-        trace.tags.truncate(d);
-        trace.child.truncate(d);
-        trace.flags.truncate(d);
-
-        let max_level = self.options.level_for(&self.base) as usize;
-        let leaf_options = LeafOptions {
-            single_crease: self.options.single_crease,
-            cap: self.options.cap_crease_sharpness,
-            max_level,
-        };
+        trace.truncate(d);
         let start = Start {
             d,
             level,
@@ -122,12 +105,11 @@ impl<R: Real> PatchTable<R> {
         };
         let (h, patches) = sparse::resume(
             start,
-            max_level,
-            false,
-            &FeatureMask::new(self.options.single_crease),
+            leaf_options.max_level,
+            mask,
             Selection::Sparse,
             &mut Budget::of_available_memory(),
-            &|lv, k, off, faces| level_patches(lv, k, off, faces, &leaf_options),
+            &|lv, k, off, faces| level_patches(lv, k, off, faces, leaf_options),
             Some(&mut trace),
         )?;
         PatchTable::assemble(&self.base, &self.options, h, patches, Some(trace), None)
@@ -193,7 +175,8 @@ mod tests {
     use crate::topology::Topology;
 
     /// Kept levels without the re-formed rows of every step above the change are refused
-    /// (an internal error: the caller then rebuilds in full), never resumed from.
+    /// (an internal error: the edit is refused, the table left as it was), never resumed
+    /// from.
     #[test]
     fn resuming_without_the_rows_above_is_refused() {
         let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -203,7 +186,11 @@ mod tests {
         let table = PatchTable::build_editable(&t, &Default::default()).unwrap();
         let st = table.edit_state.as_deref().unwrap().clone();
         for d in [0, 2, st.trace.levels.len()] {
-            let r = table.rebuilt_from(d, st.clone(), Vec::new(), Vec::new());
+            let rules = (
+                &FeatureMask::new(true),
+                &LeafOptions::new(&table.options, 4),
+            );
+            let r = table.rebuilt_from(d, st.clone(), Vec::new(), Vec::new(), rules);
             assert!(matches!(r, Err(Error::Internal(_))), "level {d}");
         }
     }

@@ -122,9 +122,24 @@ pub(crate) enum Incremental {
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
 type Dirty = (Vec<u32>, Vec<u32>);
 
+/// The new type, sharpness and parameter of patches: `(patch, type, sharpness, parameter)`.
+pub(super) type NewParams = Vec<(usize, u8, f32, PatchParam)>;
+
+/// Writes the new `params` of patches into their types, sharpness and parameters.
+pub(super) fn write_params(
+    params: NewParams,
+    (kinds, sharpness, pp): (&mut [u8], &mut [f32], &mut [PatchParam]),
+) {
+    for (p, kind, s, param) in params {
+        kinds[p] = kind;
+        sharpness[p] = s;
+        pp[p] = param;
+    }
+}
+
 /// What the decisions of one level found: the new type, sharpness and parameter of its
 /// leaves' patches, or `None` where the structure changes.
-type Decided = Result<Option<Vec<(usize, u8, f32, PatchParam)>>>;
+type Decided = Result<Option<NewParams>>;
 
 /// What the walk writes of the kept levels: the levels ([`Trace::levels`], level 0 unused),
 /// the sub-meshes, and the level-to-sub-mesh maps it reads.
@@ -150,11 +165,7 @@ impl<R: Real> PatchTable<R> {
         };
         let mut st = Arc::try_unwrap(state).unwrap_or_else(|a| (*a).clone());
         let max_level = self.options.level_for(&base) as usize;
-        let leaf_options = LeafOptions {
-            single_crease: self.options.single_crease,
-            cap: self.options.cap_crease_sharpness,
-            max_level,
-        };
+        let leaf_options = LeafOptions::new(&self.options, max_level);
         let mask = FeatureMask::new(self.options.single_crease);
         let num_level_points = *self.level_offsets.last().unwrap_or(&0);
 
@@ -250,26 +261,28 @@ impl<R: Real> PatchTable<R> {
                 for (d, rows) in rows {
                     rows.apply(&mut self.level_stencils[d]);
                 }
-                for (p, kind, s, param) in params {
-                    self.kinds[p] = kind;
-                    self.sharpness[p] = s;
-                    self.params[p] = param;
-                }
+                write_params(
+                    params,
+                    (&mut self.kinds, &mut self.sharpness, &mut self.params),
+                );
                 self.edit_state = Some(Arc::new(st));
                 Ok(Incremental::Updated)
             }
-            // The levels above the change are kept ([`super::edit_rebuild`]); should that
-            // fail, the edited base is rebuilt in full.
-            Some(d) if d > 0 => match self.rebuilt_from(d, st, rows, params) {
-                Ok(table) => {
-                    *self = table;
-                    Ok(Incremental::Rebuilt(d as u32))
+            // The levels above the change are kept ([`super::edit_rebuild`]); an error
+            // leaves the table as it was (its levels dropped), as one of the decisions does.
+            Some(d) if d > 0 => {
+                let rules = (&mask, &leaf_options);
+                match self.rebuilt_from(d, st, rows, params, rules) {
+                    Ok(table) => {
+                        *self = table;
+                        Ok(Incremental::Rebuilt(d as u32))
+                    }
+                    Err(e) => {
+                        self.base = old_base;
+                        Err(e)
+                    }
                 }
-                Err(_) => Ok(Incremental::Rebuild(Box::new(std::mem::replace(
-                    &mut self.base,
-                    old_base,
-                )))),
-            },
+            }
             Some(_) => Ok(Incremental::Rebuild(Box::new(std::mem::replace(
                 &mut self.base,
                 old_base,
@@ -279,10 +292,7 @@ impl<R: Real> PatchTable<R> {
 
     /// The new type, sharpness and parameter of each patch in `patches` (`(patch, type,
     /// boundary mask, sharpness)`), checked before anything is written.
-    fn new_params(
-        &self,
-        patches: Vec<(u32, PatchType, u8, f32)>,
-    ) -> Result<Vec<(usize, u8, f32, PatchParam)>> {
+    fn new_params(&self, patches: Vec<(u32, PatchType, u8, f32)>) -> Result<NewParams> {
         (patches.into_iter())
             .map(|(p, kind, boundary, sharpness)| {
                 let p = p as usize;

@@ -34,6 +34,17 @@ pub struct LeafOptions {
     pub max_level: usize,
 }
 
+impl LeafOptions {
+    /// The leaves of a table built with `options` to isolation level `max_level`.
+    pub fn new(options: &super::table::PatchOptions, max_level: usize) -> LeafOptions {
+        LeafOptions {
+            single_crease: options.single_crease,
+            cap: options.cap_crease_sharpness,
+            max_level,
+        }
+    }
+}
+
 /// The patch of one leaf.
 #[derive(Debug, Clone, Copy)]
 pub struct Leaf {

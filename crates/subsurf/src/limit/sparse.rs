@@ -142,15 +142,6 @@ impl Level {
         }
     }
 
-    /// Its exactness flags, taken.
-    fn take_flags(&mut self) -> Flags {
-        Flags {
-            exact: std::mem::take(&mut self.exact),
-            sound: std::mem::take(&mut self.sound),
-            edge_ok: std::mem::take(&mut self.edge_ok),
-        }
-    }
-
     fn new(topo: Topology, base: bool) -> Level {
         let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         Level {
@@ -192,6 +183,36 @@ pub struct Trace {
     pub child: Vec<Vec<u32>>,
     /// `flags[d]`: the exactness flags of level `d`, which only its structure decides.
     pub flags: Vec<Flags>,
+}
+
+impl Trace {
+    /// Keeps `level` (its topology, tags, children and flags, taken), the faces it refined
+    /// and its leaves; its sub-mesh and maps are kept apart.
+    fn push_level(&mut self, level: &mut Level, chosen: Vec<u32>, leaves: Vec<u32>) {
+        use std::mem::take;
+        self.levels.push(take(&mut level.topo));
+        self.tags.push(take(&mut level.tags));
+        self.child.push(take(&mut level.child));
+        self.flags.push(Flags {
+            exact: take(&mut level.exact),
+            sound: take(&mut level.sound),
+            edge_ok: take(&mut level.edge_ok),
+        });
+        self.chosen.push(chosen);
+        self.leaves.push(leaves);
+    }
+
+    /// The levels above level `d` only (and the sub-meshes and maps of their steps).
+    pub(crate) fn truncate(&mut self, d: usize) {
+        self.levels.truncate(d);
+        self.subs.truncate(d);
+        self.in_sub.truncate(d);
+        self.chosen.truncate(d);
+        self.leaves.truncate(d);
+        self.tags.truncate(d);
+        self.child.truncate(d);
+        self.flags.truncate(d);
+    }
 }
 
 /// The exactness flags of a level ([`Level::exact`], [`Level::sound`], [`Level::edge_ok`]).
@@ -267,10 +288,7 @@ pub fn build_traced<W: Real, T: Send>(
         },
         out: Vec::new(),
     };
-    let levels = face_levels.is_some();
-    resume(
-        start, max_level, levels, mask, selection, budget, leaves, trace,
-    )
+    resume(start, max_level, mask, selection, budget, leaves, trace)
 }
 
 /// Where a construction starts: level `d`, whose faces `visited` are still to be decided,
@@ -293,13 +311,11 @@ pub struct Start<W, T> {
 
 /// [`build_traced`] from `start` (a crease edit that keeps the levels above `start.d`,
 /// [`super::edit_rebuild`]): the levels `start.d..` are built, and traced where `trace`
-/// holds the levels above. `face_levels`: the start level carries per-face isolation
-/// levels, which children inherit.
-#[allow(clippy::too_many_arguments)]
+/// holds the levels above. Where the start level carries per-face isolation levels
+/// ([`Level::levels`]), children inherit them.
 pub fn resume<W: Real, T: Send>(
     start: Start<W, T>,
     max_level: usize,
-    face_levels: bool,
     mask: &FeatureMask,
     selection: Selection,
     budget: &mut Budget,
@@ -324,6 +340,7 @@ pub fn resume<W: Real, T: Send>(
             out.len()
         )));
     }
+    let face_levels = !level.levels.is_empty();
     let mut total_vertices: u64 = h.num_vertices.iter().map(|&n| n as u64).sum();
     let mut offset = (total_vertices - level.topo.num_vertices() as u64) as u32;
     let mut prev_sub: Option<Topology> = None;
@@ -360,13 +377,8 @@ pub fn resume<W: Real, T: Send>(
             out.push(patches?);
             h.stencils.extend(stencils);
             if let Some(tr) = trace.as_deref_mut() {
-                tr.chosen.push(chosen);
-                tr.leaves.push(leaf_faces);
                 tr.subs.extend(prev_sub.take());
-                tr.levels.push(std::mem::take(&mut level.topo));
-                tr.tags.push(std::mem::take(&mut level.tags));
-                tr.child.push(std::mem::take(&mut level.child));
-                tr.flags.push(level.take_flags());
+                tr.push_level(&mut level, chosen, leaf_faces);
             }
             break;
         }
@@ -442,14 +454,9 @@ pub fn resume<W: Real, T: Send>(
         let done_sub = prev_sub.replace(step.sub);
         let mut done = std::mem::replace(&mut level, next);
         if let Some(tr) = trace.as_deref_mut() {
-            tr.flags.push(done.take_flags());
-            tr.child.push(done.child);
-            tr.chosen.push(chosen);
-            tr.leaves.push(leaf_faces);
             tr.subs.extend(done_sub);
             tr.in_sub.push(step.in_sub);
-            tr.levels.push(done.topo);
-            tr.tags.push(done.tags);
+            tr.push_level(&mut done, chosen, leaf_faces);
         }
     }
     Ok((h, out))

@@ -464,11 +464,7 @@ impl<R: Real> PatchTable<R> {
                 ));
             }
         }
-        let leaf_options = LeafOptions {
-            single_crease: options.single_crease,
-            cap: options.cap_crease_sharpness,
-            max_level: level,
-        };
+        let leaf_options = LeafOptions::new(options, level);
         let mut trace = traced.then(sparse::Trace::default);
         let (h, patches) = sparse::build_traced(
             base,
