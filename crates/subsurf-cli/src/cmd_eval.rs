@@ -109,6 +109,8 @@ fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
         Some(path) => read_queries(path)?,
         None => {
             let n = a.samples;
+            let samples = topo.num_faces() as f64 * (n * (n + 1) / 2) as f64;
+            check_memory::<f64>(a, samples, "Loop triangles")?;
             let d = (n - 1) as f64;
             let mut q = Vec::with_capacity(topo.num_faces() * n * (n + 1) / 2);
             for f in 0..topo.num_faces() as u32 {
@@ -177,6 +179,24 @@ fn loop_eval_gpu(
         .collect())
 }
 
+/// Refuses `samples` evaluations in `R` that would pass the memory limit, before the queries
+/// are allocated: per sample a query and its result (64 bytes in `f32`, the peak resident
+/// memory of `eval` on the car at 200 samples per side), twice that with the GPU path's
+/// copies of both.
+fn check_memory<R: Real>(a: &EvalArgs, samples: f64, on: &str) -> anyhow::Result<()> {
+    let copies = match a.surface.backend {
+        Backend::Cpu => 1,
+        Backend::Gpu => 2,
+    };
+    let per = copies
+        * (std::mem::size_of::<(u32, R, R)>() + std::mem::size_of::<Option<LimitPoint<R>>>());
+    subsurf::limit::budget::check(samples * per as f64, || {
+        format!("evaluating {samples} samples on the {on}")
+    })
+    .map_err(subsurf::Error::from)?;
+    Ok(())
+}
+
 /// Where the queries came from, for errors.
 fn query_source(a: &EvalArgs) -> String {
     match &a.at {
@@ -201,6 +221,7 @@ fn queries<R: Real>(a: &EvalArgs, num_ptex: usize) -> anyhow::Result<Vec<(u32, R
             .collect());
     }
     let n = a.samples;
+    check_memory::<R>(a, num_ptex as f64 * (n * n) as f64, "ptex faces")?;
     let d = R::from_f64((n - 1) as f64);
     let mut queries = Vec::with_capacity(num_ptex * n * n);
     for f in 0..num_ptex as u32 {

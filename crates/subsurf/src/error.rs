@@ -116,12 +116,12 @@ pub enum MeshError {
     },
     /// The requested output would not fit in memory.
     #[error(
-        "{what} would need about {bytes} bytes ({human}), more than the limit of {limit_human}"
+        "{what} would need about {human}, more than the limit of {limit_human}"
     )]
     TooLarge {
         /// The output asked for.
         what: String,
-        /// Its estimated size in bytes.
+        /// Its estimated size in bytes (saturated at `u64::MAX`; `human` holds the true size).
         bytes: u64,
         /// The same size, human-readable.
         human: String,

@@ -73,7 +73,13 @@ impl Budget {
         sub: &Topology,
         what: impl FnOnce() -> String,
     ) -> Result<(), MeshError> {
-        let bytes = self.used.saturating_add(child_level_bytes(sub));
+        self.add(child_level_bytes(sub), what)
+    }
+
+    /// Counts `bytes` more, or refuses them (`what` names the step) when the total would pass
+    /// the limit; nothing is counted on a refusal.
+    pub fn add(&mut self, bytes: u64, what: impl FnOnce() -> String) -> Result<(), MeshError> {
+        let bytes = self.used.saturating_add(bytes);
         if self.unread && bytes >= CHECKED_BYTES {
             (self.limit, self.unread) = (memory_limit(bytes), false);
         }
@@ -81,13 +87,29 @@ impl Budget {
             return Err(MeshError::TooLarge {
                 what: what(),
                 bytes,
-                human: human(bytes),
-                limit_human: format!("{} (80% of available memory)", human(self.limit)),
+                human: human(bytes as f64),
+                limit_human: format!("{} (80% of available memory)", human(self.limit as f64)),
             });
         }
         self.used = bytes;
         Ok(())
     }
+}
+
+/// Refuses a single allocation-heavy step (`what` names it) estimated at `bytes` when it would
+/// pass the memory limit, with the estimate; `bytes` is a float so that a size past 2^64 is
+/// reported as it is.
+pub fn check(bytes: f64, what: impl FnOnce() -> String) -> Result<(), MeshError> {
+    Budget::of_available_memory().add(saturate(bytes), what)
+}
+
+/// Estimated bytes of the level one Loop refinement step of a triangle mesh of `faces`
+/// triangles makes, with what the Loop isolation keeps of it: `4 F` triangles at about 150
+/// bytes each (topology about 110: faces 28, edges 44, vertices 38; stencil rows 32; points 6;
+/// the walk's per-face records), measured as the peak resident memory of the isolation per
+/// refined face.
+pub fn tri_child_level_bytes(faces: u64) -> u64 {
+    faces.saturating_mul(4 * 150)
 }
 
 /// Estimated bytes of the level one refinement step of `sub` makes (module documentation).
@@ -110,14 +132,52 @@ fn available_memory() -> Option<u64> {
     Some(kb * 1024)
 }
 
-/// `bytes` in binary units.
-pub fn human(bytes: u64) -> String {
-    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
-    let mut v = bytes as f64;
+/// `bytes` in binary units. Takes a float so that an estimate past `u64::MAX` is shown as
+/// it is (with "more than 2^64 bytes") instead of wrapping or saturating.
+pub fn human(bytes: f64) -> String {
+    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB", "ZiB", "YiB"];
+    let mut v = bytes;
     let mut u = 0;
     while v >= 1024.0 && u + 1 < units.len() {
         v /= 1024.0;
         u += 1;
     }
-    format!("{v:.1} {}", units[u])
+    let shown = if v >= 1e4 {
+        format!("{v:.3e} {}", units[u])
+    } else {
+        format!("{v:.1} {}", units[u])
+    };
+    if bytes >= 18_446_744_073_709_551_616.0 {
+        format!("{shown}, more than 2^64 bytes")
+    } else {
+        format!("{shown}, {} bytes", bytes as u64)
+    }
+}
+
+/// An estimate in bytes as stored in [`MeshError::TooLarge`]: the float rounded, saturated at
+/// `u64::MAX` (the message carries the true size through [`human`]).
+pub(crate) fn saturate(bytes: f64) -> u64 {
+    if bytes >= u64::MAX as f64 {
+        u64::MAX
+    } else {
+        bytes as u64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_past_2_64_are_not_wrapped() {
+        assert_eq!(human(1536.0), "1.5 KiB, 1536 bytes");
+        // 2^70 bytes is 1 ZiB: shown as such, not as 16 EiB or a wrapped count.
+        let z = human(2f64.powi(70));
+        assert!(z.starts_with("1.0 ZiB") && z.ends_with("more than 2^64 bytes"), "{z}");
+        // Past the last unit the mantissa grows in scientific notation.
+        let big = human(2f64.powi(100));
+        assert!(big.starts_with("1.049e6 YiB"), "{big}");
+        assert_eq!(saturate(2f64.powi(100)), u64::MAX);
+        assert_eq!(saturate(1e6), 1_000_000);
+    }
 }

@@ -27,6 +27,7 @@ use super::features::{
     T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
 };
 use super::table::MAX_ISOLATION_LEVEL;
+use super::budget::{tri_child_level_bytes, Budget};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::refine::refine_tri_topology;
@@ -162,6 +163,7 @@ pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> 
         )));
     }
     let level = isolation_level as usize;
+    let mut budget = Budget::of_available_memory();
     let mut levels = vec![base.clone()];
     let mut decided = Vec::new();
     // `front`: (face, U, V, base face) of the faces of the current level the walk reaches.
@@ -193,6 +195,23 @@ pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> 
         }
         if next.is_empty() {
             break;
+        }
+        // Refused up front, with the estimate, before any level is allocated: the isolation
+        // refines every level whole (each four times the last), and a feature found at the
+        // base (an extraordinary vertex, a boundary, a crease) is met again at every level
+        // down to `level`, so all of them are counted at once.
+        if d == 0 {
+            let faces = base.num_faces() as u64;
+            let total = (1..=level as u32).fold(0u64, |sum, k| {
+                sum.saturating_add(tri_child_level_bytes(faces << (2 * (k - 1))))
+            });
+            budget.add(total, || {
+                format!(
+                    "isolating the Loop features of {faces} triangles to level {isolation_level} \
+                     ({} triangles at the last level)",
+                    faces << (2 * level)
+                )
+            })?;
         }
         let child = refine_tri_topology(topo)?;
         levels.push(child);

@@ -124,6 +124,17 @@ impl<R: Real> PatchTable<R> {
         if !t.is_all_quads() && n % 2 == 0 {
             n += 1;
         }
+        // Refused up front, with the estimate, as an oversize refinement level is.
+        let m = n.div_ceil(2) as f64;
+        let samples: f64 = (0..t.num_faces())
+            .map(|f| match t.face_size(f) {
+                4 => (n * n) as f64,
+                size => size as f64 * m * m,
+            })
+            .sum();
+        crate::limit::budget::check(samples * TESSELLATION_BYTES_PER_SAMPLE, || {
+            format!("a limit tessellation of {samples} samples ({n} per ptex-face side)")
+        })?;
         let keys = Keys::new(self, n);
         // Per ptex face: its grid of keys.
         let nf = t.num_faces();
@@ -186,6 +197,12 @@ impl<R: Real> PatchTable<R> {
         })
     }
 }
+
+/// Peak bytes per sample of a uniform limit tessellation with its output mesh: the plan's
+/// keys, owners, queries and quads, the evaluated points, positions and normals, and the
+/// mesh written from them; measured as 129 bytes (peak resident memory of `subsurf limit` on
+/// the 1,575-quad car at 200 samples per side, 63 million samples), rounded up.
+const TESSELLATION_BYTES_PER_SAMPLE: f64 = 140.0;
 
 impl<R: Real> LimitSurface<R> {
     /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the

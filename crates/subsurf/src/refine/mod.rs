@@ -162,15 +162,16 @@ pub struct Refiner {
 }
 
 /// Rough number of bytes the refiner needs for `level` steps of `base` (topology of all levels,
-/// stencils and one set of positions).
-pub fn estimate_bytes(base: &Topology, level: usize) -> u64 {
-    let mut faces = base.num_corners() as u64; // quads after the first step
-    let mut total = 0u64;
+/// stencils and one set of positions). A float: at high levels the estimate passes `u64::MAX`,
+/// and the refusal says how far.
+pub fn estimate_bytes(base: &Topology, level: usize) -> f64 {
+    let mut faces = base.num_corners() as f64; // quads after the first step
+    let mut total = 0f64;
     for _ in 0..level {
         // ~ per child quad: face verts/edges 32 B, ~2 edges x 30 B, ~1 vertex x (rings 40 B,
         // stencil row 60 B, tags, positions 12 B).
-        total += faces * 200;
-        faces *= 4;
+        total += faces * 200.0;
+        faces *= 4.0;
     }
     total
 }
@@ -182,18 +183,19 @@ fn check_size(base: &Topology, level: usize) -> Result<()> {
     if base.options.scheme == Scheme::Loop {
         check_triangles(base)?;
     }
-    let bytes = estimate_bytes(base, level);
+    let estimate = estimate_bytes(base, level);
+    let bytes = crate::limit::budget::saturate(estimate);
     let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
     let limit = memory_limit(bytes);
     if bytes > limit || corners > (u32::MAX as u128) / 2 {
         return Err(MeshError::TooLarge {
             what: format!("refining {} faces to level {level}", base.num_faces()),
             bytes,
-            human: human(bytes),
+            human: human(estimate),
             limit_human: if corners > (u32::MAX as u128) / 2 {
                 "2^31 face corners (32-bit indices)".into()
             } else {
-                format!("{} (80% of available memory)", human(limit))
+                format!("{} (80% of available memory)", human(limit as f64))
             },
         }
         .into());

@@ -17,7 +17,6 @@ use rayon::prelude::*;
 
 use super::pattern::QuadPattern;
 use crate::error::{MeshError, Result, TessError};
-use crate::limit::budget::memory_limit;
 use crate::limit::patch_map::EMPTY;
 use crate::limit::{LimitSurface, PatchTable};
 use crate::topology::Topology;
@@ -396,7 +395,9 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
     let mut samples = 0u64;
     for ([a, b, c, d], [u, v]) in ptex_rates.iter().flatten() {
         let boundary = u64::from(a + b + c + d);
-        samples += boundary + u64::from(u.saturating_sub(1)) * u64::from(v.saturating_sub(1)) + 1;
+        samples = samples.saturating_add(
+            boundary + u64::from(u.saturating_sub(1)) * u64::from(v.saturating_sub(1)) + 1,
+        );
     }
     check_samples(samples)
 }
@@ -405,20 +406,8 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
 /// estimate.
 pub(crate) fn check_samples(samples: u64) -> Result<()> {
     // Per sample: a query, a position, a normal, two triangles with their (u, v), keys.
-    let bytes = samples.saturating_mul(12 + 24 + 2 * (12 + 28) + 16);
-    let limit = memory_limit(bytes);
-    if bytes > limit {
-        return Err(MeshError::TooLarge {
-            what: format!("a tessellation of {samples} samples"),
-            bytes,
-            human: crate::limit::budget::human(bytes),
-            limit_human: format!(
-                "{} (80% of available memory)",
-                crate::limit::budget::human(limit)
-            ),
-        }
-        .into());
-    }
+    let bytes = samples as f64 * (12 + 24 + 2 * (12 + 28) + 16) as f64;
+    crate::limit::budget::check(bytes, || format!("a tessellation of {samples} samples"))?;
     Ok(())
 }
 
