@@ -2,7 +2,7 @@
 //! stage refines every mesh prim, or `--prim`, and is written back whole).
 
 use crate::cmd_limit::surface_backend;
-use crate::common::{check_mesh_output, shown, write_mesh, Backend, SchemeArgs};
+use crate::common::{check_mesh_output, output_mesh, shown, write_mesh, Backend, SchemeArgs};
 use crate::usd_stage::{is_usd, read_stage, select};
 use anyhow::Context as _;
 use std::path::PathBuf;
@@ -109,7 +109,7 @@ fn run_stage(a: &RefineArgs, backend: &dyn surface::Backend) -> anyhow::Result<(
         if !usd_out {
             return finish(a, &mesh, out);
         }
-        stage.set_mesh(&p.path, &out, true)?;
+        stage.set_mesh(&p.path, &output_mesh(&out), true)?;
     }
     stage
         .write_path(&a.output)
@@ -135,22 +135,29 @@ fn refine_one(
 
 /// Writes the refined mesh and reports what was made.
 fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::Result<()> {
+    let written = output_mesh(&out);
     if is_usd(&a.output) {
         // A refined mesh in USD is a polygon mesh (subdivisionScheme none).
-        let mut stage = subsurf::io::usd::Stage::from_mesh(&out);
-        stage.set_mesh("/Mesh", &out, true)?;
+        let mut stage = subsurf::io::usd::Stage::from_mesh(&written);
+        stage.set_mesh("/Mesh", &written, true)?;
         stage
             .write_path(&a.output)
             .with_context(|| format!("writing {}", a.output.display()))?;
     } else {
         write_mesh(&a.output, &out, None)?;
     }
+    let left_out = out.num_faces() - written.num_faces();
     crate::say!(
-        "refined {} faces to level {}: {} vertices, {} faces -> {}",
+        "refined {} faces to level {}: {} vertices, {} faces{} -> {}",
         mesh.num_faces(),
         a.level,
         out.positions.len(),
-        out.num_faces(),
+        written.num_faces(),
+        if left_out > 0 {
+            format!(" ({left_out} hole faces left out; --keep-holes writes them tagged)")
+        } else {
+            String::new()
+        },
         shown(&a.output, true)
     );
     Ok(())

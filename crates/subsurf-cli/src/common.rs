@@ -124,6 +124,31 @@ pub enum FormatArg {
     Glb,
 }
 
+/// The global `--keep-holes`: mesh output writes hole faces tagged instead of leaving them out.
+static KEEP_HOLES: OnceLock<bool> = OnceLock::new();
+
+/// Sets the global `--keep-holes`.
+pub fn set_keep_holes(keep: bool) {
+    let _ = KEEP_HOLES.set(keep);
+}
+
+/// How mesh output is written (the global `--keep-holes`).
+fn write_options() -> subsurf::io::WriteOptions {
+    subsurf::io::WriteOptions {
+        keep_holes: *KEEP_HOLES.get().unwrap_or(&false),
+    }
+}
+
+/// `mesh` as mesh output writes it: without its hole faces unless `--keep-holes` is given
+/// (for writers outside [`write_mesh`], such as a USD stage's).
+pub fn output_mesh(mesh: &subsurf::Mesh) -> std::borrow::Cow<'_, subsurf::Mesh> {
+    if write_options().keep_holes || mesh.holes.is_empty() {
+        std::borrow::Cow::Borrowed(mesh)
+    } else {
+        std::borrow::Cow::Owned(mesh.without_holes())
+    }
+}
+
 /// Sets the format of `-o -` (the global `--format`).
 pub fn set_stdout_format(f: Option<FormatArg>) {
     let f = match f {
@@ -239,10 +264,10 @@ pub fn write_mesh(path: &Path, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> any
     if is_stdio(path) {
         let format = *STDOUT_FORMAT.get().unwrap_or(&Format::Obj);
         let mut w = std::io::BufWriter::new(std::io::stdout().lock());
-        return subsurf::io::write_to(&mut w, format, mesh, normals)
+        return subsurf::io::write_to_with(&mut w, format, mesh, normals, write_options())
             .context("writing standard output");
     }
-    subsurf::io::write_path(path, mesh, normals)
+    subsurf::io::write_path_with(path, mesh, normals, write_options())
         .with_context(|| format!("writing {}", path.display()))
 }
 

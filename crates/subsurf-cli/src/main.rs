@@ -34,6 +34,12 @@ struct Cli {
     /// (`-`) is PLY when it starts with `ply`, binary glTF with `glTF`, OBJ otherwise.
     #[arg(long, value_enum, global = true, value_name = "obj|ply|glb")]
     format: Option<common::FormatArg>,
+    /// Write hole faces into mesh output, tagged (OBJ `t hole`, USD `holeIndices`), so that
+    /// refining the file again continues the same surface. Without it hole faces are left out
+    /// of every format, as viewers that ignore the tags would draw them closed; PLY and glb
+    /// cannot tag them and refuse it.
+    #[arg(long, global = true)]
+    keep_holes: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -98,6 +104,7 @@ fn main() {
     let cli = Cli::parse();
     progress::set_quiet(cli.quiet);
     common::set_stdout_format(cli.format);
+    common::set_keep_holes(cli.keep_holes);
     let result = match &cli.command {
         Command::Info(a) => cmd_info::run(a),
         Command::Refine(a) => cmd_refine::run(a),

@@ -3,7 +3,7 @@
 mod common;
 
 use common::{bin, repo, run_ok, tmp};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 fn example(name: &str) -> PathBuf {
     repo(&format!("examples/{name}"))
@@ -105,4 +105,47 @@ fn errors_name_the_problem_and_exit_non_zero() {
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("would need about"), "{err}");
+}
+
+/// Requests that cannot fit are refused before anything large is allocated, with the true
+/// size of the estimate: past 2^64 bytes it is said as such (not wrapped, not saturated at
+/// 16 EiB, no overflow panic), and the Loop isolation, uniform limit tessellations and
+/// `eval`'s samples are checked as an oversize `--level` is (issue 40).
+#[test]
+fn oversize_requests_are_refused_with_the_true_estimate() {
+    let car = example("car.obj");
+    let loop_mesh = repo("testdata/shapes/loop_pole360.obj");
+    let cases: [(&Path, &[&str]); 5] = [
+        (&car, &["refine", "--level", "40"]),
+        (&car, &["limit", "--tess", "4000"]),
+        (&car, &["eval", "--samples", "4096"]),
+        (&loop_mesh, &["eval", "--isolation", "10"]),
+        (&loop_mesh, &["refine", "--level", "30"]),
+    ];
+    for (input, args) in cases {
+        let out = bin()
+            .arg(args[0])
+            .arg(input)
+            .args(&args[1..])
+            .arg("-o")
+            .arg(tmp("oversize.obj"))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        let what = format!("{args:?}");
+        assert_eq!(out.status.code(), Some(1), "{what}: {err}");
+        assert!(err.contains("would need about"), "{what}: {err}");
+        assert!(!err.contains("panicked") && !err.contains("backtrace"), "{what}: {err}");
+        assert!(!err.contains("16.0 EiB"), "{what}: saturated: {err}");
+    }
+    // 4^40 faces: about 2^100 bytes, said as more than 2^64.
+    let out = bin()
+        .arg("refine")
+        .arg(&car)
+        .args(["--level", "40", "-o"])
+        .arg(tmp("oversize.obj"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("more than 2^64 bytes"), "{err}");
 }

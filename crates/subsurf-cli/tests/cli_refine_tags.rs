@@ -1,8 +1,9 @@
-//! `subsurf refine` writes the tags that remain (issue 12): refining the written level 1 two
-//! more levels gives the file that refining the input three levels writes — the same faces and
+//! `subsurf refine --keep-holes` writes the tags that remain (issue 12): refining the written
+//! level 1 two more levels gives the file that refining the input three levels writes — the same faces and
 //! holes, vertex for vertex up to the numbering of edge points, within 1e-6 of the bounding-box
 //! diagonal, UVs included. The options given on the command line travel in the file. Both of
 //! the CLI's refinement paths: one-shot with a lean last level (no UVs) and the full refiner.
+//! Without `--keep-holes` hole faces are left out of every format (issue 40).
 
 mod common;
 
@@ -75,7 +76,8 @@ fn refined_file_refines_on_as_the_level() {
         ),
     ] {
         let input = repo(shape);
-        let l1 = refine(&input, 1, flags, &format!("{tag}_l1.obj"));
+        let keep: Vec<&str> = flags.iter().copied().chain(["--keep-holes"]).collect();
+        let l1 = refine(&input, 1, &keep, &format!("{tag}_l1.obj"));
         assert!(
             !l1.creases.is_empty() || !l1.holes.is_empty(),
             "{shape}: no tags written"
@@ -84,10 +86,10 @@ fn refined_file_refines_on_as_the_level() {
         let again = refine(
             &tmp(&format!("{tag}_l1.obj")),
             2,
-            &[],
+            &["--keep-holes"],
             &format!("{tag}_l12.obj"),
         );
-        let direct = refine(&input, 3, flags, &format!("{tag}_l3.obj"));
+        let direct = refine(&input, 3, &keep, &format!("{tag}_l3.obj"));
         assert_eq!(again.options, direct.options, "{shape}: options");
         assert_eq!(
             again.creases.len(),
@@ -109,11 +111,57 @@ fn refined_file_refines_on_as_the_level() {
 }
 
 #[test]
-fn ply_output_leaves_holes_out() {
+fn every_format_leaves_holes_out_by_default() {
     let input = repo("testdata/shapes/catmark_hole_test1.obj");
-    let obj = refine(&input, 1, &[], "hole_l1_all.obj");
-    let ply = refine(&input, 1, &[], "hole_l1.ply");
-    assert!(!obj.holes.is_empty());
-    assert_eq!(ply.num_faces(), obj.num_faces() - obj.holes.len());
-    assert_eq!(ply.num_vertices(), obj.num_vertices());
+    let all = refine(&input, 1, &["--keep-holes"], "hole_l1_all.obj");
+    assert!(!all.holes.is_empty());
+    let holes: std::collections::HashSet<u32> = all.holes.iter().copied().collect();
+    let drawn: Vec<u32> = (0..all.num_faces() as u32)
+        .filter(|f| !holes.contains(f))
+        .collect();
+    for out in ["hole_l1.obj", "hole_l1.ply", "hole_l1.usda", "hole_l1.glb"] {
+        let m = refine(&input, 1, &[], out);
+        assert!(m.holes.is_empty(), "{out}: holes tagged");
+        if out.ends_with(".glb") {
+            // Triangulated (two triangles per drawn quad), only the vertices it uses.
+            assert_eq!(m.num_faces(), 2 * drawn.len(), "{out}: faces");
+            continue;
+        }
+        assert_eq!(m.num_vertices(), all.num_vertices(), "{out}: vertices");
+        assert_eq!(m.num_faces(), drawn.len(), "{out}: faces");
+        // The faces drawn are the input's non-hole faces, in order.
+        let faces = |m: &Mesh| -> Vec<Vec<u32>> {
+            let mut at = 0;
+            m.face_counts
+                .iter()
+                .map(|&n| {
+                    at += n as usize;
+                    m.face_indices[at - n as usize..at].to_vec()
+                })
+                .collect()
+        };
+        let want: Vec<Vec<u32>> = drawn.iter().map(|&f| faces(&all)[f as usize].clone()).collect();
+        assert_eq!(faces(&m), want, "{out}: faces");
+    }
+    // An OBJ with no `f` line of a hole: what trimesh, Blender and MeshLab read.
+    let text = std::fs::read_to_string(tmp("hole_l1.obj")).unwrap();
+    assert!(!text.contains("t hole"), "hole tags written");
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), drawn.len());
+}
+
+#[test]
+fn keep_holes_is_refused_where_holes_cannot_be_tagged() {
+    let input = repo("testdata/shapes/catmark_hole_test1.obj");
+    for out in ["hole_keep.ply", "hole_keep.glb"] {
+        let o = bin()
+            .args(["--keep-holes", "refine"])
+            .arg(&input)
+            .args(["--level", "1", "-o"])
+            .arg(tmp(out))
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{out}: accepted");
+        assert!(err.contains("cannot tag hole faces"), "{out}: {err}");
+    }
 }

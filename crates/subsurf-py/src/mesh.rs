@@ -265,13 +265,15 @@ impl PyMesh {
         })
     }
 
-    /// Writes the mesh (.obj, .ply or .glb by extension).
-    #[pyo3(signature = (path, normals=None))]
+    /// Writes the mesh (.obj, .ply, .glb or USD by extension), hole faces left out unless
+    /// `keep_holes` (then tagged in OBJ and USD; refused for PLY and glb).
+    #[pyo3(signature = (path, normals=None, keep_holes=false))]
     fn write(
         &self,
         py: Python<'_>,
         path: String,
         normals: Option<PyReadonlyArray2<'_, f32>>,
+        keep_holes: bool,
     ) -> PyResult<()> {
         let normals = normals.map(|n| rows::<3, f32>(&n, "normals")).transpose()?;
         if let Some(n) = &normals {
@@ -281,8 +283,16 @@ impl PyMesh {
         }
         let m = self.inner.clone();
         let p = path.clone();
-        py.detach(move || subsurf::io::write_path(&p, &m, normals.as_deref()))
+        let options = subsurf::io::WriteOptions { keep_holes };
+        py.detach(move || subsurf::io::write_path_with(&p, &m, normals.as_deref(), options))
             .map_err(|e| lib_error(py, e, Some(&path)))
+    }
+
+    /// The mesh with its hole faces left out (every vertex kept).
+    fn without_holes(&self) -> PyMesh {
+        PyMesh {
+            inner: Arc::new(self.inner.without_holes()),
+        }
     }
 
     #[getter]

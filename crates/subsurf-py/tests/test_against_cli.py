@@ -15,10 +15,15 @@ def test_refine_matches_cli_file(cli, tmp_path, name, limit):
     level = 2
     src = SHAPES / f"{name}.obj"
     cli_out = tmp_path / "cli.obj"
-    cli("refine", src, "--level", level, "-o", cli_out, *(["--limit"] if limit else []))
+    cli("refine", src, "--level", level, "-o", cli_out, "--keep-holes",
+        *(["--limit"] if limit else []))
     mesh = subsurf.read(src)
     py = subsurf.refine(mesh, level, limit=limit)
     back = subsurf.read(cli_out)
+    # Without --keep-holes the CLI leaves the hole faces out, as Mesh.write does.
+    drawn = tmp_path / "drawn.obj"
+    cli("refine", src, "--level", level, "-o", drawn, *(["--limit"] if limit else []))
+    assert subsurf.read(drawn).faces() == py.without_holes().faces()
     # Same float32 positions (OBJ round-trips float32 exactly), faces and corner UVs.
     assert np.array_equal(back.points, py.points)
     # All faces, holes and the remaining sharpness tagged as in the CLI's OBJ.

@@ -29,23 +29,42 @@ def test_crease_forms_agree():
     assert np.array_equal(subsurf.refine(b, 2).points, subsurf.refine(m, 2).points)
 
 
-@pytest.mark.parametrize("ext", ["obj", "ply"])
+@pytest.mark.parametrize("ext", ["obj", "ply", "usda"])
 @pytest.mark.parametrize("name", ["catmark_cube_creases1", "catmark_hole_test2", "catmark_fvar_bound1"])
 def test_file_round_trip(tmp_path, ext, name):
     m = subsurf.read(SHAPES / f"{name}.obj")
     p = tmp_path / f"m.{ext}"
+    # By default every format leaves the hole faces out (viewers ignoring the tags would
+    # draw them closed), every vertex kept.
     m.write(p)
     back = subsurf.read(p)
     assert np.array_equal(back.points, m.points)
-    if ext == "obj":  # every face, holes tagged
-        assert np.array_equal(back.face_indices, m.face_indices)
-    else:  # PLY cannot tag holes: it leaves the hole faces out
-        kept = [f for k, f in enumerate(m.faces()) if k not in set(m.holes.tolist())]
-        assert back.faces() == kept
-    if ext == "obj":  # tags and UVs survive OBJ
-        assert np.array_equal(back.creases[1], m.creases[1])
-        assert np.array_equal(back.holes, m.holes)
-        assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+    holes = set(m.holes.tolist())
+    assert back.faces() == [f for k, f in enumerate(m.faces()) if k not in holes]
+    assert len(back.holes) == 0
+    assert back.faces() == m.without_holes().faces()
+    if ext == "ply":  # PLY cannot tag holes: keeping them is refused when there are any
+        if holes:
+            with pytest.raises(subsurf.SubsurfError, match="cannot tag hole faces"):
+                m.write(p, keep_holes=True)
+        return
+    # keep_holes: every face, holes tagged, tags and UVs kept: the same surface again.
+    m.write(p, keep_holes=True)
+    back = subsurf.read(p)
+    assert np.array_equal(back.face_indices, m.face_indices)
+    assert np.array_equal(back.creases[1], m.creases[1])
+    assert np.array_equal(back.holes, m.holes)
+    assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+
+
+def test_trimesh_leaves_holes_out():
+    pytest.importorskip("trimesh")
+    m = subsurf.refine(subsurf.read(SHAPES / "catmark_hole_test1.obj"), 1)
+    assert len(m.holes) > 0
+    t = m.to_trimesh()
+    drawn = m.num_faces - len(m.holes)
+    assert len(t.faces) == 2 * drawn  # quads after one step, two triangles each
+    assert len(t.vertices) == m.num_vertices
 
 
 def test_glb_is_written(tmp_path):

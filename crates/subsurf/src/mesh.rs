@@ -80,6 +80,51 @@ impl Mesh {
         self.positions.len()
     }
 
+    /// The mesh with its hole faces left out, as a viewer that ignores hole tags should see
+    /// it: the other faces (and their UV indices) in their order, every vertex kept (so
+    /// per-vertex normals still line up), creases and corners kept, no holes. Hole indices
+    /// past the last face are passed over. The mesh itself when it has no holes.
+    pub fn without_holes(&self) -> Mesh {
+        if self.holes.is_empty() {
+            return self.clone();
+        }
+        let mut hole = vec![false; self.face_counts.len()];
+        for &f in &self.holes {
+            if let Some(h) = hole.get_mut(f as usize) {
+                *h = true;
+            }
+        }
+        let mut face_counts = Vec::with_capacity(self.face_counts.len());
+        let mut face_indices = Vec::with_capacity(self.face_indices.len());
+        let mut uv_indices = self.uvs.as_ref().map(|_| Vec::new());
+        let mut start = 0usize;
+        for (f, &n) in self.face_counts.iter().enumerate() {
+            let end = (start + n as usize).min(self.face_indices.len());
+            if !hole[f] {
+                face_counts.push(n);
+                face_indices.extend_from_slice(&self.face_indices[start.min(end)..end]);
+                if let (Some(out), Some(uv)) = (uv_indices.as_mut(), self.uvs.as_ref()) {
+                    let e = end.min(uv.indices.len());
+                    out.extend_from_slice(&uv.indices[start.min(e)..e]);
+                }
+            }
+            start = end;
+        }
+        Mesh {
+            positions: self.positions.clone(),
+            face_counts,
+            face_indices,
+            uvs: self.uvs.as_ref().zip(uv_indices).map(|(uv, indices)| FaceVarying {
+                values: uv.values.clone(),
+                indices,
+            }),
+            creases: self.creases.clone(),
+            corners: self.corners.clone(),
+            holes: Vec::new(),
+            options: self.options,
+        }
+    }
+
     /// Axis-aligned bounding box `(min, max)` of the positions; `None` for an empty mesh.
     pub fn bounding_box(&self) -> Option<([f32; 3], [f32; 3])> {
         bounding_box(&self.positions)

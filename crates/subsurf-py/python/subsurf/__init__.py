@@ -192,10 +192,19 @@ class Mesh:
             s += c
         return out
 
-    def write(self, path: Union[str, "os.PathLike[str]"], normals: Any = None) -> None:
-        """Writes the mesh: .obj (with OpenSubdiv tags), .ply or .glb, by extension."""
+    def write(self, path: Union[str, "os.PathLike[str]"], normals: Any = None, *,
+              keep_holes: bool = False) -> None:
+        """Writes the mesh: .obj (with OpenSubdiv tags), .ply, .glb or USD, by extension.
+        Hole faces are left out, as viewers that ignore hole tags would draw them closed;
+        ``keep_holes=True`` writes them tagged (OBJ ``t hole``, USD ``holeIndices``), so that
+        refining the file again continues the same surface (PLY and glb refuse it)."""
         n = None if normals is None else _floats(normals, 3, "normals")
-        self._m.write(str(path), n)
+        self._m.write(str(path), n, bool(keep_holes))
+
+    def without_holes(self) -> "Mesh":
+        """The mesh with its hole faces left out (every vertex kept, so per-point data still
+        lines up): what a viewer should draw."""
+        return Mesh._wrap(self._m.without_holes())
 
     def triangles(self) -> np.ndarray:
         """(t, 3) uint32 fan triangulation of the faces (holes kept)."""
@@ -213,10 +222,12 @@ class Mesh:
         return cls(np.asarray(t.vertices), np.asarray(t.faces), **kwargs)
 
     def to_trimesh(self, **kwargs: Any) -> Any:
-        """A ``trimesh.Trimesh`` (faces fan-triangulated, vertices not merged)."""
+        """A ``trimesh.Trimesh`` (faces fan-triangulated, hole faces left out, vertices not
+        merged)."""
         import trimesh
 
-        return trimesh.Trimesh(vertices=self.points.astype(np.float64), faces=self.triangles(),
+        drawn = self.without_holes() if len(self.holes) else self
+        return trimesh.Trimesh(vertices=self.points.astype(np.float64), faces=drawn.triangles(),
                                process=False, **kwargs)
 
     def __repr__(self) -> str:
@@ -249,9 +260,12 @@ def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu")
     face points, edge points). ``limit=True`` moves the last level and its UVs to the limit.
     UVs are refined in the mesh's ``uv_interpolation`` mode. ``backend``: "cpu" or "gpu"
     (positions and UVs refined on the GPU). The result keeps every face of the last level,
-    hole faces listed in ``holes``, with the crease and corner sharpness that remains, so it
-    refines on as the level itself would; UVs are the last level's values and per-corner
-    indices. Same numbers and faces as ``subsurf refine`` writes to OBJ."""
+    hole faces included and listed in ``holes``, with the crease and corner sharpness that
+    remains, so it refines on as the level itself would; UVs are the last level's values and
+    per-corner indices. ``Mesh.write`` leaves the hole faces out unless ``keep_holes=True``
+    (as ``subsurf refine`` does without and with ``--keep-holes``); ``without_holes()``
+    gives the faces a viewer should draw. Same numbers and faces as
+    ``subsurf --keep-holes refine`` writes to OBJ."""
     return Mesh._wrap(_subsurf.refine(_mesh(mesh), _int(level, "level"), bool(limit), backend))
 
 

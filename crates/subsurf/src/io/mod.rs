@@ -160,14 +160,51 @@ pub fn read_bytes(bytes: &[u8], format: Format) -> Result<Mesh> {
     }
 }
 
+/// How a mesh is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct WriteOptions {
+    /// Write hole faces, tagged, so that refining the file again continues the same surface
+    /// (OBJ: `t hole` tags, USD: `holeIndices`; PLY and glTF cannot tag them and are refused).
+    /// Off by default: hole faces are left out of every format, as viewers and libraries that
+    /// ignore the tags (trimesh, Blender, MeshLab) would otherwise draw the holes closed.
+    pub keep_holes: bool,
+}
+
 /// Writes a mesh in `format` to `w` (for example standard output); `normals` as in
-/// [`write_path`].
+/// [`write_path`]. Hole faces are left out ([`WriteOptions`]).
 pub fn write_to(
     w: &mut impl std::io::Write,
     format: Format,
     mesh: &Mesh,
     normals: Option<&[[f32; 3]]>,
 ) -> Result<()> {
+    write_to_with(w, format, mesh, normals, WriteOptions::default())
+}
+
+/// [`write_to`] with options: with [`WriteOptions::keep_holes`] the hole faces are written
+/// tagged (OBJ, USD) or the request is refused (PLY, glTF).
+pub fn write_to_with(
+    w: &mut impl std::io::Write,
+    format: Format,
+    mesh: &Mesh,
+    normals: Option<&[[f32; 3]]>,
+    options: WriteOptions,
+) -> Result<()> {
+    let dropped;
+    let mesh = if options.keep_holes {
+        if !mesh.holes.is_empty() && matches!(format, Format::Ply | Format::Glb) {
+            return Err(Error::Unsupported(format!(
+                "keeping holes in {}: the format cannot tag hole faces; write OBJ or USD",
+                if format == Format::Ply { "PLY" } else { "glTF" }
+            )));
+        }
+        mesh
+    } else if mesh.holes.is_empty() {
+        mesh
+    } else {
+        dropped = mesh.without_holes();
+        &dropped
+    };
     match (format, normals) {
         (Format::Obj, None) => obj::write(mesh, w)?,
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,
@@ -198,15 +235,26 @@ pub fn read_path(path: impl AsRef<Path>) -> Result<Mesh> {
 }
 
 /// Writes a mesh, choosing the format by extension. With `normals` (one per vertex) OBJ gets
-/// `vn` lines, PLY gets `nx ny nz` properties and glTF a `NORMAL` attribute.
+/// `vn` lines, PLY gets `nx ny nz` properties and glTF a `NORMAL` attribute. Hole faces are
+/// left out ([`WriteOptions`]).
 pub fn write_path(path: impl AsRef<Path>, mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<()> {
+    write_path_with(path, mesh, normals, WriteOptions::default())
+}
+
+/// [`write_path`] with options ([`write_to_with`]).
+pub fn write_path_with(
+    path: impl AsRef<Path>,
+    mesh: &Mesh,
+    normals: Option<&[[f32; 3]]>,
+    options: WriteOptions,
+) -> Result<()> {
     let path = path.as_ref();
     let format = Format::from_path(path)?;
     if !format.writable() {
-        return write_to(&mut std::io::sink(), format, mesh, normals);
+        return write_to_with(&mut std::io::sink(), format, mesh, normals, options);
     }
     let file = std::fs::File::create(path)?;
-    write_to(&mut std::io::BufWriter::new(file), format, mesh, normals)
+    write_to_with(&mut std::io::BufWriter::new(file), format, mesh, normals, options)
 }
 
 /// A [`Error::Parse`] at `line`.
