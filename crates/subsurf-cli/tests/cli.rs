@@ -135,7 +135,10 @@ fn oversize_requests_are_refused_with_the_true_estimate() {
         let what = format!("{args:?}");
         assert_eq!(out.status.code(), Some(1), "{what}: {err}");
         assert!(err.contains("would need about"), "{what}: {err}");
-        assert!(!err.contains("panicked") && !err.contains("backtrace"), "{what}: {err}");
+        assert!(
+            !err.contains("panicked") && !err.contains("backtrace"),
+            "{what}: {err}"
+        );
         assert!(!err.contains("16.0 EiB"), "{what}: saturated: {err}");
     }
     // 4^40 faces: about 2^100 bytes, said as more than 2^64.

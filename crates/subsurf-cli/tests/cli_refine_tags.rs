@@ -140,13 +140,19 @@ fn every_format_leaves_holes_out_by_default() {
                 })
                 .collect()
         };
-        let want: Vec<Vec<u32>> = drawn.iter().map(|&f| faces(&all)[f as usize].clone()).collect();
+        let want: Vec<Vec<u32>> = drawn
+            .iter()
+            .map(|&f| faces(&all)[f as usize].clone())
+            .collect();
         assert_eq!(faces(&m), want, "{out}: faces");
     }
     // An OBJ with no `f` line of a hole: what trimesh, Blender and MeshLab read.
     let text = std::fs::read_to_string(tmp("hole_l1.obj")).unwrap();
     assert!(!text.contains("t hole"), "hole tags written");
-    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), drawn.len());
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("f ")).count(),
+        drawn.len()
+    );
 }
 
 #[test]

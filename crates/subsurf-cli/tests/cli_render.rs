@@ -253,3 +253,66 @@ fn render_limit_draws_the_loop_limit_surface() {
         assert!(err.contains(want), "{flags:?}: {err}");
     }
 }
+
+/// The silhouette's margins (left, right, top, bottom) in pixels: the first and last rows and
+/// columns whose pixels differ from the corner's background.
+fn margins(path: &Path) -> [u32; 4] {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let (w, h) = (info.width as usize, info.height as usize);
+    let ch = info.line_size / w;
+    let px = |x: usize, y: usize| &buf[y * info.line_size + x * ch..][..3];
+    let bg = px(0, 0).to_vec();
+    let (mut x0, mut x1, mut y0, mut y1) = (w, 0, h, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let d: u32 = px(x, y)
+                .iter()
+                .zip(&bg)
+                .map(|(&a, &b)| (a as i32 - b as i32).unsigned_abs())
+                .sum();
+            if d > 30 {
+                (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+            }
+        }
+    }
+    assert!(x0 <= x1, "{}: nothing drawn", path.display());
+    [x0, w - 1 - x1, y0, h - 1 - y1].map(|m| m as u32)
+}
+
+/// Issue 40: the silhouette is centred, with the same margin on opposite sides, however
+/// strong the perspective: a stage of two cubes (one translated by (6, 6, 6), rotated and
+/// scaled, made with Pixar's usd-core) and a single mesh, in the iso, front and top views.
+#[test]
+fn render_centres_the_silhouette_with_equal_margins() {
+    let stage = repo("crates/subsurf/tests/data/usd/two_cubes.usda");
+    let pawn = repo("examples/pawn.obj");
+    let (w, h) = (800u32, 600u32);
+    for (input, tag) in [(&stage, "cubes"), (&pawn, "pawn")] {
+        for view in ["iso", "front", "top"] {
+            let out = tmp(&format!("frame_{tag}_{view}.png"));
+            let Some(_) = run_gpu(bin().arg("render").arg(input).arg("-o").arg(&out).args([
+                "--view",
+                view,
+                "--size",
+                &format!("{w}x{h}"),
+            ])) else {
+                return;
+            };
+            let [l, r, t, b] = margins(&out);
+            let at = format!("{tag} {view}: left {l} right {r} top {t} bottom {b}");
+            // Opposite margins within 5% of the image of each other, each at least 2%.
+            assert!(l.abs_diff(r) as f32 <= 0.05 * w as f32, "{at}");
+            assert!(t.abs_diff(b) as f32 <= 0.05 * h as f32, "{at}");
+            assert!(l.min(r) as f32 >= 0.02 * w as f32, "{at}");
+            assert!(t.min(b) as f32 >= 0.02 * h as f32, "{at}");
+            // The binding pair of sides at the margin (1.05): the silhouette fills the image.
+            assert!(
+                (l + r) as f32 <= 0.1 * w as f32 || (t + b) as f32 <= 0.1 * h as f32,
+                "{at}"
+            );
+        }
+    }
+}

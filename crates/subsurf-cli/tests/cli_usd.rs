@@ -185,15 +185,31 @@ fn refine_writes_every_mesh_prim_back_into_its_stage() {
     assert!(String::from_utf8_lossy(&st.stderr).contains("--prim"));
     run_ok(
         bin()
-            .args(["refine", "-l", "1", "--prim", "/World/A", "-o"])
+            .args([
+                "refine",
+                "-l",
+                "1",
+                "--prim",
+                "/World/A",
+                "--keep-holes",
+                "-o",
+            ])
             .arg(&obj)
             .arg(stage_path()),
     );
     // All 6 x 4 faces of level 1, the 4 children of the hole face tagged as holes (as
-    // `refine` writes every OBJ).
+    // `refine --keep-holes` writes every OBJ); without the flag the 4 are left out.
     let one = subsurf::io::read_path(&obj).unwrap();
     assert_eq!(one.num_faces(), 6 * 4);
     assert_eq!(one.holes.len(), 4);
+    run_ok(
+        bin()
+            .args(["refine", "-l", "1", "--prim", "/World/A", "-o"])
+            .arg(&obj)
+            .arg(stage_path()),
+    );
+    let drawn = subsurf::io::read_path(&obj).unwrap();
+    assert_eq!(drawn, one.without_holes());
 }
 
 #[test]

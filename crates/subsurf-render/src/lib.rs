@@ -155,7 +155,8 @@ pub enum Fit {
     /// The bounding sphere (about the box centre) touches the narrower border: the same
     /// distance from every view direction.
     Sphere,
-    /// The points themselves touch the border: elongated models fill the image.
+    /// The projected points themselves, centred with the same margin on opposite sides, the
+    /// binding pair of sides at the margin: elongated models fill the image (the default).
     Tight,
 }
 
@@ -210,7 +211,7 @@ impl Default for RenderOptions {
             samples: 4,
             fov_y_degrees: 30.0,
             margin: 1.05,
-            fit: Fit::Sphere,
+            fit: Fit::Tight,
         }
     }
 }

@@ -115,9 +115,7 @@ pub enum MeshError {
         found: usize,
     },
     /// The requested output would not fit in memory.
-    #[error(
-        "{what} would need about {human}, more than the limit of {limit_human}"
-    )]
+    #[error("{what} would need about {human}, more than the limit of {limit_human}")]
     TooLarge {
         /// The output asked for.
         what: String,

@@ -114,10 +114,14 @@ impl Mesh {
             positions: self.positions.clone(),
             face_counts,
             face_indices,
-            uvs: self.uvs.as_ref().zip(uv_indices).map(|(uv, indices)| FaceVarying {
-                values: uv.values.clone(),
-                indices,
-            }),
+            uvs: self
+                .uvs
+                .as_ref()
+                .zip(uv_indices)
+                .map(|(uv, indices)| FaceVarying {
+                    values: uv.values.clone(),
+                    indices,
+                }),
             creases: self.creases.clone(),
             corners: self.corners.clone(),
             holes: Vec::new(),

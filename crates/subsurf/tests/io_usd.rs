@@ -368,11 +368,20 @@ fn stages_subsurf_writes_open_in_pxr() {
             "{ext}: the other prims"
         );
     }
-    // A bare mesh written through io::write_path opens in pxr as one cage prim.
+    // A bare mesh written through io::write_path_with (holes kept) opens in pxr as one cage
+    // prim; write_path leaves its hole faces out.
     let cage = meshes[0].mesh.clone();
+    assert!(!cage.holes.is_empty());
+    let keep = subsurf::io::WriteOptions { keep_holes: true };
     for ext in ["usda", "usdc", "usdz"] {
         let file = dir.join(format!("cage.{ext}"));
         subsurf::io::write_path(&file, &cage, None).unwrap();
+        assert_eq!(
+            subsurf::io::read_path(&file).unwrap(),
+            cage.without_holes(),
+            "{ext}"
+        );
+        subsurf::io::write_path_with(&file, &cage, None, keep).unwrap();
         assert_eq!(subsurf::io::read_path(&file).unwrap(), cage, "{ext}");
         if pxr {
             check_pxr_mesh(ext, &pxr_dump(&file), "/Mesh", &cage, false);

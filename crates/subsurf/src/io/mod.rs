@@ -254,7 +254,13 @@ pub fn write_path_with(
         return write_to_with(&mut std::io::sink(), format, mesh, normals, options);
     }
     let file = std::fs::File::create(path)?;
-    write_to_with(&mut std::io::BufWriter::new(file), format, mesh, normals, options)
+    write_to_with(
+        &mut std::io::BufWriter::new(file),
+        format,
+        mesh,
+        normals,
+        options,
+    )
 }
 
 /// A [`Error::Parse`] at `line`.

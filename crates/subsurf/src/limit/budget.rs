@@ -173,7 +173,10 @@ mod tests {
         assert_eq!(human(1536.0), "1.5 KiB, 1536 bytes");
         // 2^70 bytes is 1 ZiB: shown as such, not as 16 EiB or a wrapped count.
         let z = human(2f64.powi(70));
-        assert!(z.starts_with("1.0 ZiB") && z.ends_with("more than 2^64 bytes"), "{z}");
+        assert!(
+            z.starts_with("1.0 ZiB") && z.ends_with("more than 2^64 bytes"),
+            "{z}"
+        );
         // Past the last unit the mantissa grows in scientific notation.
         let big = human(2f64.powi(100));
         assert!(big.starts_with("1.049e6 YiB"), "{big}");

@@ -22,12 +22,12 @@
 //! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
 //! the middle one) through the refined faces.
 
+use super::budget::{tri_child_level_bytes, Budget};
 use super::features::{
     inf_sharp_vtag_has_features, FeatureMask, VTag, T_BOUNDARY, T_INF_SHARP, T_INF_SHARP_EDGES,
     T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
 };
 use super::table::MAX_ISOLATION_LEVEL;
-use super::budget::{tri_child_level_bytes, Budget};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::refine::refine_tri_topology;

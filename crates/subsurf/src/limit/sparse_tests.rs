@@ -297,7 +297,8 @@ fn a_construction_over_its_memory_budget_is_refused_with_the_estimate() {
             })) => {
                 assert!(bytes > limit && bytes <= free.used, "{bytes} vs {limit}");
                 assert!(what.contains("isolating features"), "{what}");
-                assert!(human.ends_with("iB") || human.ends_with(" B"), "{human}");
+                assert!(human.contains("iB, ") || human.contains(" B, "), "{human}");
+                assert!(human.ends_with(&format!(", {bytes} bytes")), "{human}");
             }
             other => panic!("limit {limit}: {:?}", other.map(|p| p.num_patches())),
         }
