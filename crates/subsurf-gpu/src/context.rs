@@ -44,6 +44,7 @@ impl GpuContext {
     }
 
     async fn new_async() -> Result<Self> {
+        crate::headless::quiet_once();
         let from_env = wgpu::Backends::from_env();
         let attempts: Vec<wgpu::Backends> = match from_env {
             Some(b) => vec![b],
@@ -220,6 +221,7 @@ impl GpuContext {
 
 /// Lists the adapters visible with the given backends, as `name (backend, type)` lines.
 pub fn list_adapters() -> Vec<String> {
+    crate::headless::quiet_once();
     let backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::all());
     let mut desc = wgpu::InstanceDescriptor::new_without_display_handle().with_env();
     desc.backends = backends;

@@ -7,7 +7,9 @@
 //! `error: XDG_RUNTIME_DIR is invalid or not set in the environment.` on stderr for every
 //! instance, although nothing failed. With no display server there is no display to select
 //! by, so the layer has nothing to do: [`disable_display_layers_when_headless`] switches it
-//! off through its documented `NODEVICE_SELECT=1` variable.
+//! off through its documented `NODEVICE_SELECT=1` variable. Every instance the library
+//! creates ([`crate::GpuContext::new`], [`crate::list_adapters`]) does this first, once per
+//! process, so that a program using the library directly stays quiet too.
 
 /// The environment variable that disables Mesa's device-select layer.
 pub const NODEVICE_SELECT: &str = "NODEVICE_SELECT";
@@ -29,4 +31,16 @@ pub fn disable_display_layers_when_headless() -> bool {
     }
     std::env::set_var(NODEVICE_SELECT, "1");
     true
+}
+
+/// [`disable_display_layers_when_headless`], once per process: called before the library
+/// creates a wgpu instance. Setting the variable while other threads run is sound for Rust
+/// readers (the standard library serialises its environment access); the Vulkan loader reads
+/// it only while an instance is created, and every instance the library creates waits for
+/// this to finish first.
+pub(crate) fn quiet_once() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        disable_display_layers_when_headless();
+    });
 }
