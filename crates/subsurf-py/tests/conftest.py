@@ -22,6 +22,19 @@ SHAPE_NAMES = [
 ]
 
 
+if os.environ.get("SUBSURF_EXPECT_INSTALLED"):
+    # CI runs the suite against the wheel installed into a fresh virtual environment:
+    # `subsurf` must come from that environment's site packages, not from the source tree or
+    # an earlier install elsewhere.
+    import sys
+
+    import subsurf as _installed
+
+    _at = Path(_installed.__file__).resolve()
+    if Path(sys.prefix).resolve() not in _at.parents or "site-packages" not in _at.parts:
+        raise RuntimeError(f"subsurf imported from {_at}, not from the wheel in {sys.prefix}")
+
+
 def cli_path():
     env = os.environ.get("SUBSURF_CLI")
     if env:
