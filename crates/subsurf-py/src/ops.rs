@@ -470,7 +470,7 @@ pub fn tessellate(
 
 #[cfg(feature = "gpu")]
 #[pyfunction]
-#[pyo3(signature = (mesh, width, height, method, n, view, up, colors, cage, background))]
+#[pyo3(signature = (mesh, width, height, method, n, view, up, colors, cage, background, path=None))]
 // One argument per keyword of the Python `render`.
 #[allow(clippy::too_many_arguments)]
 pub fn render(
@@ -485,6 +485,7 @@ pub fn render(
     colors: &str,
     cage: bool,
     background: [u8; 4],
+    path: Option<String>,
 ) -> PyResult<Py<PyAny>> {
     use subsurf_render::{RenderOptions, UpAxis, View};
     if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
@@ -522,7 +523,12 @@ pub fn render(
             background,
             ..Default::default()
         };
-        subsurf_render::render(&s.into(), &options).map_err(Ok)
+        let img = subsurf_render::render(&s.into(), &options).map_err(|e| Ok((None, e)))?;
+        // Encoded by the render crate, as the command line writes its PNG files.
+        if let Some(p) = &path {
+            img.save_png(p).map_err(|e| Ok((Some(p.clone()), e)))?;
+        }
+        Ok(img)
     });
     match r {
         Ok(img) => {
@@ -534,6 +540,9 @@ pub fn render(
             })
         }
         Err(Err(e)) => Err(surface_error(py, e)),
-        Err(Ok(e)) => Err(gpu_error(py, e.to_string())),
+        Err(Ok((None, e))) => Err(gpu_error(py, e.to_string())),
+        Err(Ok((Some(p), e))) => Err(pyo3::exceptions::PyOSError::new_err(format!(
+            "writing {p}: {e}"
+        ))),
     }
 }

@@ -16,7 +16,11 @@ def test_render_shows_the_surface(tmp_path):
     assert img.shape == (48, 64, 4) and img.dtype == np.uint8
     assert tuple(img[0, 0]) == (255, 255, 255, 255)  # background in the corner
     assert tuple(img[24, 32]) != (255, 255, 255, 255)  # surface in the centre
-    assert (tmp_path / "c.png").read_bytes()[:4] == b"\x89PNG"
+    png = (tmp_path / "c.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    # IHDR: 64 x 48, 8-bit RGBA; encoded by the render crate as the CLI's files are (sRGB tagged).
+    assert png[12:16] == b"IHDR" and png[16:24] == (64).to_bytes(4, "big") + (48).to_bytes(4, "big")
+    assert png[24:26] == bytes([8, 6]) and b"sRGB" in png[:64]
 
 
 def test_a_headless_render_prints_no_error_line():

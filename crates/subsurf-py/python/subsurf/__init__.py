@@ -8,12 +8,17 @@ state atomically) and safe to share between threads. Floating-point work is done
 
 from __future__ import annotations
 
-from typing import Any, Optional, Sequence, Tuple, Union
+import typing as _typing
 
-import numpy as np
+import numpy as _np
 
 from . import _subsurf
 from ._errors import GpuError, MeshError, ParseError, SubsurfError, UnsupportedError
+
+if _typing.TYPE_CHECKING:  # the annotations' names, for type checkers only
+    import os
+    from typing import Any, Optional, Sequence, Tuple, Union
+
 
 __all__ = [
     "Mesh", "read", "refine", "Refiner", "LimitSurface", "Prep", "tessellate", "render",
@@ -24,13 +29,13 @@ __version__ = "0.1.0"
 _U32_MAX = 2**32 - 1
 
 
-def _floats(a: Any, cols: int, what: str) -> np.ndarray:
+def _floats(a: Any, cols: int, what: str) -> _np.ndarray:
     """(n, cols) float32, C-contiguous; no copy when it already is."""
     try:
-        arr = np.asarray(a)
+        arr = _np.asarray(a)
     except Exception as e:  # ragged lists and the like
         raise ValueError(f"{what}: not an array ({e})") from None
-    if arr.dtype.kind not in "fiu" or arr.dtype == np.float16:
+    if arr.dtype.kind not in "fiu" or arr.dtype == _np.float16:
         if arr.size or arr.dtype.kind not in "O":
             if arr.dtype.kind not in "fiu":
                 raise ValueError(f"{what}: expected numbers, got dtype {arr.dtype}")
@@ -38,58 +43,58 @@ def _floats(a: Any, cols: int, what: str) -> np.ndarray:
         arr = arr.reshape(0, cols)
     if arr.ndim != 2 or arr.shape[1] != cols:
         raise ValueError(f"{what}: expected shape (n, {cols}), got {arr.shape}")
-    if arr.dtype == np.float64 and arr.size:
-        big = np.abs(arr[np.isfinite(arr)])
-        if big.size and big.max() > np.finfo(np.float32).max:
+    if arr.dtype == _np.float64 and arr.size:
+        big = _np.abs(arr[_np.isfinite(arr)])
+        if big.size and big.max() > _np.finfo(_np.float32).max:
             raise MeshError(f"{what}: a value overflows float32", face=None, corner=None, vertex=None)
-    return np.ascontiguousarray(arr, dtype=np.float32)
+    return _np.ascontiguousarray(arr, dtype=_np.float32)
 
 
-def _indices(a: Any, what: str) -> np.ndarray:
+def _indices(a: Any, what: str) -> _np.ndarray:
     """1-D uint32, C-contiguous; negative, huge or fractional values refused."""
     try:
-        arr = np.asarray(a)
+        arr = _np.asarray(a)
     except Exception as e:
         raise ValueError(f"{what}: not an array ({e})") from None
     if arr.size == 0:
-        return np.zeros(0, dtype=np.uint32)
+        return _np.zeros(0, dtype=_np.uint32)
     if arr.dtype.kind == "f":
-        if not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
+        if not _np.all(_np.isfinite(arr)) or _np.any(arr != _np.round(arr)):
             raise ValueError(f"{what}: indices must be integers")
     elif arr.dtype.kind not in "iub":
         raise ValueError(f"{what}: expected integers, got dtype {arr.dtype}")
     arr = arr.reshape(-1)
     if arr.min() < 0:
-        k = int(np.argmin(arr))
+        k = int(_np.argmin(arr))
         raise ValueError(f"{what}[{k}] = {arr[k]}: negative index")
     if arr.max() > _U32_MAX:
-        k = int(np.argmax(arr))
+        k = int(_np.argmax(arr))
         raise ValueError(f"{what}[{k}] = {arr[k]}: index too large")
-    return np.ascontiguousarray(arr, dtype=np.uint32)
+    return _np.ascontiguousarray(arr, dtype=_np.uint32)
 
 
-def _faces(faces: Any) -> Tuple[np.ndarray, np.ndarray]:
+def _faces(faces: Any) -> Tuple[_np.ndarray, _np.ndarray]:
     if isinstance(faces, tuple) and len(faces) == 2:
         counts, idx = _indices(faces[0], "face counts"), _indices(faces[1], "face indices")
         return counts, idx
-    if isinstance(faces, np.ndarray) and faces.ndim == 2:
+    if isinstance(faces, _np.ndarray) and faces.ndim == 2:
         m, k = faces.shape
-        return np.full(m, k, dtype=np.uint32), _indices(faces, "faces")
-    if isinstance(faces, np.ndarray) and faces.ndim != 2:
+        return _np.full(m, k, dtype=_np.uint32), _indices(faces, "faces")
+    if isinstance(faces, _np.ndarray) and faces.ndim != 2:
         raise ValueError(f"faces: expected an (m, k) array, got shape {faces.shape}")
     try:
         lists = [list(f) for f in faces]
     except TypeError:
         raise ValueError("faces: an (m, k) array, a list of index lists or (counts, indices)") from None
-    counts = np.array([len(f) for f in lists], dtype=np.int64)
+    counts = _np.array([len(f) for f in lists], dtype=_np.int64)
     flat = [i for f in lists for i in f]
-    return _indices(counts, "face counts"), _indices(np.array(flat) if flat else [], "faces")
+    return _indices(counts, "face counts"), _indices(_np.array(flat) if flat else [], "faces")
 
 
-def _tags(a: Any, sharpness: Any, cols: int, what: str) -> Tuple[np.ndarray, np.ndarray]:
+def _tags(a: Any, sharpness: Any, cols: int, what: str) -> Tuple[_np.ndarray, _np.ndarray]:
     if a is None:
-        return np.zeros((0, cols), dtype=np.uint32).reshape(-1) if cols == 1 else np.zeros((0, 2), dtype=np.uint32), np.zeros(0, dtype=np.float32)
-    arr = np.asarray(a)
+        return _np.zeros((0, cols), dtype=_np.uint32).reshape(-1) if cols == 1 else _np.zeros((0, 2), dtype=_np.uint32), _np.zeros(0, dtype=_np.float32)
+    arr = _np.asarray(a)
     if cols == 2:
         if arr.ndim == 2 and arr.shape[1] == 3 and sharpness is None:
             pairs, s = arr[:, :2], arr[:, 2]
@@ -106,14 +111,14 @@ def _tags(a: Any, sharpness: Any, cols: int, what: str) -> Tuple[np.ndarray, np.
         else:
             raise ValueError(f"{what}: a (c,) array with a sharpness array, or one (c, 2) array")
         p = _indices(pairs, what)
-    s = np.asarray(s, dtype=np.float64)
+    s = _np.asarray(s, dtype=_np.float64)
     if s.ndim == 0:
         # One value for every tag.
-        s = np.full(len(p), s)
-    s = np.ascontiguousarray(s, dtype=np.float32).reshape(-1)
+        s = _np.full(len(p), s)
+    s = _np.ascontiguousarray(s, dtype=_np.float32).reshape(-1)
     if len(s) != len(p):
         raise ValueError(f"{what}: {len(p)} tags, {len(s)} sharpness values")
-    if np.any(np.isnan(s)):
+    if _np.any(_np.isnan(s)):
         raise MeshError(f"{what}: sharpness is NaN")
     return p, s
 
@@ -130,7 +135,7 @@ class Mesh:
     corners : (c,) vertices with ``corner_sharpness`` ((c,) or one value), or one (c, 2) array
     holes : face indices
     uvs : (u, 2) float array; ``uv_indices`` one per face corner (default: the face indices)
-    scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only; no limit surface yet)
+    scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only)
     boundary : "none" | "edge-only" | "edge-and-corner"
     crease_method : "uniform" | "chaikin"
     triangles : "catmark" | "smooth"
@@ -206,12 +211,12 @@ class Mesh:
         lines up): what a viewer should draw."""
         return Mesh._wrap(self._m.without_holes())
 
-    def triangles(self) -> np.ndarray:
+    def triangles(self) -> _np.ndarray:
         """(t, 3) uint32 fan triangulation of the faces (holes kept)."""
         tris = []
         for f in self.faces():
             tris.extend([f[0], f[k], f[k + 1]] for k in range(1, len(f) - 1))
-        return np.array(tris, dtype=np.uint32).reshape(-1, 3)
+        return _np.array(tris, dtype=_np.uint32).reshape(-1, 3)
 
     @classmethod
     def from_trimesh(cls, t: Any, **kwargs: Any) -> "Mesh":
@@ -219,7 +224,7 @@ class Mesh:
         uv = getattr(getattr(t, "visual", None), "uv", None)
         if uv is not None and len(uv) == len(t.vertices):
             kwargs.setdefault("uvs", uv)
-        return cls(np.asarray(t.vertices), np.asarray(t.faces), **kwargs)
+        return cls(_np.asarray(t.vertices), _np.asarray(t.faces), **kwargs)
 
     def to_trimesh(self, **kwargs: Any) -> Any:
         """A ``trimesh.Trimesh`` (faces fan-triangulated, hole faces left out, vertices not
@@ -227,7 +232,7 @@ class Mesh:
         import trimesh
 
         drawn = self.without_holes() if len(self.holes) else self
-        return trimesh.Trimesh(vertices=self.points.astype(np.float64), faces=drawn.triangles(),
+        return trimesh.Trimesh(vertices=self.points.astype(_np.float64), faces=drawn.triangles(),
                                process=False, **kwargs)
 
     def __repr__(self) -> str:
@@ -235,7 +240,8 @@ class Mesh:
 
 
 def read(path: Union[str, "os.PathLike[str]"]) -> Mesh:
-    """Reads a mesh file: .obj (v, vt, f, OpenSubdiv's ``t`` tags) or .ply (ASCII or binary).
+    """Reads a mesh file by extension: .obj (v, vt, f, OpenSubdiv's ``t`` tags), .ply (ASCII
+    or binary), .glb / .gltf, or a USD stage (.usda, .usdc, .usd, .usdz; its one mesh prim).
     Raises ``ParseError`` with ``.path`` and ``.line``, ``OSError``, ``MeshError``."""
     return Mesh._wrap(_subsurf._Mesh.read(str(path)))
 
@@ -247,7 +253,7 @@ def _mesh(m: Any) -> Any:
 
 
 def _int(v: Any, what: str, lo: int = 0) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+    if isinstance(v, bool) or not isinstance(v, (int, _np.integer)):
         raise ValueError(f"{what}: expected an integer, got {v!r}")
     v = int(v)
     if v < lo or v > 1_000_000:
@@ -292,18 +298,18 @@ class Refiner:
         """Vertices of the last level."""
         return self._r.num_vertices
 
-    def refine(self, values: Any) -> np.ndarray:
+    def refine(self, values: Any) -> _np.ndarray:
         """(n_base, d) float data -> (n_last, d) float32."""
-        v = np.asarray(values)
+        v = _np.asarray(values)
         one = v.ndim == 1
         return self._r.refine(_floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values"))
 
-    def limit(self, values: Any) -> np.ndarray:
+    def limit(self, values: Any) -> _np.ndarray:
         """(n_last, d) last-level data -> limit values (n_last, d) float32."""
-        v = np.asarray(values)
+        v = _np.asarray(values)
         return self._r.limit(_floats(v, v.shape[1] if v.ndim == 2 else 1, "values"))
 
-    def refine_uvs(self, uvs: Any, uv_indices: Any = None) -> Tuple[np.ndarray, np.ndarray]:
+    def refine_uvs(self, uvs: Any, uv_indices: Any = None) -> Tuple[_np.ndarray, _np.ndarray]:
         """Face-varying (u, 2) UVs with one index per base face corner (default the face
         indices) -> the last level's (values, indices), in the mesh's interpolation mode."""
         idx = self._mesh.face_indices if uv_indices is None else _indices(uv_indices, "uv_indices")
@@ -314,7 +320,7 @@ class Refiner:
         with ``points`` (n_last, 3) as positions."""
         return Mesh._wrap(self._r.mesh(_floats(points, 3, "points")))
 
-    def stencils(self) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def stencils(self) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """(offsets (n_last + 1,) uint32, indices uint32, weights float32): row i of the last
         level is ``sum(weights[k] * base[indices[k]] for k in offsets[i]:offsets[i+1])``."""
         return self._r.stencils()
@@ -348,7 +354,7 @@ class LimitSurface:
     __slots__ = ("_s",)
 
     def __init__(self, mesh: Mesh, isolation: int = 4, editable: bool = False) -> None:
-        if not isinstance(editable, (bool, np.bool_)):
+        if not isinstance(editable, (bool, _np.bool_)):
             raise TypeError(f"editable: expected a bool, got {type(editable).__name__}")
         self._s = _subsurf._LimitSurface(_mesh(mesh), _int(isolation, "isolation"),
                                          bool(editable))
@@ -363,14 +369,14 @@ class LimitSurface:
         """``"square"`` (ptex faces, [0, 1]^2) or ``"triangle"`` (Loop, u + v <= 1)."""
         return self._s.domain
 
-    def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """Points and first derivatives at (face, u, v), vectorized."""
         f = _indices(faces, "faces")
-        uu = np.ascontiguousarray(np.asarray(u, dtype=np.float64).reshape(-1))
-        vv = np.ascontiguousarray(np.asarray(v, dtype=np.float64).reshape(-1))
+        uu = _np.ascontiguousarray(_np.asarray(u, dtype=_np.float64).reshape(-1))
+        vv = _np.ascontiguousarray(_np.asarray(v, dtype=_np.float64).reshape(-1))
         return self._s.evaluate(f, uu, vv)
 
-    def tessellate(self, n: int = 8) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def tessellate(self, n: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """Watertight (points (p, 3) float32, unit normals (p, 3), triangles (t, 3) uint32)."""
         return self._s.tessellate(_int(n, "n"))
 
@@ -422,11 +428,11 @@ class Prep:
         """Number of patches (quads)."""
         return self._p.num_faces
 
-    def bezier(self) -> np.ndarray:
+    def bezier(self) -> _np.ndarray:
         """(faces, 6, 6, 3) float64 bi-5 Bezier control points."""
         return self._p.bezier()
 
-    def tessellate(self, n: int = 8) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def tessellate(self, n: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """Watertight (points, normals, triangles), bit-identical along shared edges."""
         return self._p.tessellate(_int(n, "n"))
 
@@ -434,7 +440,7 @@ class Prep:
 def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cpu",
                isolation: int = 4, *, tolerance: Optional[float] = None,
                max_edge_length: Optional[float] = None,
-               edge_rates: Any = None) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+               edge_rates: Any = None) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
     """The surface API: ``(points (p, 3) float32, unit normals (p, 3) float32, triangles
     (t, 3) uint32)``.
 
@@ -454,10 +460,10 @@ def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cp
     """
     rates = None
     if edge_rates is not None:
-        rates = np.ascontiguousarray(np.asarray(edge_rates, dtype=np.int64).reshape(-1, 3))
+        rates = _np.ascontiguousarray(_np.asarray(edge_rates, dtype=_np.int64).reshape(-1, 3))
         if (rates < 0).any():
             raise ValueError("edge_rates: vertex indices and rates must be non-negative")
-        rates = rates.astype(np.uint64)
+        rates = rates.astype(_np.uint64)
     return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"),
                                tolerance=None if tolerance is None else float(tolerance),
                                max_edge_length=None if max_edge_length is None else float(max_edge_length),
@@ -469,7 +475,7 @@ _BACKGROUNDS = {"white": (255, 255, 255, 255), "black": (0, 0, 0, 255), "transpa
 
 def render(mesh: Mesh, size: Tuple[int, int] = (800, 600), method: str = "limit", n: Optional[int] = None,
            view: str = "iso", up: str = "y", colors: str = "none", cage: bool = False,
-           background: Union[str, Sequence[int]] = "white", path: Optional[str] = None) -> np.ndarray:
+           background: Union[str, Sequence[int]] = "white", path: Optional[str] = None) -> _np.ndarray:
     """A headless render (wgpu; lavapipe without a GPU): ``(height, width, 4)`` uint8 RGBA.
 
     size : (width, height) in pixels
@@ -486,22 +492,8 @@ def render(mesh: Mesh, size: Tuple[int, int] = (800, 600), method: str = "limit"
     if bg is None or len(bg) != 4:
         raise ValueError(f"background {background!r}: white, black, transparent or (r, g, b, a)")
     w, h = (_int(size[0], "width", 1), _int(size[1], "height", 1))
-    img = _subsurf.render(_mesh(mesh), w, h, method, _int(n, "n"), view, up, colors, bool(cage), bg)
-    if path is not None:
-        _write_png(img, str(path))
-    return img
+    return _subsurf.render(_mesh(mesh), w, h, method, _int(n, "n"), view, up, colors, bool(cage), bg,
+                           None if path is None else str(path))
 
 
-def _write_png(img: np.ndarray, path: str) -> None:
-    import struct
-    import zlib
-
-    h, w, _ = img.shape
-    raw = b"".join(b"\x00" + img[y].tobytes() for y in range(h))
-
-    def chunk(kind: bytes, data: bytes) -> bytes:
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
-
-    with open(path, "wb") as f:
-        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
-                + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+del annotations  # the future import's name, not part of the package
