@@ -8,7 +8,7 @@
 //! instance, although nothing failed. With no display server there is no display to select
 //! by, so the layer has nothing to do: [`disable_display_layers_when_headless`] switches it
 //! off through its documented `NODEVICE_SELECT=1` variable. Every instance the library
-//! creates ([`crate::GpuContext::new`], [`crate::list_adapters`]) does this first, once per
+//! creates ([`crate::GpuContext::new`], [`crate::context::list_adapters`]) does this first, once per
 //! process, so that a program using the library directly stays quiet too.
 
 /// The environment variable that disables Mesa's device-select layer.
