@@ -191,7 +191,10 @@ fn check_memory<R: Real>(a: &EvalArgs, samples: f64, on: &str) -> anyhow::Result
     let per = copies
         * (std::mem::size_of::<(u32, R, R)>() + std::mem::size_of::<Option<LimitPoint<R>>>());
     subsurf::limit::budget::check(samples * per as f64, || {
-        format!("evaluating {samples} samples on the {on}")
+        format!(
+            "evaluating {} samples on the {on}",
+            subsurf::limit::budget::count(samples)
+        )
     })
     .map_err(subsurf::Error::from)?;
     Ok(())

@@ -115,9 +115,10 @@ fn errors_name_the_problem_and_exit_non_zero() {
 fn oversize_requests_are_refused_with_the_true_estimate() {
     let car = example("car.obj");
     let loop_mesh = repo("testdata/shapes/loop_pole360.obj");
-    let cases: [(&Path, &[&str]); 5] = [
+    let cases: [(&Path, &[&str]); 6] = [
         (&car, &["refine", "--level", "40"]),
         (&car, &["limit", "--tess", "4000"]),
+        (&car, &["limit", "--max-edge-length", "1e-9"]),
         (&car, &["eval", "--samples", "4096"]),
         (&loop_mesh, &["eval", "--isolation", "10"]),
         (&loop_mesh, &["refine", "--level", "30"]),

@@ -100,7 +100,21 @@ impl Budget {
 /// pass the memory limit, with the estimate; `bytes` is a float so that a size past 2^64 is
 /// reported as it is.
 pub fn check(bytes: f64, what: impl FnOnce() -> String) -> Result<(), MeshError> {
-    Budget::of_available_memory().add(saturate(bytes), what)
+    match Budget::of_available_memory().add(saturate(bytes), what) {
+        // The message keeps the float's size (past 2^64 the stored count saturates).
+        Err(MeshError::TooLarge {
+            what,
+            bytes: stored,
+            limit_human,
+            ..
+        }) => Err(MeshError::TooLarge {
+            what,
+            bytes: stored,
+            human: human(bytes),
+            limit_human,
+        }),
+        other => other,
+    }
 }
 
 /// Estimated bytes of the level one Loop refinement step of a triangle mesh of `faces`
@@ -154,6 +168,16 @@ pub fn human(bytes: f64) -> String {
     }
 }
 
+/// A count that may pass `u64::MAX` as a message shows it: whole below 10^15, else in
+/// scientific notation (`1.845e19`), never saturated.
+pub fn count(n: f64) -> String {
+    if n < 1e15 {
+        format!("{}", n.round() as u64)
+    } else {
+        format!("{n:.3e}")
+    }
+}
+
 /// An estimate in bytes as stored in [`MeshError::TooLarge`]: the float rounded, saturated at
 /// `u64::MAX` (the message carries the true size through [`human`]).
 pub(crate) fn saturate(bytes: f64) -> u64 {
@@ -182,5 +206,7 @@ mod tests {
         assert!(big.starts_with("1.049e6 YiB"), "{big}");
         assert_eq!(saturate(2f64.powi(100)), u64::MAX);
         assert_eq!(saturate(1e6), 1_000_000);
+        assert_eq!(count(1234.0), "1234");
+        assert_eq!(count(2f64.powi(80)), "1.209e24");
     }
 }

@@ -90,6 +90,16 @@ pub fn tri_tessellation_plan(base: &Topology, segments: usize) -> Result<TriTess
         face_base: base.num_vertices() + base.num_edges() * (n - 1),
     };
     let total = nb.face_base + base.num_faces() * (n - 1) * n.saturating_sub(2) / 2;
+    // Refused up front, with the estimate, as an oversize refinement level is. Per sample,
+    // counted from the arrays: its parameters (24 bytes), f64 position and normal (48), two
+    // triangles (24), and the f32 mesh written from them (about 60).
+    crate::limit::budget::check(total as f64 * 160.0, || {
+        format!(
+            "a Loop limit tessellation of {total} samples ({n} segments per edge of {} \
+             triangles)",
+            base.num_faces()
+        )
+    })?;
     let mut samples = vec![None; total];
     let mut triangles = Vec::new();
     for f in (0..base.num_faces()).filter(|&f| !base.face_is_hole[f]) {

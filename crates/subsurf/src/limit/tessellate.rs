@@ -133,7 +133,10 @@ impl<R: Real> PatchTable<R> {
             })
             .sum();
         crate::limit::budget::check(samples * TESSELLATION_BYTES_PER_SAMPLE, || {
-            format!("a limit tessellation of {samples} samples ({n} per ptex-face side)")
+            format!(
+                "a limit tessellation of {} samples ({n} per ptex-face side)",
+                crate::limit::budget::count(samples)
+            )
         })?;
         let keys = Keys::new(self, n);
         // Per ptex face: its grid of keys.

@@ -399,15 +399,20 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
             boundary + u64::from(u.saturating_sub(1)) * u64::from(v.saturating_sub(1)) + 1,
         );
     }
-    check_samples(samples)
+    check_samples(samples as f64)
 }
 
 /// Refuses a tessellation of `samples` samples that would pass the memory limit, with the
 /// estimate.
-pub(crate) fn check_samples(samples: u64) -> Result<()> {
+pub(crate) fn check_samples(samples: f64) -> Result<()> {
     // Per sample: a query, a position, a normal, two triangles with their (u, v), keys.
-    let bytes = samples as f64 * (12 + 24 + 2 * (12 + 28) + 16) as f64;
-    crate::limit::budget::check(bytes, || format!("a tessellation of {samples} samples"))?;
+    let bytes = samples * (12 + 24 + 2 * (12 + 28) + 16) as f64;
+    crate::limit::budget::check(bytes, || {
+        format!(
+            "a tessellation of {} samples",
+            crate::limit::budget::count(samples)
+        )
+    })?;
     Ok(())
 }
 

@@ -292,7 +292,7 @@ fn curve_rates(
 /// The samples of a tessellation at the real-valued needs (before they are checked against
 /// [`MAX_RATE`]): every edge's, and per ptex face the square of its finest need, so that a
 /// policy asking for too much is refused with the estimate before anything is built.
-fn estimate(t: &Topology, need: &[f64], face_need: &[f64]) -> u64 {
+fn estimate(t: &Topology, need: &[f64], face_need: &[f64]) -> f64 {
     let mut samples: f64 = need.iter().sum();
     for f in 0..t.num_faces() {
         if t.face_is_hole[f] {
@@ -307,7 +307,7 @@ fn estimate(t: &Topology, need: &[f64], face_need: &[f64]) -> u64 {
         };
         samples += ptex * r * r;
     }
-    samples.min(u64::MAX as f64) as u64
+    samples
 }
 
 /// Reads `--edge-rates` text: one `v0 v1 rate` per line (0-based vertex indices of a base
