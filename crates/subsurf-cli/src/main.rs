@@ -48,7 +48,7 @@ struct Cli {
 enum Command {
     /// Print counts, histograms and features of a mesh.
     Info(cmd_info::InfoArgs),
-    /// Refine a mesh uniformly (Catmull-Clark or bilinear).
+    /// Refine a mesh uniformly (Catmull-Clark, bilinear or Loop).
     Refine(cmd_refine::RefineArgs),
     /// Time refinement on a mesh.
     Bench(cmd_bench::BenchArgs),
