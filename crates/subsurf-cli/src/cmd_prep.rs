@@ -31,8 +31,9 @@ pub struct PrepArgs {
     /// double precision unless --f32; `-` writes standard output).
     #[arg(long = "bezier")]
     pub bezier: Option<PathBuf>,
-    /// Split every face into quads first (face centroid + edge midpoints) if the input has
-    /// faces that are not quads.
+    /// Split every face into quads first if the input has faces that are not quads: one
+    /// Catmull-Clark step (every n-gon becomes n quads, with the scheme's positions, creases
+    /// and holes).
     #[arg(long = "quadrangulate")]
     pub quadrangulate: bool,
     /// Build and evaluate in double precision (the output files are written from it); the
