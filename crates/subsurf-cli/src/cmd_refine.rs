@@ -144,7 +144,7 @@ fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::R
             .write_path(&a.output)
             .with_context(|| format!("writing {}", a.output.display()))?;
     } else {
-        write_mesh(&a.output, &out, None)?;
+        write_mesh(&a.output, &written, None)?;
     }
     let left_out = out.num_faces() - written.num_faces();
     crate::say!(

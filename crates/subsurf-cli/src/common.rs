@@ -142,11 +142,7 @@ fn write_options() -> subsurf::io::WriteOptions {
 /// `mesh` as mesh output writes it: without its hole faces unless `--keep-holes` is given
 /// (for writers outside [`write_mesh`], such as a USD stage's).
 pub fn output_mesh(mesh: &subsurf::Mesh) -> std::borrow::Cow<'_, subsurf::Mesh> {
-    if write_options().keep_holes || mesh.holes.is_empty() {
-        std::borrow::Cow::Borrowed(mesh)
-    } else {
-        std::borrow::Cow::Owned(mesh.without_holes())
-    }
+    write_options().mesh_to_write(mesh)
 }
 
 /// Sets the format of `-o -` (the global `--format`).

@@ -290,9 +290,12 @@ impl PyMesh {
 
     /// The mesh with its hole faces left out (every vertex kept).
     fn without_holes(&self) -> PyMesh {
-        PyMesh {
-            inner: Arc::new(self.inner.without_holes()),
-        }
+        let inner = if self.inner.holes.is_empty() {
+            self.inner.clone()
+        } else {
+            Arc::new(self.inner.without_holes())
+        };
+        PyMesh { inner }
     }
 
     #[getter]

@@ -80,6 +80,18 @@ impl Mesh {
         self.positions.len()
     }
 
+    /// One flag per face: whether it is tagged as a hole (indices past the last face are
+    /// passed over).
+    pub fn hole_mask(&self) -> Vec<bool> {
+        let mut hole = vec![false; self.face_counts.len()];
+        for &f in &self.holes {
+            if let Some(h) = hole.get_mut(f as usize) {
+                *h = true;
+            }
+        }
+        hole
+    }
+
     /// The mesh with its hole faces left out, as a viewer that ignores hole tags should see
     /// it: the other faces (and their UV indices) in their order, every vertex kept (so
     /// per-vertex normals still line up), creases and corners kept, no holes. Hole indices
@@ -88,12 +100,7 @@ impl Mesh {
         if self.holes.is_empty() {
             return self.clone();
         }
-        let mut hole = vec![false; self.face_counts.len()];
-        for &f in &self.holes {
-            if let Some(h) = hole.get_mut(f as usize) {
-                *h = true;
-            }
-        }
+        let hole = self.hole_mask();
         let mut face_counts = Vec::with_capacity(self.face_counts.len());
         let mut face_indices = Vec::with_capacity(self.face_indices.len());
         let mut uv_indices = self.uvs.as_ref().map(|_| Vec::new());

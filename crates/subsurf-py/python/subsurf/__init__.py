@@ -231,8 +231,8 @@ class Mesh:
         merged)."""
         import trimesh
 
-        drawn = self.without_holes() if len(self.holes) else self
-        return trimesh.Trimesh(vertices=self.points.astype(_np.float64), faces=drawn.triangles(),
+        return trimesh.Trimesh(vertices=self.points.astype(_np.float64),
+                               faces=self.without_holes().triangles(),
                                process=False, **kwargs)
 
     def __repr__(self) -> str:

@@ -49,7 +49,7 @@ fn build_streams(mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<Streams> {
             return Err(MeshError::NonFiniteCoordinate { vertex: v, value }.into());
         }
     }
-    let holes: std::collections::HashSet<u32> = mesh.holes.iter().copied().collect();
+    let hole = mesh.hole_mask();
     let uv = mesh.uvs.as_ref();
     // Vertex remap: without UVs, positions are kept as they are.
     let mut remap: HashMap<(u32, u32), u32> = HashMap::new();
@@ -115,7 +115,7 @@ fn build_streams(mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<Streams> {
             };
             corner_ids.push(id);
         }
-        if holes.contains(&(f as u32)) {
+        if hole[f] {
             continue;
         }
         for k in 1..count - 1 {

@@ -170,6 +170,19 @@ pub struct WriteOptions {
     pub keep_holes: bool,
 }
 
+impl WriteOptions {
+    /// `mesh` as a format that tags holes (OBJ, USD) writes it under these options: itself
+    /// with `keep_holes` or without holes, else [`Mesh::without_holes`]. For writers of tagging
+    /// formats outside this module, such as a USD stage's prims.
+    pub fn mesh_to_write<'a>(&self, mesh: &'a Mesh) -> std::borrow::Cow<'a, Mesh> {
+        if self.keep_holes || mesh.holes.is_empty() {
+            std::borrow::Cow::Borrowed(mesh)
+        } else {
+            std::borrow::Cow::Owned(mesh.without_holes())
+        }
+    }
+}
+
 /// Writes a mesh in `format` to `w` (for example standard output); `normals` as in
 /// [`write_path`]. Hole faces are left out ([`WriteOptions`]).
 pub fn write_to(
@@ -190,21 +203,21 @@ pub fn write_to_with(
     normals: Option<&[[f32; 3]]>,
     options: WriteOptions,
 ) -> Result<()> {
-    let dropped;
-    let mesh = if options.keep_holes {
-        if !mesh.holes.is_empty() && matches!(format, Format::Ply | Format::Glb) {
-            return Err(Error::Unsupported(format!(
-                "keeping holes in {}: the format cannot tag hole faces; write OBJ or USD",
-                if format == Format::Ply { "PLY" } else { "glTF" }
-            )));
-        }
-        mesh
-    } else if mesh.holes.is_empty() {
-        mesh
+    // PLY and glTF cannot tag holes: their writers always leave hole faces out. OBJ and USD
+    // tag them, so leaving them out is done here.
+    let tags_holes = matches!(format, Format::Obj | Format::Usd(_));
+    if options.keep_holes && !tags_holes && !mesh.holes.is_empty() {
+        return Err(Error::Unsupported(format!(
+            "keeping holes in {}: the format cannot tag hole faces; write OBJ or USD",
+            if format == Format::Ply { "PLY" } else { "glTF" }
+        )));
+    }
+    let written = if tags_holes {
+        options.mesh_to_write(mesh)
     } else {
-        dropped = mesh.without_holes();
-        &dropped
+        std::borrow::Cow::Borrowed(mesh)
     };
+    let mesh = &*written;
     match (format, normals) {
         (Format::Obj, None) => obj::write(mesh, w)?,
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,

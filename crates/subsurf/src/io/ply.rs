@@ -519,12 +519,7 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
         }
     }
     let small = mesh.face_counts.iter().all(|&n| n <= 255);
-    let mut hole = vec![false; mesh.face_counts.len()];
-    for &f in &mesh.holes {
-        if let Some(h) = hole.get_mut(f as usize) {
-            *h = true;
-        }
-    }
+    let hole = mesh.hole_mask();
     let mut w = std::io::BufWriter::new(w);
     writeln!(
         w,

@@ -84,12 +84,7 @@ impl Budget {
             (self.limit, self.unread) = (memory_limit(bytes), false);
         }
         if bytes > self.limit {
-            return Err(MeshError::TooLarge {
-                what: what(),
-                bytes,
-                human: human(bytes as f64),
-                limit_human: format!("{} (80% of available memory)", human(self.limit as f64)),
-            });
+            return Err(too_large(what(), bytes as f64, self.limit));
         }
         self.used = bytes;
         Ok(())
@@ -100,20 +95,20 @@ impl Budget {
 /// pass the memory limit, with the estimate; `bytes` is a float so that a size past 2^64 is
 /// reported as it is.
 pub fn check(bytes: f64, what: impl FnOnce() -> String) -> Result<(), MeshError> {
-    match Budget::of_available_memory().add(saturate(bytes), what) {
-        // The message keeps the float's size (past 2^64 the stored count saturates).
-        Err(MeshError::TooLarge {
-            what,
-            bytes: stored,
-            limit_human,
-            ..
-        }) => Err(MeshError::TooLarge {
-            what,
-            bytes: stored,
-            human: human(bytes),
-            limit_human,
-        }),
-        other => other,
+    let limit = memory_limit(saturate(bytes));
+    if bytes > limit as f64 {
+        return Err(too_large(what(), bytes, limit));
+    }
+    Ok(())
+}
+
+/// The refusal of `what`, estimated at `bytes`, against a memory limit of `limit` bytes.
+pub(crate) fn too_large(what: String, bytes: f64, limit: u64) -> MeshError {
+    MeshError::TooLarge {
+        what,
+        bytes: saturate(bytes),
+        human: human(bytes),
+        limit_human: format!("{} (80% of available memory)", human(limit as f64)),
     }
 }
 

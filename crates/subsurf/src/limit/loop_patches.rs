@@ -22,7 +22,7 @@
 //! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
 //! the middle one) through the refined faces.
 
-use super::budget::{tri_child_level_bytes, Budget};
+use super::budget::{check, tri_child_level_bytes};
 use super::features::{
     inf_sharp_vtag_has_features, FeatureMask, VTag, T_BOUNDARY, T_INF_SHARP, T_INF_SHARP_EDGES,
     T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
@@ -163,7 +163,6 @@ pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> 
         )));
     }
     let level = isolation_level as usize;
-    let mut budget = Budget::of_available_memory();
     let mut levels = vec![base.clone()];
     let mut decided = Vec::new();
     // `front`: (face, U, V, base face) of the faces of the current level the walk reaches.
@@ -205,7 +204,7 @@ pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> 
             let total = (1..=level as u32).fold(0u64, |sum, k| {
                 sum.saturating_add(tri_child_level_bytes(faces << (2 * (k - 1))))
             });
-            budget.add(total, || {
+            check(total as f64, || {
                 format!(
                     "isolating the Loop features of {faces} triangles to level {isolation_level} \
                      ({} triangles at the last level)",

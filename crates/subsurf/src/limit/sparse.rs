@@ -398,7 +398,7 @@ pub fn resume<W: Real, T: Send>(
                     step.faces.len()
                 ),
                 bytes: corners * 50,
-                human: format!("{:.1} GiB", (corners * 50) as f64 / (1u64 << 30) as f64),
+                human: super::budget::human((corners * 50) as f64),
                 limit_human: "2^31 refined face corners and vertices (32-bit indices)".into(),
             }
             .into());

@@ -63,7 +63,7 @@ pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
 use crate::error::{Error, MeshError, Result};
-use crate::limit::budget::{human, memory_limit};
+use crate::limit::budget::{check, human, saturate};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::topology::Topology;
@@ -177,29 +177,25 @@ pub fn estimate_bytes(base: &Topology, level: usize) -> f64 {
 }
 
 /// Refuses a Loop mesh with a face other than a triangle, and up front, with the estimated
-/// size, a level whose tables would not fit in memory ([`memory_limit`]) or overflow 32-bit
+/// size, a level whose tables would not fit in memory ([`check`]) or overflow 32-bit
 /// indices.
 fn check_size(base: &Topology, level: usize) -> Result<()> {
     if base.options.scheme == Scheme::Loop {
         check_triangles(base)?;
     }
     let estimate = estimate_bytes(base, level);
-    let bytes = crate::limit::budget::saturate(estimate);
+    let what = || format!("refining {} faces to level {level}", base.num_faces());
     let corners = (base.num_corners() as u128) << (2 * level.max(1) as u32).min(120);
-    let limit = memory_limit(bytes);
-    if bytes > limit || corners > (u32::MAX as u128) / 2 {
+    if corners > (u32::MAX as u128) / 2 {
         return Err(MeshError::TooLarge {
-            what: format!("refining {} faces to level {level}", base.num_faces()),
-            bytes,
+            what: what(),
+            bytes: saturate(estimate),
             human: human(estimate),
-            limit_human: if corners > (u32::MAX as u128) / 2 {
-                "2^31 face corners (32-bit indices)".into()
-            } else {
-                format!("{} (80% of available memory)", human(limit as f64))
-            },
+            limit_human: "2^31 face corners (32-bit indices)".into(),
         }
         .into());
     }
+    check(estimate, what)?;
     Ok(())
 }
 
