@@ -190,10 +190,10 @@ fn check_memory<R: Real>(a: &EvalArgs, samples: f64, on: &str) -> anyhow::Result
     };
     let per = copies
         * (std::mem::size_of::<(u32, R, R)>() + std::mem::size_of::<Option<LimitPoint<R>>>());
-    subsurf::limit::budget::check(samples * per as f64, || {
+    subsurf::budget::check(samples * per as f64, || {
         format!(
             "evaluating {} samples on the {on}",
-            subsurf::limit::budget::count(samples)
+            subsurf::budget::count(samples)
         )
     })
     .map_err(subsurf::Error::from)?;

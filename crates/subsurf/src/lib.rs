@@ -83,6 +83,15 @@ pub mod shapes;
 pub mod surface;
 pub mod tess;
 pub mod topology;
+pub(crate) mod util;
+
+/// Up-front memory refusals: a request is estimated before anything is allocated, and one
+/// that would not fit in 80% of the available memory is refused with its true size
+/// ([`MeshError::TooLarge`]).
+pub mod budget {
+    #[doc(inline)]
+    pub use crate::util::budget::{check, count, human, Budget};
+}
 
 pub use error::{Error, MeshError, QueryError, Result, TessError};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};

@@ -85,9 +85,8 @@ pub fn pole(n: usize) -> Mesh {
 pub fn creased_pole(n: usize) -> Mesh {
     let mut mesh = pole(n);
     mesh.holes.push(2);
-    let [v0, v1] = crate::Topology::new(&mesh)
-        .expect("a pole is a valid mesh")
-        .edge_verts[0];
+    // Edge 0: the first edge of face 0 (edges are numbered face by face, corner by corner).
+    let (v0, v1) = (mesh.face_indices[0], mesh.face_indices[1]);
     mesh.creases.push(crate::mesh::Crease {
         v0,
         v1,

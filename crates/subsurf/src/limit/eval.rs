@@ -48,17 +48,10 @@ pub struct LimitSurface<R = f32> {
     pub points: Vec<[R; 3]>,
 }
 
-fn cross<R: Real>(a: [R; 3], b: [R; 3]) -> [R; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+use crate::util::vec3::cross;
 
 fn unit<R: Real>(a: [R; 3]) -> Option<[R; 3]> {
-    let l = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
-    (l > R::from_f64(1e-30) && l.is_finite()).then(|| [a[0] / l, a[1] / l, a[2] / l])
+    crate::util::vec3::unit(a, R::from_f64(1e-30))
 }
 
 impl<R: Real> LimitSurface<R> {

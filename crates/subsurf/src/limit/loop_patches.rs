@@ -22,7 +22,7 @@
 //! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
 //! the middle one) through the refined faces.
 
-use super::budget::{check, tri_child_level_bytes};
+use super::budget::tri_child_level_bytes;
 use super::features::{
     inf_sharp_vtag_has_features, FeatureMask, VTag, T_BOUNDARY, T_INF_SHARP, T_INF_SHARP_EDGES,
     T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
@@ -33,6 +33,7 @@ use crate::options::Scheme;
 use crate::refine::refine_tri_topology;
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
+use crate::util::budget::check;
 
 /// Patch counts of a Loop patch table.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]

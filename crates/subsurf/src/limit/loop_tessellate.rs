@@ -93,7 +93,7 @@ pub fn tri_tessellation_plan(base: &Topology, segments: usize) -> Result<TriTess
     // Refused up front, with the estimate, as an oversize refinement level is. Per sample,
     // counted from the arrays: its parameters (24 bytes), f64 position and normal (48), two
     // triangles (24), and the f32 mesh written from them (about 60).
-    crate::limit::budget::check(total as f64 * 160.0, || {
+    crate::util::budget::check(total as f64 * 160.0, || {
         format!(
             "a Loop limit tessellation of {total} samples ({n} segments per edge of {} \
              triangles)",

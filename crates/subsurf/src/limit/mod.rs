@@ -82,7 +82,7 @@
 //! # Ok::<(), subsurf::Error>(())
 //! ```
 
-pub mod budget;
+pub(crate) mod budget;
 pub mod curve_eval;
 pub mod edit;
 pub mod edit_rebuild;
@@ -99,6 +99,7 @@ pub mod loop_tessellate;
 pub mod patch_map;
 pub mod points;
 pub mod query;
+pub(crate) mod rate_curves;
 pub mod span;
 pub mod sparse;
 pub mod table;

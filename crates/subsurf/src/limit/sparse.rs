@@ -398,12 +398,12 @@ pub fn resume<W: Real, T: Send>(
                     step.faces.len()
                 ),
                 bytes: corners * 50,
-                human: super::budget::human((corners * 50) as f64),
+                human: crate::util::budget::human((corners * 50) as f64),
                 limit_human: "2^31 refined face corners and vertices (32-bit indices)".into(),
             }
             .into());
         }
-        budget.refine(&step.sub, || {
+        budget.add(super::budget::child_level_bytes(&step.sub), || {
             format!(
                 "isolating features to level {max_level} (level {} from {} faces)",
                 d + 1,

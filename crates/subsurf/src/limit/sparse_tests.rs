@@ -283,19 +283,19 @@ fn a_construction_over_its_memory_budget_is_refused_with_the_estimate() {
     // their order.
     let kept = table.stencil_bytes() as u64;
     assert!(
-        free.used >= kept && free.used < 30 * kept,
+        free.used() >= kept && free.used() < 30 * kept,
         "{} vs {kept}",
-        free.used
+        free.used()
     );
     // Exactly that total fits; one byte less is refused before the last level is made.
-    let fits = PatchTable::build_within(&t, &o, Selection::Sparse, Budget::with_limit(free.used));
+    let fits = PatchTable::build_within(&t, &o, Selection::Sparse, Budget::with_limit(free.used()));
     assert_eq!(fits.unwrap().num_patches(), table.num_patches());
-    for limit in [free.used - 1, 1 << 20, 0] {
+    for limit in [free.used() - 1, 1 << 20, 0] {
         match PatchTable::build_within(&t, &o, Selection::Sparse, Budget::with_limit(limit)) {
             Err(Error::Mesh(MeshError::TooLarge {
                 what, bytes, human, ..
             })) => {
-                assert!(bytes > limit && bytes <= free.used, "{bytes} vs {limit}");
+                assert!(bytes > limit && bytes <= free.used(), "{bytes} vs {limit}");
                 assert!(what.contains("isolating features"), "{what}");
                 assert!(human.contains("iB, ") || human.contains(" B, "), "{human}");
                 assert!(human.ends_with(&format!(", {bytes} bytes")), "{human}");

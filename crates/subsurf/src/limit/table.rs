@@ -183,7 +183,7 @@ pub struct PatchTable<R = f32> {
     /// The rate curves' layout, formed on first use ([`PatchTable::rate_curves`]) and kept
     /// (shared by clones): it reads only the base topology, the ptex faces and which of them
     /// have patches, which a crease edit keeps (an edit that rebuilds makes a new table).
-    pub(crate) rate_curves: std::sync::OnceLock<std::sync::Arc<crate::tess::RateCurves>>,
+    pub(crate) rate_curves: std::sync::OnceLock<std::sync::Arc<super::rate_curves::RateCurves>>,
 }
 
 /// Patch counts by type.
@@ -594,13 +594,13 @@ impl<R: Real> PatchTable<R> {
 }
 
 impl<R: Real> PatchTable<R> {
-    /// The layout of the rate curves of this table's surface ([`crate::tess::RateCurves::new`]),
+    /// The layout of the rate curves of this table's surface ([`super::rate_curves::RateCurves::new`]),
     /// formed by the first call and kept with the table: a renderer that chooses its rates
     /// every frame ([`crate::tess::RatePolicy::rates`]) lays the curves out once; shared, so
     /// that a holder of it (the GPU rates) keeps it without a copy.
-    pub fn rate_curves(&self) -> &std::sync::Arc<crate::tess::RateCurves> {
+    pub fn rate_curves(&self) -> &std::sync::Arc<super::rate_curves::RateCurves> {
         self.rate_curves
-            .get_or_init(|| std::sync::Arc::new(crate::tess::RateCurves::new(self)))
+            .get_or_init(|| std::sync::Arc::new(super::rate_curves::RateCurves::new(self)))
     }
 
     /// Number of patches.

@@ -132,10 +132,10 @@ impl<R: Real> PatchTable<R> {
                 size => size as f64 * m * m,
             })
             .sum();
-        crate::limit::budget::check(samples * TESSELLATION_BYTES_PER_SAMPLE, || {
+        crate::util::budget::check(samples * TESSELLATION_BYTES_PER_SAMPLE, || {
             format!(
                 "a limit tessellation of {} samples ({n} per ptex-face side)",
-                crate::limit::budget::count(samples)
+                crate::util::budget::count(samples)
             )
         })?;
         let keys = Keys::new(self, n);

@@ -20,11 +20,11 @@
 use super::alloc::{put, unwritten, written};
 use super::loop_masks::write_rows;
 use super::masks::{face_table, LevelRows, LevelStencils, Scratch};
-use super::par;
 use super::smooth_frame::{input_at, OwnRows, StepPlan, MAX_VALENCE, OFFSET_MAX};
 use super::stencil::StencilTable;
 use crate::options::Scheme;
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// One chunk's rows kept whole: their row numbers, entry counts and entries, and its smooth

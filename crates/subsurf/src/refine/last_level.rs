@@ -13,11 +13,11 @@ use super::alloc::put;
 use super::level::{
     child_edge_sharpness, child_end_at_vertex, edge_point_tags, iota, sharp_tag, vertex_child_tags,
 };
-use super::par;
 use crate::options::{CreaseMethod, Scheme};
 use crate::rules::crease;
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// Number of face points a step from `p` creates: one per face, none under Loop (whose child

@@ -19,9 +19,9 @@
 use super::super::topology::tags::{self, rule};
 use super::super::topology::Topology;
 use super::alloc::{self, put, unwritten, written, Slot};
-use super::par;
 use crate::options::CreaseMethod;
 use crate::rules::crease;
+use crate::util::par;
 use crate::SHARPNESS_INFINITE;
 use rayon::prelude::*;
 use std::mem::MaybeUninit;

@@ -20,7 +20,6 @@ use super::lanes;
 use super::last_level::ChildSharpness;
 use super::loop_masks::{manifold_tables, opposite, smooth_edge, smooth_vertex};
 use super::loop_rings::is_manifold;
-use super::par;
 #[cfg(target_arch = "x86_64")]
 use super::smooth_frame::Padded;
 use super::smooth_frame::{runs_between, Acc};
@@ -28,6 +27,7 @@ use super::stencil::StencilTable;
 use crate::rules::r#loop::{edge_mask, smooth_weights};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// Rows per parallel chunk.

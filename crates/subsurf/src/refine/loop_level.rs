@@ -78,11 +78,11 @@ pub(crate) fn child_holes(
 /// those of [`refine_tri_topology`]; every other table is left empty.
 pub(crate) fn refine_tri_face_lists(p: &Topology) -> Topology {
     let (nv, nf) = (p.num_vertices(), p.num_faces());
-    let fb = super::par::bounds(nf);
+    let fb = crate::util::par::bounds(nf);
     let mut face_verts = super::alloc::zeroed(12 * nf, 0u32);
-    super::par::ranges(&fb)
+    crate::util::par::ranges(&fb)
         .into_par_iter()
-        .zip(super::par::split(&mut face_verts, &fb, |f| 12 * f))
+        .zip(crate::util::par::split(&mut face_verts, &fb, |f| 12 * f))
         .for_each(|(r, cfv)| {
             let base = r.start;
             for f in r {

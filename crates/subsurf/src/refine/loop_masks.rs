@@ -8,11 +8,11 @@ use super::alloc::{init, unwritten, written};
 use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::masks::{build_rows, LevelStencils, Scratch};
-use super::par;
 use super::stencil::StencilTable;
 use crate::rules::r#loop::{edge_mask, limit_mask, smooth_weights, vertex_mask};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// The stencils mapping vertex data of the triangle level `p` to its Loop child `c` (as

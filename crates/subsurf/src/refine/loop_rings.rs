@@ -24,10 +24,10 @@ use super::level::{
     assemble, child_halves, edge_point_tags, iota, vertex_child_tags, ChildEdges, ChildRings,
 };
 use super::loop_level::child_triangles;
-use super::par;
 use crate::rules::crease;
 use crate::topology::tags;
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// Whether the all-triangle level `p` refines by [`refine_manifold`]: no non-manifold vertex

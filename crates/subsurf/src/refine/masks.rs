@@ -7,13 +7,13 @@
 use super::alloc::{init, unwritten, written};
 use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
-use super::par;
 use super::stencil::{RowBuilder, StencilTable};
 use crate::options::{Scheme, TriangleSubdivision};
 use crate::real::Real;
 use crate::rules::catmark::{edge_mask, limit_mask, vertex_mask, VertexMask, VertexNeighbourhood};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// Builds a table of `rows` rows over `num_inputs` inputs, in parallel chunks.

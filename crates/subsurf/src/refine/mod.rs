@@ -39,7 +39,6 @@ mod loop_nonmanifold;
 mod loop_rings;
 mod masks;
 mod moved;
-pub(crate) mod par;
 mod resharpen;
 mod smooth_frame;
 mod stencil;
@@ -63,10 +62,10 @@ pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
 use crate::error::{Error, MeshError, Result};
-use crate::limit::budget::{check, human, saturate};
 use crate::mesh::Mesh;
 use crate::options::Scheme;
 use crate::topology::Topology;
+use crate::util::budget::{check, human, saturate};
 
 /// Options of [`Refiner::with_options`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

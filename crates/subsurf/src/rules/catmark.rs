@@ -6,9 +6,9 @@
 //! of each incident edge.
 
 use super::crease::{fractional_weight_at_vertex, sharp_edge_pair};
+use super::rule;
 use crate::options::{CreaseMethod, TriangleSubdivision};
 use crate::real::Real;
-use crate::topology::tags::rule;
 
 /// Weight given to a triangle's face point by the `Smooth` triangle rule (OpenSubdiv, after Hbr).
 pub const SMOOTH_TRI_EDGE_WEIGHT: f32 = 0.470;

@@ -7,8 +7,8 @@
 
 use super::catmark::VertexMask;
 use super::crease::{fractional_weight_at_vertex, sharp_edge_pair};
+use super::rule;
 use crate::options::CreaseMethod;
-use crate::topology::tags::rule;
 
 /// An edge-point mask: the same weight for both end vertices and for the opposite vertex of
 /// every incident triangle.

@@ -19,12 +19,7 @@ pub fn newell(positions: &[[f32; 3]], poly: &[u32]) -> [f32; 3] {
 
 /// `n` scaled to unit length; zero when `n` is zero or not finite.
 pub fn unit(n: [f32; 3]) -> [f32; 3] {
-    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-    if l > 0.0 && l.is_finite() {
-        [n[0] / l, n[1] / l, n[2] / l]
-    } else {
-        [0.0; 3]
-    }
+    crate::util::vec3::unit(n, 0.0).unwrap_or([0.0; 3])
 }
 
 /// Triangles of polygons (fans from the first corner) with one class each.

@@ -407,10 +407,10 @@ fn check_memory(ptex_rates: &[Option<([u32; 4], [u32; 2])>]) -> Result<()> {
 pub(crate) fn check_samples(samples: f64) -> Result<()> {
     // Per sample: a query, a position, a normal, two triangles with their (u, v), keys.
     let bytes = samples * (12 + 24 + 2 * (12 + 28) + 16) as f64;
-    crate::limit::budget::check(bytes, || {
+    crate::util::budget::check(bytes, || {
         format!(
             "a tessellation of {} samples",
-            crate::limit::budget::count(samples)
+            crate::util::budget::count(samples)
         )
     })?;
     Ok(())

@@ -9,7 +9,7 @@
 //! - an edge used twice by one face gets a second, non-manifold instance;
 //! - an edge with more than two faces, or two faces wound the same way, is non-manifold.
 
-use crate::refine::par;
+use crate::util::par;
 use rayon::prelude::*;
 
 /// The relations derived from face-vertex lists (see [`super::Topology`] for each array).
