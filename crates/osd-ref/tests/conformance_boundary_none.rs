@@ -11,7 +11,6 @@
 mod common;
 
 use osd_ref::{EndCap, OsdMesh, PatchOptions as OsdPatchOptions};
-use subsurf::limit::patch_map::EMPTY;
 use subsurf::limit::{LimitSurface, PatchOptions, PatchTable};
 use subsurf::{BoundaryInterpolation, Crease, FaceVarying, Mesh};
 use subsurf::{Refiner, Topology};
@@ -320,8 +319,8 @@ fn limit_surface_evaluation_matches_opensubdiv() {
         let s = LimitSurface::new(table, &mesh.positions);
         let diag = diagonal(&mesh.positions);
         // Every ptex face OpenSubdiv samples has a patch here, and no other.
-        let roots = &s.table.patch_map.roots;
-        let with_patch = roots.iter().filter(|&&h| h != EMPTY).count();
+        let map = &s.table.patch_map;
+        let with_patch = (0..map.num_ptex()).filter(|&f| map.has_patches(f)).count();
         assert_eq!(with_patch * n * n, osd.len(), "{name}: sampled faces");
         for q in &osd {
             let r = s

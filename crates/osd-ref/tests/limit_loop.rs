@@ -9,7 +9,7 @@
 mod common;
 
 use osd_ref::{eval_limit_grid_f64, EndCap, OsdMesh, PatchOptions};
-use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::LoopLimit;
 use subsurf::Topology;
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {

@@ -7,7 +7,7 @@
 mod common;
 
 use osd_ref::{patch_stats, EndCap, OsdMesh, PatchOptions};
-use subsurf::limit::loop_patches::loop_patch_counts;
+use subsurf::limit::loop_patch_counts;
 use subsurf::Topology;
 
 #[test]

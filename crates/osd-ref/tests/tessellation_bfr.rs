@@ -69,7 +69,7 @@ fn rate_sweep_matches_bfr() {
             for &c in &[1u32, 3, 8] {
                 for &d in &[1u32, 2, 64] {
                     let outer = [a, b, c, d];
-                    check(outer, subsurf::tess::pattern::default_inner(outer), false);
+                    check(outer, subsurf::tess::default_inner(outer), false);
                     for inner in [[1, 1], [1, b], [a, 1], [2, 2], [3, 7], [a, b]] {
                         check(outer, inner, true);
                     }

@@ -16,8 +16,8 @@ use anyhow::Context;
 use std::fmt::Display;
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::query::{check_square, check_triangle};
+use subsurf::limit::LoopLimit;
+use subsurf::limit::{check_square, check_triangle};
 use subsurf::limit::{LimitPoint, LimitSurface};
 use subsurf::{Mesh, Real, Scheme, Topology};
 

@@ -10,7 +10,7 @@ use crate::common::{
     write_mesh, Backend,
 };
 use crate::progress::note;
-use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::quadrangulate;
 use subsurf::prep::{PrepPatches, Real};
 use subsurf::Mesh;
 
@@ -133,7 +133,7 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
 /// with `quadrangulate`, the Catmull-Clark step to quads runs on the GPU too and its
 /// positions feed the p-rep without leaving the GPU.
 fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Result<()> {
-    use subsurf::prep::{bezier::face_bezier, npy, PrepTopology};
+    use subsurf::prep::{face_bezier, write_npy, PrepTopology};
     let ctx = gpu_context()?;
     let mut refined = None;
     let quads;
@@ -203,7 +203,7 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
             }
         }
         let mut w = create_output(out)?;
-        npy::write_f64(&mut w, &data, &[nf, 6, 6, 3])
+        write_npy(&mut w, &data, &[nf, 6, 6, 3])
             .and_then(|_| std::io::Write::flush(&mut w))
             .with_context(|| format!("writing {}", shown(out, true)))?;
         crate::say!("wrote {}: ({nf}, 6, 6, 3) float64", shown(out, true));

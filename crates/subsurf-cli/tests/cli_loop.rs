@@ -96,7 +96,7 @@ fn refine_keeps_loop_uvs() {
 /// 2 — on a shape where every vertex is extraordinary.
 #[test]
 fn limit_writes_the_loop_limit_surface_watertight() {
-    use subsurf::limit::loop_eval::LoopLimit;
+    use subsurf::limit::LoopLimit;
     let input = repo("testdata/shapes/loop_icosahedron.obj");
     let path = tmp("loop_limit.obj");
     run_ok(
@@ -148,7 +148,7 @@ fn eval_lines(path: &std::path::Path) -> Vec<Vec<f64>> {
 
 /// Every line of `eval` output is the library's Loop limit sample, bit for bit (f64
 /// written in its shortest round-trip form).
-fn assert_library_samples(lines: &[Vec<f64>], surface: &subsurf::limit::loop_eval::LoopLimit) {
+fn assert_library_samples(lines: &[Vec<f64>], surface: &subsurf::limit::LoopLimit) {
     for l in lines {
         assert_eq!(l.len(), 12);
         let r = surface.eval(l[0] as usize, l[1], l[2]).unwrap();
@@ -163,7 +163,7 @@ fn assert_library_samples(lines: &[Vec<f64>], surface: &subsurf::limit::loop_eva
 /// alike; the derivatives are those of the surface (central differences along `u`).
 #[test]
 fn eval_writes_the_loop_limit_samples() {
-    use subsurf::limit::loop_eval::LoopLimit;
+    use subsurf::limit::LoopLimit;
     let input = repo("testdata/shapes/loop_icosahedron.obj");
     let renamed = tmp("icosahedron.obj");
     std::fs::copy(&input, &renamed).unwrap();
@@ -222,7 +222,7 @@ fn eval_writes_the_loop_limit_samples() {
 /// naming the query, and the GPU backend is refused for Loop.
 #[test]
 fn eval_at_queries_and_refuses_those_off_the_triangles() {
-    use subsurf::limit::loop_eval::LoopLimit;
+    use subsurf::limit::LoopLimit;
     let input = repo("testdata/shapes/loop_xord_boundary.obj");
     let mesh = subsurf::io::read_path(&input).unwrap();
     let topo = Topology::new(&mesh).unwrap();
@@ -362,7 +362,7 @@ fn eval_at_on_ptex_faces() {
 /// naming the range.
 #[test]
 fn limit_on_the_gpu_and_what_the_loop_surface_cannot_do() {
-    use subsurf::limit::loop_eval::LoopLimit;
+    use subsurf::limit::LoopLimit;
     let input = repo("testdata/shapes/loop_cube.obj");
     let path = tmp("loop_gpu.obj");
     if run_gpu(

@@ -7,7 +7,7 @@
 //! patch as the library gathered them, rounded to f32). [`GpuLoopLimit::samples`] uploads a
 //! sample set, [`GpuLoopLimit::eval`] evaluates it; [`GpuLoopLimit::tessellate`] evaluates
 //! the samples of the library's watertight tessellation
-//! ([`subsurf::limit::loop_tessellate::tri_tessellation_plan`]), so its triangles are those of
+//! ([`subsurf::limit::tri_tessellation_plan`]), so its triangles are those of
 //! [`LoopLimit::tessellate`] and only positions and normals come from the GPU. The patch of
 //! each sample is found on the host with the triangle patch map.
 //!
@@ -28,8 +28,8 @@ pub use crate::loop_twin::{assemble, loop_eval_cpu, loop_tessellate_cpu, plan_qu
 use crate::refine::{auto_pipeline, uniform_init};
 use crate::shaders;
 use crate::shared::LoopConfig;
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::loop_tessellate::{tri_tessellation_plan, TriTessellation};
+use subsurf::limit::LoopLimit;
+use subsurf::limit::{tri_tessellation_plan, TriTessellation};
 use subsurf::Topology;
 
 const WORD: u64 = 4;

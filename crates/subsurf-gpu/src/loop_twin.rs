@@ -4,8 +4,8 @@
 
 use crate::cpu::loop_eval::{loop_eval, pack_queries, LoopInputs, LoopTables, NO_PATCH};
 use crate::shared::LoopConfig;
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::loop_tessellate::{
+use subsurf::limit::LoopLimit;
+use subsurf::limit::{
     tri_tessellation_plan, TriTessellation, TriTessellationPlan,
 };
 use subsurf::Topology;

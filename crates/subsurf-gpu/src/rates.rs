@@ -2,7 +2,7 @@
 //! its rates again every frame (a moving camera under a screen-space policy, animated
 //! positions under a tolerance) without evaluating the surface on the CPU.
 //!
-//! The rate curves of [`subsurf::tess::curves`] (every base edge's limit curve and every ptex
+//! The rate curves of [`subsurf::tess::RateCurves`] (every base edge's limit curve and every ptex
 //! face's isolines, [`CURVE_POINTS`] samples each) are uploaded once as limit samples of a
 //! [`GpuLimit`]. Per call, `limit_eval` evaluates them from the limit's current points, the
 //! `rate_measure` kernel reduces each curve to its measure (one `f32` per curve: the car's
@@ -25,7 +25,7 @@ use crate::shaders;
 use crate::shared::RateConfig;
 use std::sync::Arc;
 use subsurf::limit::PatchTable;
-use subsurf::tess::curves::{CurveMeasure, RateCurves, CURVE_POINTS};
+use subsurf::tess::{CurveMeasure, RateCurves, CURVE_POINTS};
 use subsurf::tess::{EdgeRates, RatePolicy};
 
 use crate::cpu::rate_measure::WORKGROUP_SIZE;

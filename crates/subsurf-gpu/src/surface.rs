@@ -7,8 +7,8 @@ use crate::{
     GpuContext, GpuError, GpuLimit, GpuLoopLimit, GpuPrep, GpuRates, GpuRefiner, GpuUvRefiner,
     StencilKernel,
 };
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::loop_tessellate::TriTessellation;
+use subsurf::limit::LoopLimit;
+use subsurf::limit::TriTessellation;
 use subsurf::limit::{LimitSurface, PatchTable, Tessellation};
 use subsurf::prep::PrepTopology;
 use subsurf::refine::FVarRefinement;

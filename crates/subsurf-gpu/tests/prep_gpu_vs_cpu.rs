@@ -4,7 +4,7 @@
 mod common;
 
 use common::{bits, context_or_skip};
-use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::quadrangulate;
 use subsurf::prep::{PrepPatches, PrepTopology, Tessellation};
 use subsurf::{Mesh, Topology};
 use subsurf_gpu::{ChunkLimits, GpuPrep, PrepChunks, PrepTables};

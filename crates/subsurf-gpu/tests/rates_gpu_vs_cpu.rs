@@ -7,7 +7,7 @@ mod common;
 
 use common::{context_or_skip, load};
 use subsurf::limit::LimitSurface;
-use subsurf::tess::curves::CURVE_POINTS;
+use subsurf::tess::CURVE_POINTS;
 use subsurf::tess::{CurveMeasure, EdgeRates, RatePolicy, ScreenCamera};
 use subsurf_gpu::cpu::rate_measure::rate_measure;
 use subsurf_gpu::rates::rate_config;

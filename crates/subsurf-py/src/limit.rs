@@ -12,7 +12,7 @@ use std::sync::{Arc, Mutex, RwLock};
 
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::LoopLimit;
 use subsurf::limit::{EditOutcome, LimitSurface, PatchOptions, PatchTable, SharpnessEdit};
 use subsurf::{Mesh, Scheme, Topology};
 
@@ -211,7 +211,7 @@ impl PyLimit {
             } => {
                 let count = *num_ptex_faces;
                 for (k, &(f, u, v)) in q.iter().enumerate() {
-                    subsurf::limit::query::check_square(k, f as u64, u, v, count)
+                    subsurf::limit::check_square(k, f as u64, u, v, count)
                         .map_err(|e| value_error(e.to_string()))?;
                 }
                 let s = read(surface)?;

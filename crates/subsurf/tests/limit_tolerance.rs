@@ -6,7 +6,7 @@
 mod limit_common;
 
 use limit_common::{bbox_diagonal, dist, isolated, load_shape, Lcg};
-use subsurf::limit::tolerance::split_tolerance;
+use subsurf::limit::split_tolerance;
 use subsurf::limit::{
     build_for_tolerance, choose_isolation, IsolationChoice, LimitSurface, PatchTable, PatchType,
     SharpnessEdit,

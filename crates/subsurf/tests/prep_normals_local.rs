@@ -2,7 +2,7 @@
 //! the `f32` grid evaluation of a p-rep's own coefficients against the same coefficients
 //! evaluated in `f64`, on meshes far from the origin and with thin faces.
 
-use subsurf::prep::eval::{eval_patch, Basis};
+use subsurf::prep::kernel::{eval_patch, Basis};
 use subsurf::prep::PrepPatches;
 use subsurf::{shapes, Mesh};
 

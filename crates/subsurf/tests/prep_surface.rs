@@ -5,7 +5,7 @@
 mod prep_shapes;
 
 use prep_shapes::*;
-use subsurf::prep::patch_pass::{corner_index, H_SLOTS};
+use subsurf::prep::kernel::{corner_index, H_SLOTS};
 use subsurf::prep::{PrepPatches, Real};
 
 /// All valences 4: the surface is the uniform bicubic B-spline of the control net.
@@ -295,7 +295,7 @@ fn parallel_equals_sequential() {
 }
 
 fn quad_mesh_big() -> subsurf::Mesh {
-    subsurf::prep::quadrangulate::quadrangulate(&wobble(mixed40(), 0.02)).unwrap()
+    subsurf::prep::quadrangulate(&wobble(mixed40(), 0.02)).unwrap()
 }
 
 /// The limit point g00 (eq. 2) is the Catmull-Clark limit: one Catmull-Clark step, applied by

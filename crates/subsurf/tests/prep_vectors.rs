@@ -4,9 +4,9 @@
 
 mod prep_shapes;
 
-use subsurf::prep::constants::Valence;
-use subsurf::prep::patch_pass::{edge_h, EdgeInputs, H_SLOTS};
-use subsurf::prep::vertex_pass::{frame_from_ring, interior_coeff, tangent_coeff};
+use subsurf::prep::kernel::Valence;
+use subsurf::prep::kernel::{edge_h, EdgeInputs, H_SLOTS};
+use subsurf::prep::kernel::{frame_from_ring, interior_coeff, tangent_coeff};
 use subsurf::prep::PrepPatches;
 
 const TOL: f64 = 1e-10;
@@ -172,7 +172,7 @@ fn c(n: usize) -> f64 {
     if n == 4 {
         0.0
     } else {
-        subsurf::prep::constants::c_n(n)
+        subsurf::prep::kernel::c_n(n)
     }
 }
 

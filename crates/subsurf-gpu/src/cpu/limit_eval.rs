@@ -11,7 +11,7 @@
 //!
 //! (likewise `∂P/∂v`), relative to the patch's first control point `x_0` — exact, as the
 //! weights sum to 1 and their derivatives to 0, and rounded relative to the patch instead
-//! of its distance from the origin ([`subsurf::limit::eval`]). The bases:
+//! of its distance from the origin ([`subsurf::limit::LimitSurface::eval`]). The bases:
 //!
 //! - regular: bicubic B-spline, phantom points `2 P_edge − P_inner` of boundary edges folded
 //!   into the curve weights ([`subsurf::patch::bspline`]);

@@ -1,5 +1,5 @@
 //! CPU twin of `shaders/loop_eval.wgsl`: the Loop limit surface of a
-//! [`subsurf::limit::loop_eval::LoopLimit`] at a list of `(patch, u, v)` samples.
+//! [`subsurf::limit::LoopLimit`] at a list of `(patch, u, v)` samples.
 //!
 //! The patch of each sample is found on the host (the triangle patch map,
 //! [`subsurf::limit::PatchMap::find_triangle`]); `(u, v)` are the base face's. For each
@@ -32,7 +32,7 @@
 //! [`LoopLimit::tessellate`] writes it).
 
 use crate::shared::LoopConfig;
-use subsurf::limit::loop_eval::LoopLimit;
+use subsurf::limit::LoopLimit;
 // Stam's coefficients (times 12) of the 12 box-spline basis functions, their monomials'
 // exponents and the point rotation: the library's tables (`subsurf::patch::box_spline`), which
 // the WGSL kernel repeats as private arrays.

@@ -3,11 +3,11 @@
 //!
 //! Per face: the 16 bi-3 coefficients `g` from the vertex data of its corners, and for a
 //! perturbed face the 16 non-zero `h` of its four edges. The edge formulas are those of
-//! `subsurf::prep::patch_pass::edge_h`, called here with the inputs read from the flat
+//! `subsurf::prep::kernel::edge_h`, called here with the inputs read from the flat
 //! buffers exactly as the shader reads them; the twin thus reproduces `PrepPatches<f32>`.
 
 use crate::shared::PrepConfig;
-use subsurf::prep::patch_pass::{corner_index, edge_h, EdgeInputs};
+use subsurf::prep::kernel::{corner_index, edge_h, EdgeInputs};
 
 use super::prep_vertex_pass::valence_base;
 

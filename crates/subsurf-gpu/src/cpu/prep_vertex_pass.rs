@@ -10,11 +10,11 @@
 //! ```
 //!
 //! The weights come from the flat `valence_consts` table ([`valence_consts`]), the f32
-//! constants of `subsurf::prep::constants::ValenceTable`, and every sum is formed in the
+//! constants of `subsurf::prep::kernel::ValenceTable`, and every sum is formed in the
 //! order of the library's vertex pass, so the twin reproduces `PrepPatches<f32>` bit for bit.
 
 use crate::shared::PrepConfig;
-use subsurf::prep::constants::ValenceTable;
+use subsurf::prep::kernel::ValenceTable;
 
 /// Invocations per workgroup (same as the shader's `WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;

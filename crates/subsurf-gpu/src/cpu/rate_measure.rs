@@ -1,5 +1,5 @@
 //! CPU twin of `shaders/rate_measure.wgsl`: one number per rate curve
-//! ([`subsurf::tess::curves`]), the largest over the curve's segments of its second difference
+//! ([`subsurf::tess::RateCurves`]), the largest over the curve's segments of its second difference
 //! times `s²` (kind 0), its chord length times `s` (kind 1) or its chord length in pixels under
 //! `view_proj` times `s` (kind 2; a chord with an end behind the eye counts zero), with
 //! `s = points_per_curve − 1`. All in `f32`, in the shader's order; the GPU may contract

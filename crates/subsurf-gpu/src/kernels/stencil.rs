@@ -330,7 +330,7 @@ impl StencilKernel {
     /// Applies every row relative to its first input, `x_0 + Σ w (x − x_0)`: for tables
     /// whose rows sum to 1 (patch points, end caps), the rounding is then that of the row's
     /// neighbourhood, not of its distance from the origin (as
-    /// `subsurf::limit::points::apply_relative`).
+    /// `subsurf::limit::apply_relative`).
     pub fn relative(mut self, on: bool) -> Self {
         self.relative = on;
         self

@@ -6,26 +6,16 @@
 //!                                                   └── tessellate(N)
 //! ```
 //!
-//! - [`table`]: which faces become regular B-spline, single-crease or Gregory end-cap
-//!   patches, and the flat arrays that hold them;
-//! - [`sparse`]: the sparsely refined levels the patches are taken from, within the memory
-//!   [`budget`];
-//! - [`leaves`]: the patch of each leaf face of a level;
-//! - [`features`]: OpenSubdiv's rules for adaptive isolation and patch regularity;
-//! - [`gather`]: the 16 points of a regular patch;
-//! - [`loop_endcap`]: Gregory-triangle end caps of irregular Loop patches;
-//! - [`loop_eval`]: the Loop limit surface on its patches;
-//! - [`loop_tessellate`]: watertight triangle tessellation of the Loop limit surface;
-//! - [`loop_patches`]: feature-adaptive isolation and patch regularity for the Loop scheme;
-//! - [`query`]: `(face, u, v)` queries checked against the surface's domain;
-//! - [`endcap`]: the 20 points of a Gregory end cap;
-//! - [`span`]: manifold fans around non-manifold vertices;
-//! - [`patch_map`]: the quadtree per ptex face ([`tri_patch_map`]: of triangles);
-//! - [`points`]: the patch points from base values (stencil rows relative to their first input);
-//! - [`eval`]: evaluation; [`tessellate`]: watertight sampling;
-//! - [`tolerance`]: the isolation level chosen per region for a tolerance;
-//! - [`edit`]: crease edits of a built table ([`PatchTable::set_sharpness`]);
-//!   [`edit_region`]: the incremental update where the isolation structure is kept.
+//! How it is built: the faces next to features (extraordinary vertices, creases, corners,
+//! boundaries) are isolated by sparse refinement to the isolation level, within a memory
+//! budget that refuses a table which would not fit before it is allocated; every leaf face
+//! becomes a regular B-spline, single-crease or Gregory end-cap patch (box-spline and
+//! Gregory-triangle patches for Loop), whose points are stencil rows relative to their first
+//! input ([`PatchTable::points`]). A [`PatchMap`] finds the patch of a `(ptex, u, v)`; a
+//! [`LimitSurface`] evaluates positions and derivatives and tessellates watertight
+//! ([`LimitSurface::tessellate`], per-edge rates through `crate::tess`);
+//! [`build_for_tolerance`] chooses the isolation per region; [`PatchTable::set_sharpness`]
+//! edits creases of a built table ([`SharpnessEdit`]). The Loop limit is [`LoopLimit`].
 //!
 //! # Ptex faces
 //!
@@ -83,35 +73,39 @@
 //! ```
 
 pub(crate) mod budget;
-pub mod curve_eval;
-pub mod edit;
-pub mod edit_rebuild;
-pub mod edit_region;
-pub mod endcap;
-pub mod eval;
-pub mod features;
-pub mod gather;
-pub mod leaves;
-pub mod loop_endcap;
-pub mod loop_eval;
-pub mod loop_patches;
-pub mod loop_tessellate;
-pub mod patch_map;
-pub mod points;
-pub mod query;
+pub(crate) mod curve_eval;
+pub(crate) mod edit;
+pub(crate) mod edit_rebuild;
+pub(crate) mod edit_region;
+pub(crate) mod endcap;
+pub(crate) mod eval;
+pub(crate) mod features;
+pub(crate) mod gather;
+pub(crate) mod leaves;
+pub(crate) mod loop_endcap;
+pub(crate) mod loop_eval;
+pub(crate) mod loop_patches;
+pub(crate) mod loop_tessellate;
+pub(crate) mod patch_map;
+pub(crate) mod points;
+pub(crate) mod query;
 pub(crate) mod rate_curves;
-pub mod span;
-pub mod sparse;
-pub mod table;
-pub mod tessellate;
-pub mod tolerance;
-pub mod tri_patch_map;
+pub(crate) mod span;
+pub(crate) mod sparse;
+pub(crate) mod table;
+pub(crate) mod tessellate;
+pub(crate) mod tolerance;
+pub(crate) mod tri_patch_map;
 
 pub use edit::{EditOutcome, SharpnessEdit};
 pub use eval::{LimitPoint, LimitSurface};
 pub use patch_map::PatchMap;
 pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
 pub use tessellate::{Tessellation, TessellationPlan};
-pub use tolerance::{build_for_tolerance, choose_isolation, IsolationChoice};
+pub use tolerance::{build_for_tolerance, choose_isolation, split_tolerance, IsolationChoice};
+pub use loop_eval::LoopLimit;
+pub use loop_patches::{loop_patch_counts, LoopPatchCounts};
+pub use loop_tessellate::{tri_tessellation_plan, TriTessellation, TriTessellationPlan};
+pub use query::{check_square, check_triangle};
 #[cfg(test)]
 mod sparse_tests;

@@ -89,6 +89,16 @@ pub(crate) fn square_local<R: Real>(x: R, scale: R, i: R) -> Option<R> {
 pub const QUADRANT: [(u32, u32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
 
 impl PatchMap {
+    /// Number of ptex faces.
+    pub fn num_ptex(&self) -> usize {
+        self.roots.len()
+    }
+
+    /// Whether ptex face `ptex` has patches (is in range and not a hole).
+    pub fn has_patches(&self, ptex: usize) -> bool {
+        self.roots.get(ptex).is_some_and(|&h| h != EMPTY)
+    }
+
     /// The patch covering `(u, v)` of ptex face `ptex`; `None` for a hole or an index out of
     /// range. `u` and `v` are clamped to `[0, 1]`.
     pub fn find<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<u32> {
@@ -142,6 +152,28 @@ impl PatchMap {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The quadtree descends by quadrant: 0 (low u, low v), 1 (high u), 2 (both), 3 (high v).
+    #[test]
+    fn patch_map_quadrants() {
+        let map = PatchMap {
+            roots: vec![0, LEAF | 7, EMPTY],
+            nodes: vec![
+                [LEAF, LEAF | 1, 1, EMPTY],
+                [LEAF | 2, LEAF | 3, LEAF | 4, LEAF | 5],
+            ],
+        };
+        assert_eq!(map.find(0, 0.1, 0.2), Some(0));
+        assert_eq!(map.find(0, 0.6, 0.2), Some(1));
+        assert_eq!(map.find(0, 0.1, 0.9), None);
+        assert_eq!(map.find(0, 0.6, 0.6), Some(2));
+        assert_eq!(map.find(0, 0.8, 0.6), Some(3));
+        assert_eq!(map.find(0, 0.8, 0.8), Some(4));
+        assert_eq!(map.find(0, 0.6, 0.9), Some(5));
+        assert_eq!(map.find(1, 0.3, 0.3), Some(7));
+        assert_eq!(map.find(2, 0.3, 0.3), None);
+        assert_eq!(map.find(3, 0.3, 0.3), None);
+    }
     use crate::limit::{PatchOptions, PatchTable};
 
     /// On a grid of every ptex face of an isolated pole (with a hole), including the

@@ -77,6 +77,7 @@ pub enum Selection {
     Rings(usize),
     /// Every face: uniform refinement to the isolation level (the reference the sparse
     /// construction is tested against).
+    #[cfg(test)]
     Uniform,
 }
 
@@ -236,6 +237,7 @@ pub type LeafFn<'a, T> = dyn Fn(&Level, usize, u32, &[u32]) -> Result<T> + Sync 
 /// refined further) and the offset of its vertices in the flat point array; its results are
 /// returned per level. It runs while the next level is refined (in parallel where rayon has
 /// threads), on the level whose tables were just read by the selection.
+#[cfg(test)]
 pub fn build<W: Real, T: Send>(
     base: &Topology,
     max_level: usize,
@@ -383,6 +385,7 @@ pub fn resume<W: Real, T: Send>(
             break;
         }
         let keep = match selection {
+            #[cfg(test)]
             Selection::Uniform => vec![true; cur.topo.num_faces()],
             Selection::Sparse => rings(&cur.topo, &chosen, 1),
             #[cfg(test)]

@@ -17,18 +17,35 @@
 //! everywhere else. Only closed, oriented 2-manifold quad meshes are covered: see
 //! [`check_input`] and [`quadrangulate`] for other polygons.
 
-pub mod bezier;
-pub mod constants;
-pub mod eval;
-pub mod grid;
-pub mod npy;
-pub mod patch_pass;
-pub mod quadrangulate;
-pub mod ring;
-pub mod scalar;
-pub mod vertex_pass;
+pub(crate) mod bezier;
+pub(crate) mod constants;
+pub(crate) mod eval;
+pub(crate) mod grid;
+pub(crate) mod npy;
+pub(crate) mod patch_pass;
+pub(crate) mod quadrangulate;
+pub(crate) mod ring;
+pub(crate) mod scalar;
+pub(crate) mod vertex_pass;
 
 pub use eval::{Grid, Sample, Tessellation};
+pub use bezier::face_bezier;
+pub use npy::write_npy;
+pub use quadrangulate::quadrangulate;
+
+/// The per-element functions of the p-rep's passes (the paper's equations, with the
+/// corrections of the checked specification), for a backend that runs the passes itself —
+/// the wgpu backend's CPU twins call these — and for checks of single formulas.
+pub mod kernel {
+    #[doc(inline)]
+    pub use super::constants::{c_n, Valence, ValenceTable};
+    #[doc(inline)]
+    pub use super::eval::{eval_patch, Basis};
+    #[doc(inline)]
+    pub use super::patch_pass::{corner_index, edge_h, EdgeInputs, H_SLOTS};
+    #[doc(inline)]
+    pub use super::vertex_pass::{frame_from_ring, interior_coeff, tangent_coeff};
+}
 pub use ring::{check_input, PrepTopology};
 pub use scalar::Real;
 pub use vertex_pass::VertexData;
@@ -213,6 +230,6 @@ impl<T: Real> PrepPatches<T> {
             .iter()
             .flat_map(|p| p.map(|x| x.to_f64()))
             .collect();
-        npy::write_f64(w, &data, &[self.num_faces(), 6, 6, 3])
+        npy::write_npy(w, &data, &[self.num_faces(), 6, 6, 3])
     }
 }

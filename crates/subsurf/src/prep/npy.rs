@@ -4,7 +4,7 @@
 use std::io::Write;
 
 /// Writes `data` (row-major, `shape.iter().product()` values) as an `.npy` array of `<f8`.
-pub fn write_f64<W: Write>(mut w: W, data: &[f64], shape: &[usize]) -> std::io::Result<()> {
+pub fn write_npy<W: Write>(mut w: W, data: &[f64], shape: &[usize]) -> std::io::Result<()> {
     let count: usize = shape.iter().product();
     if count != data.len() {
         return Err(std::io::Error::new(
@@ -43,7 +43,7 @@ mod tests {
     #[test]
     fn header_is_aligned_and_parsable() {
         let mut out = Vec::new();
-        write_f64(&mut out, &[1.0, -2.5], &[1, 2]).unwrap();
+        write_npy(&mut out, &[1.0, -2.5], &[1, 2]).unwrap();
         assert_eq!(&out[..8], b"\x93NUMPY\x01\x00");
         let hl = u16::from_le_bytes([out[8], out[9]]) as usize;
         assert_eq!((10 + hl) % 64, 0);
@@ -51,6 +51,6 @@ mod tests {
         assert!(header.contains("'shape': (1, 2)") && header.ends_with('\n'));
         let body = &out[10 + hl..];
         assert_eq!(f64::from_le_bytes(body[8..16].try_into().unwrap()), -2.5);
-        assert!(write_f64(&mut Vec::new(), &[1.0], &[2]).is_err());
+        assert!(write_npy(&mut Vec::new(), &[1.0], &[2]).is_err());
     }
 }

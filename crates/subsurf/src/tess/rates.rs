@@ -20,7 +20,6 @@
 //! parameter) over the length allowed, `/√2` for diagonals. A face's interior rate is chosen
 //! the same way from its isolines, and raises its edges to at least `1/GRADING` of it.
 
-pub use super::curves::CURVE_SAMPLES;
 use super::curves::{CurveMeasure, RateCurves};
 use super::mesh::{check_samples, graded, EdgeRates, GRADING, MAX_RATE};
 use crate::error::{Result, TessError};

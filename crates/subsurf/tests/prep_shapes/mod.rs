@@ -1,7 +1,7 @@
 //! Shape generators and helpers shared by the p-rep integration tests.
 #![allow(dead_code)]
 
-use subsurf::prep::quadrangulate::quadrangulate;
+use subsurf::prep::quadrangulate;
 use subsurf::prep::{PrepPatches, Real, Sample};
 use subsurf::Mesh;
 
