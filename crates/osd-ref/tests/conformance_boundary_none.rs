@@ -205,10 +205,11 @@ fn base_level_holes_match_opensubdiv() {
         let osd = osd_ref::refine_uniform(&o, 1).unwrap();
         let topo = Topology::new(&mesh).unwrap();
         assert_eq!(
-            topo.face_is_hole, osd[0].face_is_hole,
+            topo.arrays().face_is_hole,
+            osd[0].face_is_hole,
             "{name}: base-level holes"
         );
-        let kept = topo.face_is_hole.iter().filter(|&&h| !h).count();
+        let kept = topo.arrays().face_is_hole.iter().filter(|&&h| !h).count();
         eprintln!("{name:28} keeps {kept} of {} faces", topo.num_faces());
         kept_some_partial |= name == "grid6 bottom+left" && kept > 4;
     }
@@ -228,10 +229,19 @@ fn refinement_and_limit_stencils_match_opensubdiv() {
         let ours = refiner.refine_all(&mesh.positions);
         for l in 1..=level {
             let t = &refiner.levels[l];
-            assert_eq!(t.face_verts, osd[l].face_verts, "{name} level {l}: faces");
-            assert_eq!(t.edge_verts, osd[l].edge_verts, "{name} level {l}: edges");
             assert_eq!(
-                t.face_is_hole, osd[l].face_is_hole,
+                t.arrays().face_verts,
+                osd[l].face_verts,
+                "{name} level {l}: faces"
+            );
+            assert_eq!(
+                t.arrays().edge_verts,
+                osd[l].edge_verts,
+                "{name} level {l}: edges"
+            );
+            assert_eq!(
+                t.arrays().face_is_hole,
+                osd[l].face_is_hole,
                 "{name} level {l}: holes"
             );
             assert_eq!(ours[l].len(), osd[l].positions.len(), "{name} level {l}");

@@ -38,10 +38,19 @@ fn compare(name: &str, mesh: &Mesh, max_level: usize) -> f32 {
         let (o, s) = (&osd[level], &ours[level]);
         let t = &refiner.levels[level];
         assert_eq!(s.len(), o.positions.len(), "{name} level {level}: vertices");
-        assert_eq!(t.face_verts, o.face_verts, "{name} level {level}: faces");
-        assert_eq!(t.edge_verts, o.edge_verts, "{name} level {level}: edges");
         assert_eq!(
-            t.face_is_hole, o.face_is_hole,
+            t.arrays().face_verts,
+            o.face_verts,
+            "{name} level {level}: faces"
+        );
+        assert_eq!(
+            t.arrays().edge_verts,
+            o.edge_verts,
+            "{name} level {level}: edges"
+        );
+        assert_eq!(
+            t.arrays().face_is_hole,
+            o.face_is_hole,
             "{name} level {level}: holes"
         );
         for (i, (a, b)) in s.iter().zip(&o.positions).enumerate() {

@@ -43,15 +43,18 @@ fn compare_with(name: &str, max_level: usize, edit: impl Fn(&mut Mesh)) -> f32 {
             "{name} level {level}: vertex count"
         );
         assert_eq!(
-            t.face_verts, o.face_verts,
+            t.arrays().face_verts,
+            o.face_verts,
             "{name} level {level}: face-vertex lists differ"
         );
         assert_eq!(
-            t.edge_verts, o.edge_verts,
+            t.arrays().edge_verts,
+            o.edge_verts,
             "{name} level {level}: edge-vertex lists differ"
         );
         assert_eq!(
-            t.face_is_hole, o.face_is_hole,
+            t.arrays().face_is_hole,
+            o.face_is_hole,
             "{name} level {level}: holes differ"
         );
         for (i, (a, b)) in s.iter().zip(&o.positions).enumerate() {

@@ -3,7 +3,6 @@
 use crate::common::SchemeArgs;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-use subsurf::topology::tags;
 use subsurf::Topology;
 
 /// Print counts, histograms, features and problems of a mesh.
@@ -133,10 +132,8 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
         non_manifold_vertices: t.non_manifold_vertices().len(),
         degenerate_faces: t.degenerate_faces().len(),
         unused_vertices: t.unused_vertices().len(),
-        semi_sharp_edges: t
-            .edge_tags
-            .iter()
-            .filter(|&&e| e & tags::E_SEMI_SHARP != 0)
+        semi_sharp_edges: (0..t.num_edges())
+            .filter(|&e| t.is_semi_sharp_edge(e))
             .count(),
         infinitely_sharp_edges_tagged: mesh
             .creases

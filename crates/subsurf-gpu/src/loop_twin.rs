@@ -5,9 +5,7 @@
 use crate::cpu::loop_eval::{loop_eval, pack_queries, LoopInputs, LoopTables, NO_PATCH};
 use crate::shared::LoopConfig;
 use subsurf::limit::LoopLimit;
-use subsurf::limit::{
-    tri_tessellation_plan, TriTessellation, TriTessellationPlan,
-};
+use subsurf::limit::{tri_tessellation_plan, TriTessellation, TriTessellationPlan};
 use subsurf::Topology;
 
 /// The kernel's queries of `plan`'s samples on `limit`: the patch holding each sample (found

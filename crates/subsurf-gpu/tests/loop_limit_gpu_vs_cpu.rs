@@ -8,8 +8,8 @@ mod common;
 
 use common::{context_or_skip, Rng};
 use subsurf::limit::LoopLimit;
-use subsurf::limit::{tri_tessellation_plan, TriTessellation};
 use subsurf::limit::PatchOptions;
+use subsurf::limit::{tri_tessellation_plan, TriTessellation};
 use subsurf::patch::{tri_patch_weights, PatchParam, PatchParamFields, TriPatchKind};
 use subsurf::surface::{build, Colors, Cpu, Method, SurfaceOptions};
 use subsurf::{Mesh, Scheme, Topology};

@@ -69,20 +69,20 @@
 //! [`limit`] (patch tables and limit evaluation), [`prep`] (the p-rep and its Bezier form).
 
 #![warn(missing_docs)]
-pub mod error;
+pub(crate) mod error;
 pub mod io;
 pub mod limit;
 pub mod mesh;
-pub mod options;
+pub(crate) mod options;
 pub mod patch;
 pub mod prep;
-pub mod real;
+pub(crate) mod real;
 pub mod refine;
-pub mod rules;
+pub(crate) mod rules;
 pub mod shapes;
 pub mod surface;
 pub mod tess;
-pub mod topology;
+pub(crate) mod topology;
 pub(crate) mod util;
 
 /// Up-front memory refusals: a request is estimated before anything is allocated, and one
@@ -101,7 +101,7 @@ pub use options::{
 };
 pub use real::Real;
 pub use refine::{RefineOptions, Refiner, StencilTable};
-pub use topology::Topology;
+pub use topology::{Topology, TopologyArrays};
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).
 pub const SHARPNESS_INFINITE: f32 = 10.0;

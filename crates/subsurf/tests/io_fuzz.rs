@@ -5,8 +5,8 @@
 mod common;
 
 use subsurf::io::{obj, ply};
-use subsurf::topology::Topology;
 use subsurf::Error;
+use subsurf::Topology;
 
 /// Marsaglia's xorshift64 (2003): a tiny deterministic generator.
 struct XorShift(u64);

@@ -507,7 +507,7 @@ fn unknown_statement() {
 /// the index's simple edge census does not follow, so they are left to topology's tests.
 #[test]
 fn every_shape_builds_a_topology_matching_the_index() {
-    use subsurf::topology::Topology;
+    use subsurf::Topology;
     let mut manifold = 0;
     for row in common::index() {
         let name = row.get("name");

@@ -23,12 +23,36 @@ fn same_weights<R: Real>(a: &StencilTable<R>, b: &StencilTable<R>) -> bool {
 
 /// Every array of the two tables is the same, weights compared by their bits.
 fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
-    assert_eq!(a.base.edge_sharpness, b.base.edge_sharpness, "{what}");
-    assert_eq!(a.base.vert_sharpness, b.base.vert_sharpness, "{what}");
-    assert_eq!(a.base.vert_rule, b.base.vert_rule, "{what}");
-    assert_eq!(a.base.edge_tags, b.base.edge_tags, "{what}");
-    assert_eq!(a.base.vert_tags, b.base.vert_tags, "{what}");
-    assert_eq!(a.base.face_is_hole, b.base.face_is_hole, "{what}");
+    assert_eq!(
+        a.base.arrays().edge_sharpness,
+        b.base.arrays().edge_sharpness,
+        "{what}"
+    );
+    assert_eq!(
+        a.base.arrays().vert_sharpness,
+        b.base.arrays().vert_sharpness,
+        "{what}"
+    );
+    assert_eq!(
+        a.base.arrays().vert_rule,
+        b.base.arrays().vert_rule,
+        "{what}"
+    );
+    assert_eq!(
+        a.base.arrays().edge_tags,
+        b.base.arrays().edge_tags,
+        "{what}"
+    );
+    assert_eq!(
+        a.base.arrays().vert_tags,
+        b.base.arrays().vert_tags,
+        "{what}"
+    );
+    assert_eq!(
+        a.base.arrays().face_is_hole,
+        b.base.arrays().face_is_hole,
+        "{what}"
+    );
     assert_eq!(a.kinds, b.kinds, "{what}");
     assert_eq!(a.cv_offsets, b.cv_offsets, "{what}");
     assert_eq!(a.cvs, b.cvs, "{what}");
@@ -58,25 +82,53 @@ fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
 /// Every array of the two topologies is the same, sharpness compared by its bits.
 fn assert_same_topology(what: &str, a: &Topology, b: &Topology) {
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    assert_eq!(a.num_vertices, b.num_vertices, "{what}");
-    assert_eq!(a.face_offsets, b.face_offsets, "{what}");
-    assert_eq!(a.face_verts, b.face_verts, "{what}");
-    assert_eq!(a.face_edges, b.face_edges, "{what}");
-    assert_eq!(a.edge_verts, b.edge_verts, "{what}");
-    assert_eq!(a.edge_face_offsets, b.edge_face_offsets, "{what}");
-    assert_eq!(a.edge_faces, b.edge_faces, "{what}");
-    assert_eq!(a.edge_face_local, b.edge_face_local, "{what}");
-    assert_eq!(a.vert_face_offsets, b.vert_face_offsets, "{what}");
-    assert_eq!(a.vert_faces, b.vert_faces, "{what}");
-    assert_eq!(a.vert_face_local, b.vert_face_local, "{what}");
-    assert_eq!(a.vert_edge_offsets, b.vert_edge_offsets, "{what}");
-    assert_eq!(a.vert_edges, b.vert_edges, "{what}");
-    assert_eq!(bits(&a.edge_sharpness), bits(&b.edge_sharpness), "{what}");
-    assert_eq!(bits(&a.vert_sharpness), bits(&b.vert_sharpness), "{what}");
-    assert_eq!(a.face_is_hole, b.face_is_hole, "{what}");
-    assert_eq!(a.edge_tags, b.edge_tags, "{what}");
-    assert_eq!(a.vert_tags, b.vert_tags, "{what}");
-    assert_eq!(a.vert_rule, b.vert_rule, "{what}");
+    assert_eq!(a.num_vertices(), b.num_vertices(), "{what}");
+    assert_eq!(a.arrays().face_offsets, b.arrays().face_offsets, "{what}");
+    assert_eq!(a.arrays().face_verts, b.arrays().face_verts, "{what}");
+    assert_eq!(a.arrays().face_edges, b.arrays().face_edges, "{what}");
+    assert_eq!(a.arrays().edge_verts, b.arrays().edge_verts, "{what}");
+    assert_eq!(
+        a.arrays().edge_face_offsets,
+        b.arrays().edge_face_offsets,
+        "{what}"
+    );
+    assert_eq!(a.arrays().edge_faces, b.arrays().edge_faces, "{what}");
+    assert_eq!(
+        a.arrays().edge_face_local,
+        b.arrays().edge_face_local,
+        "{what}"
+    );
+    assert_eq!(
+        a.arrays().vert_face_offsets,
+        b.arrays().vert_face_offsets,
+        "{what}"
+    );
+    assert_eq!(a.arrays().vert_faces, b.arrays().vert_faces, "{what}");
+    assert_eq!(
+        a.arrays().vert_face_local,
+        b.arrays().vert_face_local,
+        "{what}"
+    );
+    assert_eq!(
+        a.arrays().vert_edge_offsets,
+        b.arrays().vert_edge_offsets,
+        "{what}"
+    );
+    assert_eq!(a.arrays().vert_edges, b.arrays().vert_edges, "{what}");
+    assert_eq!(
+        bits(&a.arrays().edge_sharpness),
+        bits(&b.arrays().edge_sharpness),
+        "{what}"
+    );
+    assert_eq!(
+        bits(&a.arrays().vert_sharpness),
+        bits(&b.arrays().vert_sharpness),
+        "{what}"
+    );
+    assert_eq!(a.arrays().face_is_hole, b.arrays().face_is_hole, "{what}");
+    assert_eq!(a.arrays().edge_tags, b.arrays().edge_tags, "{what}");
+    assert_eq!(a.arrays().vert_tags, b.arrays().vert_tags, "{what}");
+    assert_eq!(a.arrays().vert_rule, b.arrays().vert_rule, "{what}");
 }
 
 /// The levels two editable tables keep for edits are the same: an edit leaves them as a
@@ -153,7 +205,7 @@ fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg, nudge: bool) -> Vec<Sh
                 }
             }
             2 => {
-                let [v0, v1] = t.edge_verts[rng.next(t.num_edges())];
+                let [v0, v1] = t.edge_vertices(rng.next(t.num_edges()));
                 SharpnessEdit::Edge { v0, v1, sharpness }
             }
             _ => SharpnessEdit::Vertex {

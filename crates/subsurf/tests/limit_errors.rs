@@ -39,4 +39,3 @@ fn queries_outside_the_surface_are_none() {
     assert!(s.eval(0, f32::NAN, 0.5).is_none());
     assert!(s.tessellate(1).is_err() && s.tessellate(5000).is_err());
 }
-

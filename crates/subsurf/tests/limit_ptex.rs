@@ -36,7 +36,7 @@ fn ngon_subfaces_follow_the_child_face_layout() {
                 let prev = (k + n - 1) % n;
                 let c1 = &r.levels[1];
                 // The child face of corner k has exactly these corners, in this order.
-                let child = c1.face_vertices(t.face_offsets[f] as usize + k);
+                let child = c1.face_vertices(t.arrays().face_offsets[f] as usize + k);
                 let want = [
                     fv[k] as usize,
                     nv + nf + fe[k] as usize,

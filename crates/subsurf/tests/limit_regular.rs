@@ -131,7 +131,7 @@ fn brute_force(
             (1, 1) => 2,
             _ => 3,
         };
-        face = refiner.levels[d].face_offsets[face] as usize + j;
+        face = refiner.levels[d].arrays().face_offsets[face] as usize + j;
     }
     limit[refiner.levels[k].face_vertices(face)[0] as usize]
 }

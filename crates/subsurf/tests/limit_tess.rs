@@ -78,7 +78,7 @@ fn open_shapes_have_only_boundary_edges_open() {
                 let live = t
                     .edge_faces(e)
                     .iter()
-                    .filter(|&&f| !t.face_is_hole[f as usize])
+                    .filter(|&&f| !t.face_is_hole(f as usize))
                     .count();
                 live == 1
             })

@@ -6,9 +6,9 @@ mod patch_common;
 use patch_common::*;
 
 use subsurf::patch::{
-    bezier::BSPLINE_TO_BEZIER, bspline_curve, bspline_patch_weights, eval_bezier_patch,
-    eval_bspline_patch, eval_gregory_patch, gregory_patch_weights, GregoryDerivatives, PatchParam,
-    PatchParamFields, BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1,
+    bspline_curve, bspline_patch_weights, eval_bezier_patch, eval_bspline_patch,
+    eval_gregory_patch, gregory_patch_weights, GregoryDerivatives, PatchParam, PatchParamFields,
+    BOUNDARY_U0, BOUNDARY_U1, BOUNDARY_V0, BOUNDARY_V1, BSPLINE_TO_BEZIER,
 };
 
 // ---------------------------------------------------------------------------------------
@@ -369,7 +369,7 @@ fn bspline_to_bezier(pts: &[P3; 16]) -> [P3; 16] {
 /// The 20 Gregory points of a Bézier patch, each face-point pair equal to the Bézier
 /// interior point.
 fn bezier_to_gregory(b: &[P3; 16]) -> [P3; 20] {
-    use subsurf::patch::gregory::{GREGORY_BOUNDARY, GREGORY_INTERIOR};
+    use subsurf::patch::{GREGORY_BOUNDARY, GREGORY_INTERIOR};
     let mut g = [[0.0; 3]; 20];
     for &(k, i, j) in &GREGORY_BOUNDARY {
         g[k] = b[4 * j + i];

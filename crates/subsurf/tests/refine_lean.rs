@@ -43,10 +43,22 @@ fn check_lean(name: &str, mesh: &Mesh, level: usize) {
     let (f, l) = (full.last(), lean.last());
     assert!(!lean.is_full(level) && full.is_full(level));
     assert_eq!(l.num_vertices(), f.num_vertices(), "{name} L{level}");
-    assert_eq!(l.face_offsets, f.face_offsets, "{name} L{level}");
-    assert_eq!(l.face_verts, f.face_verts, "{name} L{level}");
-    assert_eq!(l.face_is_hole, f.face_is_hole, "{name} L{level}");
-    assert!(l.edge_verts.is_empty() && l.vert_edges.is_empty());
+    assert_eq!(
+        l.arrays().face_offsets,
+        f.arrays().face_offsets,
+        "{name} L{level}"
+    );
+    assert_eq!(
+        l.arrays().face_verts,
+        f.arrays().face_verts,
+        "{name} L{level}"
+    );
+    assert_eq!(
+        l.arrays().face_is_hole,
+        f.arrays().face_is_hole,
+        "{name} L{level}"
+    );
+    assert!(l.arrays().edge_verts.is_empty() && l.arrays().vert_edges.is_empty());
     // Every level's stencils, the last one built from the parent alone, bit for bit.
     assert_eq!(
         lean.stencils(),
@@ -75,7 +87,7 @@ fn lean_refiner_of_level_zero_is_the_base() {
     let base = Topology::new(&mesh).unwrap();
     let r = Refiner::with_options(base.clone(), 0, RefineOptions::lean()).unwrap();
     assert!(r.is_full(0));
-    assert_eq!(r.last().edge_verts, base.edge_verts);
+    assert_eq!(r.last().arrays().edge_verts, base.arrays().edge_verts);
     assert_eq!(r.refine_positions(&mesh.positions), mesh.positions);
 }
 
@@ -100,10 +112,26 @@ fn refine_once_equals_the_refiner_bit_for_bit() {
             };
             assert_eq!(bits(&p), bits(&expected), "{name} {options:?}");
             let last = r.last();
-            assert_eq!(t.face_verts, last.face_verts, "{name} {options:?}");
-            assert_eq!(t.face_is_hole, last.face_is_hole, "{name} {options:?}");
-            assert_eq!(t.edge_verts, last.edge_verts, "{name} {options:?}");
-            assert_eq!(t.vert_rule, last.vert_rule, "{name} {options:?}");
+            assert_eq!(
+                t.arrays().face_verts,
+                last.arrays().face_verts,
+                "{name} {options:?}"
+            );
+            assert_eq!(
+                t.arrays().face_is_hole,
+                last.arrays().face_is_hole,
+                "{name} {options:?}"
+            );
+            assert_eq!(
+                t.arrays().edge_verts,
+                last.arrays().edge_verts,
+                "{name} {options:?}"
+            );
+            assert_eq!(
+                t.arrays().vert_rule,
+                last.arrays().vert_rule,
+                "{name} {options:?}"
+            );
             assert_eq!(t.num_vertices(), last.num_vertices(), "{name} {options:?}");
         }
     }

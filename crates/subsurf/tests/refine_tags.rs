@@ -25,8 +25,8 @@ impl Level {
     fn ours(t: &Topology, positions: Vec<[f32; 3]>) -> Level {
         Level {
             counts: (0..t.num_faces()).map(|f| t.face_size(f) as u32).collect(),
-            verts: t.face_verts.clone(),
-            holes: t.face_is_hole.clone(),
+            verts: t.arrays().face_verts.to_vec(),
+            holes: t.arrays().face_is_hole.to_vec(),
             positions,
         }
     }
@@ -117,7 +117,7 @@ fn grid_with_sharp_sides() -> Mesh {
     }
     let t = Topology::new(&m).unwrap();
     for e in t.boundary_edges() {
-        let [a, b] = t.edge_verts[e as usize];
+        let [a, b] = t.edge_vertices(e as usize);
         let (pa, pb) = (m.positions[a as usize], m.positions[b as usize]);
         if (pa[1] == 0.0 && pb[1] == 0.0) || (pa[0] == 0.0 && pb[0] == 0.0) {
             m.creases.push(Crease {

@@ -53,7 +53,7 @@ fn random_rates_are_watertight_on_every_shape() {
     for name in shape_names() {
         let (_, table) = table(&name);
         let t = &table.base;
-        let live = |f: u32| !t.face_is_hole[f as usize];
+        let live = |f: u32| !t.face_is_hole(f as usize);
         for round in 0..2 {
             let max = if round == 0 { 6 } else { 40 };
             let rates = EdgeRates {
@@ -93,7 +93,7 @@ fn random_rates_are_watertight_on_every_shape() {
                 let l = t.edge_faces(e).iter().filter(|&&f| live(f)).count();
                 if l > 0 {
                     e0 += 1;
-                    t.edge_verts[e]
+                    t.edge_vertices(e)
                         .iter()
                         .for_each(|&v| vert_live[v as usize] = true);
                 }

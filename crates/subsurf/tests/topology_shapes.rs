@@ -25,7 +25,7 @@ fn components(t: &Topology) -> usize {
         }
         x
     }
-    for ev in &t.edge_verts {
+    for ev in t.arrays().edge_verts {
         let (a, b) = (
             find(&mut parent, ev[0] as usize),
             find(&mut parent, ev[1] as usize),

@@ -462,7 +462,7 @@ pub fn pack_queries(queries: &[(u32, f32, f32)]) -> Vec<u32> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use subsurf::patch::gregory::{GREGORY_BOUNDARY, GREGORY_INTERIOR};
+    use subsurf::patch::{GREGORY_BOUNDARY, GREGORY_INTERIOR};
 
     #[test]
     fn packed_gregory_slots_match_the_library_tables() {

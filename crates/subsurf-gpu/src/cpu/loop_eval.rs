@@ -17,7 +17,7 @@
 //!
 //! - regular: the quartic box spline (Stam 1998) over 12 points, its 15 monomials times
 //!   Stam's coefficients, phantom points of boundary edges and corners folded into the
-//!   weights ([`subsurf::patch::box_spline`]);
+//!   weights ([`subsurf::patch::BOX_SPLINE_COEFFS`]);
 //! - end cap: the quartic Gregory triangle over 18 points, Bernstein weights with the
 //!   rational blend of the face points held constant in the derivatives
 //!   ([`subsurf::patch::gregory_tri`]).
@@ -34,9 +34,11 @@
 use crate::shared::LoopConfig;
 use subsurf::limit::LoopLimit;
 // Stam's coefficients (times 12) of the 12 box-spline basis functions, their monomials'
-// exponents and the point rotation: the library's tables (`subsurf::patch::box_spline`), which
+// exponents and the point rotation: the library's tables (`subsurf::patch::BOX_SPLINE_COEFFS`), which
 // the WGSL kernel repeats as private arrays.
-use subsurf::patch::box_spline::{COEFFS as BOX_COEFFS, MONOMIALS, ROTATE};
+use subsurf::patch::{
+    BOX_SPLINE_COEFFS as BOX_COEFFS, BOX_SPLINE_MONOMIALS as MONOMIALS, BOX_SPLINE_ROTATE as ROTATE,
+};
 
 /// Invocations per workgroup (same as the shader's `WORKGROUP_SIZE`).
 pub const WORKGROUP_SIZE: u32 = 64;
@@ -177,7 +179,7 @@ fn fold(w: &mut W18, rule: usize, k: u32) {
     w[c] -= x;
 }
 
-/// Folds the phantoms of a 5-bit boundary mask ([`subsurf::patch::box_spline`]).
+/// Folds the phantoms of a 5-bit boundary mask ([`subsurf::patch::BOX_SPLINE_COEFFS`]).
 fn fold_boundary(w: &mut W18, mask: u32) {
     let low = mask & 7;
     let (edges, corners) = match (mask >> 3) & 3 {

@@ -99,13 +99,13 @@ pub(crate) mod tri_patch_map;
 
 pub use edit::{EditOutcome, SharpnessEdit};
 pub use eval::{LimitPoint, LimitSurface};
-pub use patch_map::PatchMap;
-pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
-pub use tessellate::{Tessellation, TessellationPlan};
-pub use tolerance::{build_for_tolerance, choose_isolation, split_tolerance, IsolationChoice};
 pub use loop_eval::LoopLimit;
 pub use loop_patches::{loop_patch_counts, LoopPatchCounts};
 pub use loop_tessellate::{tri_tessellation_plan, TriTessellation, TriTessellationPlan};
+pub use patch_map::PatchMap;
 pub use query::{check_square, check_triangle};
+pub use table::{PatchCounts, PatchOptions, PatchTable, PatchType, MAX_ISOLATION_LEVEL};
+pub use tessellate::{Tessellation, TessellationPlan};
+pub use tolerance::{build_for_tolerance, choose_isolation, split_tolerance, IsolationChoice};
 #[cfg(test)]
 mod sparse_tests;

@@ -45,14 +45,14 @@
 //! reflected through itself (`P = 2 B − I`). At a boundary corner whose edges are interior
 //! the two phantom points of the missing wedge are extrapolated across that corner.
 //! The rules of edge 0 and corner 0 are written out below; the others are the same rules
-//! turned by the triangle's rotation [`ROTATE`].
+//! turned by the triangle's rotation [`BOX_SPLINE_ROTATE`].
 
 use super::weights::{PatchEval, PatchWeights};
 use crate::real::Real;
 
 /// Stam's coefficients (times 12) of the 12 box-spline basis functions in the monomials
 /// `1, s, t, s², st, t², s³, s²t, st², t³, s⁴, s³t, s²t², st³, t⁴`.
-pub const COEFFS: [[i8; 15]; 12] = [
+pub const BOX_SPLINE_COEFFS: [[i8; 15]; 12] = [
     [1, -2, -4, 0, 6, 6, 2, 0, -6, -4, -1, -2, 0, 2, 1],
     [1, 2, -2, 0, -6, 0, -4, 0, 6, 2, 2, 4, 0, -2, -1],
     [0, 0, 0, 0, 0, 0, 2, 0, 0, 0, -1, -2, 0, 0, 0],
@@ -67,8 +67,8 @@ pub const COEFFS: [[i8; 15]; 12] = [
     [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 1],
 ];
 
-/// Exponents `(a, b)` of monomial `m = s^a t^b`, in the order of [`COEFFS`].
-pub const MONOMIALS: [(u8, u8); 15] = [
+/// Exponents `(a, b)` of monomial `m = s^a t^b`, in the order of [`BOX_SPLINE_COEFFS`].
+pub const BOX_SPLINE_MONOMIALS: [(u8, u8); 15] = [
     (0, 0),
     (1, 0),
     (0, 1),
@@ -87,8 +87,8 @@ pub const MONOMIALS: [(u8, u8); 15] = [
 ];
 
 /// The rotation of the 12 points that takes corner `k` to corner `k + 1` (and edge `k` to
-/// edge `k + 1`): point `i` plays the part of point `ROTATE[i]` one rotation on.
-pub const ROTATE: [usize; 12] = [6, 9, 11, 2, 5, 8, 10, 1, 4, 7, 0, 3];
+/// edge `k + 1`): point `i` plays the part of point `BOX_SPLINE_ROTATE[i]` one rotation on.
+pub const BOX_SPLINE_ROTATE: [usize; 12] = [6, 9, 11, 2, 5, 8, 10, 1, 4, 7, 0, 3];
 
 /// `P[phantom] = P[a] + P[b] − P[c]`.
 #[derive(Clone, Copy)]
@@ -111,11 +111,11 @@ const EDGE0_LAST: [Phantom; 2] = [ph(2, 5, 6, 9), ph(2, 5, 5, 8)];
 /// Corner 0 (point 4) on the boundary, its edges not: points 3 and 0 are phantoms.
 const CORNER0: [Phantom; 2] = [ph(3, 4, 7, 8), ph(0, 4, 1, 5)];
 
-/// The rule turned `k` times by [`ROTATE`].
+/// The rule turned `k` times by [`BOX_SPLINE_ROTATE`].
 fn rotated(p: Phantom, k: usize) -> Phantom {
     let r = |mut i: usize| {
         for _ in 0..k {
-            i = ROTATE[i];
+            i = BOX_SPLINE_ROTATE[i];
         }
         i
     };
@@ -166,7 +166,7 @@ pub fn fold_boundary<T: Real>(w: &mut [T; 12], mask: u8) {
 fn monomial_derivatives<T: Real>(s: T, t: T, ds: u8, dt: u8) -> [T; 15] {
     let pow = |x: T, n: u8| (0..n).fold(T::ONE, |acc, _| acc * x);
     let falling = |n: u8, k: u8| (0..k).map(|i| n as f64 - i as f64).product::<f64>();
-    MONOMIALS.map(|(a, b)| {
+    BOX_SPLINE_MONOMIALS.map(|(a, b)| {
         if a < ds || b < dt {
             T::ZERO
         } else {
@@ -177,7 +177,7 @@ fn monomial_derivatives<T: Real>(s: T, t: T, ds: u8, dt: u8) -> [T; 15] {
 
 fn weights_of<T: Real>(m: &[T; 15]) -> [T; 12] {
     let twelfth = T::from_f64(1.0 / 12.0);
-    COEFFS.map(|row| {
+    BOX_SPLINE_COEFFS.map(|row| {
         let sum = row
             .iter()
             .zip(m)
@@ -273,12 +273,12 @@ mod tests {
 
     #[test]
     fn rotation_is_a_symmetry_of_the_basis() {
-        // Rotating corners (s, t, w) → (w, s, t) permutes the points by ROTATE.
+        // Rotating corners (s, t, w) → (w, s, t) permutes the points by BOX_SPLINE_ROTATE.
         let (s, t) = (0.15f64, 0.6);
         let w = box_spline_patch_weights(s, t, 0).p;
         let r = box_spline_patch_weights(1.0 - s - t, s, 0).p;
         for i in 0..12 {
-            assert!((w[i] - r[ROTATE[i]]).abs() < 1e-15, "point {i}");
+            assert!((w[i] - r[BOX_SPLINE_ROTATE[i]]).abs() < 1e-15, "point {i}");
         }
     }
 

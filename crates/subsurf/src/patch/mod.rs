@@ -53,29 +53,35 @@
 //! position and for the first and second partial derivatives, in the patch's own `(u, v)`.
 //! [`PatchParam::deriv_scale`] converts derivatives to the base face's parameterization.
 
-pub mod basis;
-pub mod bezier;
-pub mod box_spline;
-pub mod bspline;
-pub mod gregory;
-pub mod gregory_tri;
-pub mod param;
-pub mod single_crease;
-pub mod tri_basis;
-pub mod weights;
+pub(crate) mod basis;
+pub(crate) mod bezier;
+pub(crate) mod box_spline;
+pub(crate) mod bspline;
+pub(crate) mod gregory;
+pub(crate) mod gregory_tri;
+pub(crate) mod param;
+pub(crate) mod single_crease;
+pub(crate) mod tri_basis;
+pub(crate) mod weights;
 
 pub use crate::real::Real;
 pub use basis::{
     patch_first_weights, patch_position_weights, patch_weights, patch_weights_normalized,
     AnyPatchWeights, PatchKind,
 };
-pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch};
-pub use box_spline::{box_spline_patch_weights, eval_box_spline_patch};
+pub use bezier::{bezier_curve, bezier_patch_weights, eval_bezier_patch, BSPLINE_TO_BEZIER};
+pub use box_spline::{
+    box_spline_patch_weights, eval_box_spline_patch, BOX_SPLINE_COEFFS, BOX_SPLINE_MONOMIALS,
+    BOX_SPLINE_ROTATE,
+};
 pub use bspline::{
     bspline_curve, bspline_patch_weights, eval_bspline_patch, BOUNDARY_U0, BOUNDARY_U1,
     BOUNDARY_V0, BOUNDARY_V1,
 };
-pub use gregory::{eval_gregory_patch, gregory_patch_weights, GregoryDerivatives};
+pub use gregory::{
+    eval_gregory_patch, gregory_patch_weights, GregoryDerivatives, GREGORY_BOUNDARY,
+    GREGORY_INTERIOR,
+};
 pub use gregory_tri::{bezier_triangle_weights, eval_gregory_triangle, gregory_triangle_weights};
 pub use param::{PatchParam, PatchParamError, PatchParamFields, SharpnessTable, NO_SHARPNESS};
 pub use single_crease::{crease_curve, eval_single_crease_patch, single_crease_patch_weights};

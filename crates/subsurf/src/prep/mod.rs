@@ -28,8 +28,8 @@ pub(crate) mod ring;
 pub(crate) mod scalar;
 pub(crate) mod vertex_pass;
 
-pub use eval::{Grid, Sample, Tessellation};
 pub use bezier::face_bezier;
+pub use eval::{Grid, Sample, Tessellation};
 pub use npy::write_npy;
 pub use quadrangulate::quadrangulate;
 

@@ -71,6 +71,7 @@ pub fn subdivide_edge_sharpness_at_vertex(method: CreaseMethod, s: f32, around: 
 }
 
 /// Child sharpness of every edge around one vertex at once (`parent` → `child`, same order).
+#[cfg(test)]
 pub fn subdivide_edge_sharpness_around_vertex(
     method: CreaseMethod,
     parent: &[f32],

@@ -2,9 +2,9 @@
 //! ("masks") of new points. Nothing here knows about topology: each function is given the
 //! sharpness values and counts of one neighbourhood.
 
-pub mod catmark;
-pub mod crease;
-pub mod r#loop;
+pub(crate) mod catmark;
+pub(crate) mod crease;
+pub(crate) mod r#loop;
 
 /// The crease rule of a vertex (Hoppe et al. 1994; DeRose et al. 1998), as bit masks so that
 /// a transition between two rules can be stored as their union.

@@ -10,7 +10,7 @@ pub mod tags;
 mod validate;
 
 pub(crate) use relations::offsets_from_counts;
-pub use validate::{clamp_sharpness, validate_mesh};
+pub(crate) use validate::{clamp_sharpness, validate_mesh};
 
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
@@ -57,45 +57,87 @@ use crate::options::Options;
 #[derive(Debug, Clone, Default)]
 pub struct Topology {
     /// The options the surface is built with.
-    pub options: Options,
+    pub(crate) options: Options,
     /// Number of vertices.
-    pub num_vertices: usize,
+    pub(crate) num_vertices: usize,
     /// `F + 1` offsets: face `f`'s corners are `face_offsets[f]..face_offsets[f + 1]`.
-    pub face_offsets: Vec<u32>,
+    pub(crate) face_offsets: Vec<u32>,
     /// One vertex per face corner, counter-clockwise.
-    pub face_verts: Vec<u32>,
+    pub(crate) face_verts: Vec<u32>,
     /// One edge per face corner: edge `k` of a face joins its corners `k` and `k + 1`.
-    pub face_edges: Vec<u32>,
+    pub(crate) face_edges: Vec<u32>,
     /// Two vertices per edge, oriented as the first face that uses the edge.
-    pub edge_verts: Vec<[u32; 2]>,
+    pub(crate) edge_verts: Vec<[u32; 2]>,
     /// `E + 1` offsets into `edge_faces` / `edge_face_local`.
-    pub edge_face_offsets: Vec<u32>,
+    pub(crate) edge_face_offsets: Vec<u32>,
     /// Faces of each edge, in face order.
-    pub edge_faces: Vec<u32>,
+    pub(crate) edge_faces: Vec<u32>,
     /// For each entry of `edge_faces`: which edge of that face (`k` in `face_edges`).
-    pub edge_face_local: Vec<u16>,
+    pub(crate) edge_face_local: Vec<u16>,
     /// `V + 1` offsets into `vert_faces` / `vert_face_local`.
-    pub vert_face_offsets: Vec<u32>,
+    pub(crate) vert_face_offsets: Vec<u32>,
     /// Faces of each vertex (ring order where manifold).
-    pub vert_faces: Vec<u32>,
+    pub(crate) vert_faces: Vec<u32>,
     /// For each entry of `vert_faces`: the corner index of the vertex in that face.
-    pub vert_face_local: Vec<u16>,
+    pub(crate) vert_face_local: Vec<u16>,
     /// `V + 1` offsets into `vert_edges`.
-    pub vert_edge_offsets: Vec<u32>,
+    pub(crate) vert_edge_offsets: Vec<u32>,
     /// Edges of each vertex (ring order where manifold).
-    pub vert_edges: Vec<u32>,
+    pub(crate) vert_edges: Vec<u32>,
     /// One sharpness per edge in `[0, 10]`; boundary and non-manifold edges are 10 (infinite).
-    pub edge_sharpness: Vec<f32>,
+    pub(crate) edge_sharpness: Vec<f32>,
     /// One sharpness per vertex in `[0, 10]`.
-    pub vert_sharpness: Vec<f32>,
+    pub(crate) vert_sharpness: Vec<f32>,
     /// One flag per face: a hole is not emitted, yet it shapes its neighbours.
-    pub face_is_hole: Vec<bool>,
+    pub(crate) face_is_hole: Vec<bool>,
     /// One tag set per edge ([`tags`]`::E_*`).
-    pub edge_tags: Vec<u8>,
+    pub(crate) edge_tags: Vec<u8>,
     /// One tag set per vertex ([`tags`]`::V_*`).
-    pub vert_tags: Vec<u16>,
+    pub(crate) vert_tags: Vec<u16>,
     /// One crease rule per vertex ([`tags::rule`]).
-    pub vert_rule: Vec<u8>,
+    pub(crate) vert_rule: Vec<u8>,
+}
+
+/// The flat arrays of a [`Topology`], borrowed: what a backend uploads as they are
+/// ([`Topology::arrays`]).
+#[derive(Debug, Clone, Copy)]
+pub struct TopologyArrays<'a> {
+    /// `F + 1` offsets: face `f`'s corners are `face_offsets[f]..face_offsets[f + 1]`.
+    pub face_offsets: &'a [u32],
+    /// One vertex per face corner, counter-clockwise.
+    pub face_verts: &'a [u32],
+    /// One edge per face corner: edge `k` of a face joins its corners `k` and `k + 1`.
+    pub face_edges: &'a [u32],
+    /// Two vertices per edge, oriented as the first face that uses the edge.
+    pub edge_verts: &'a [[u32; 2]],
+    /// `E + 1` offsets into `edge_faces` / `edge_face_local`.
+    pub edge_face_offsets: &'a [u32],
+    /// Faces of each edge, in face order.
+    pub edge_faces: &'a [u32],
+    /// For each entry of `edge_faces`: which edge of that face (`k` in `face_edges`).
+    pub edge_face_local: &'a [u16],
+    /// `V + 1` offsets into `vert_faces` / `vert_face_local`.
+    pub vert_face_offsets: &'a [u32],
+    /// Faces of each vertex (ring order where manifold).
+    pub vert_faces: &'a [u32],
+    /// For each entry of `vert_faces`: the corner index of the vertex in that face.
+    pub vert_face_local: &'a [u16],
+    /// `V + 1` offsets into `vert_edges`.
+    pub vert_edge_offsets: &'a [u32],
+    /// Edges of each vertex (ring order where manifold).
+    pub vert_edges: &'a [u32],
+    /// One sharpness per edge in `[0, 10]`; boundary and non-manifold edges are 10 (infinite).
+    pub edge_sharpness: &'a [f32],
+    /// One sharpness per vertex in `[0, 10]`.
+    pub vert_sharpness: &'a [f32],
+    /// One flag per face: a hole is not emitted, yet it shapes its neighbours.
+    pub face_is_hole: &'a [bool],
+    /// One tag set per edge (`E_*` bits of OpenSubdiv's `Vtr::Level::ETag`).
+    pub edge_tags: &'a [u8],
+    /// One tag set per vertex (`V_*` bits of `Vtr::Level::VTag`).
+    pub vert_tags: &'a [u16],
+    /// One crease rule per vertex (smooth 1, dart 2, crease 4, corner 8).
+    pub vert_rule: &'a [u8],
 }
 
 #[inline]
@@ -190,6 +232,60 @@ impl Topology {
             vert_tags,
             vert_rule: vec![tags::rule::SMOOTH; num_vertices],
         }
+    }
+
+    /// The flat arrays, borrowed.
+    pub fn arrays(&self) -> TopologyArrays<'_> {
+        TopologyArrays {
+            face_offsets: &self.face_offsets,
+            face_verts: &self.face_verts,
+            face_edges: &self.face_edges,
+            edge_verts: &self.edge_verts,
+            edge_face_offsets: &self.edge_face_offsets,
+            edge_faces: &self.edge_faces,
+            edge_face_local: &self.edge_face_local,
+            vert_face_offsets: &self.vert_face_offsets,
+            vert_faces: &self.vert_faces,
+            vert_face_local: &self.vert_face_local,
+            vert_edge_offsets: &self.vert_edge_offsets,
+            vert_edges: &self.vert_edges,
+            edge_sharpness: &self.edge_sharpness,
+            vert_sharpness: &self.vert_sharpness,
+            face_is_hole: &self.face_is_hole,
+            edge_tags: &self.edge_tags,
+            vert_tags: &self.vert_tags,
+            vert_rule: &self.vert_rule,
+        }
+    }
+
+    /// The options the surface is built with.
+    pub fn options(&self) -> &Options {
+        &self.options
+    }
+
+    /// The two vertices of edge `e`, oriented as the first face that uses it.
+    pub fn edge_vertices(&self, e: usize) -> [u32; 2] {
+        self.edge_verts[e]
+    }
+
+    /// Whether face `f` is a hole (not emitted, yet it shapes its neighbours).
+    pub fn face_is_hole(&self, f: usize) -> bool {
+        self.face_is_hole[f]
+    }
+
+    /// Sharpness of edge `e` in `[0, 10]` (boundary and non-manifold edges are 10).
+    pub fn edge_sharpness(&self, e: usize) -> f32 {
+        self.edge_sharpness[e]
+    }
+
+    /// Sharpness of vertex `v` in `[0, 10]`.
+    pub fn vertex_sharpness(&self, v: usize) -> f32 {
+        self.vert_sharpness[v]
+    }
+
+    /// Whether edge `e` is semi-sharp (sharpness in `(0, 10)`).
+    pub fn is_semi_sharp_edge(&self, e: usize) -> bool {
+        self.edge_tags[e] & tags::E_SEMI_SHARP != 0
     }
 
     /// Number of faces.
