@@ -329,7 +329,7 @@ fn limit_surface_evaluation_matches_opensubdiv() {
         let s = LimitSurface::new(table, &mesh.positions);
         let diag = diagonal(&mesh.positions);
         // Every ptex face OpenSubdiv samples has a patch here, and no other.
-        let map = &s.table.patch_map;
+        let map = &s.table().patch_map();
         let with_patch = (0..map.num_ptex()).filter(|&f| map.has_patches(f)).count();
         assert_eq!(with_patch * n * n, osd.len(), "{name}: sampled faces");
         for q in &osd {

@@ -57,7 +57,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
         let queries = queries(a, table.num_ptex_faces())?;
         let surface = LimitSurface::new(table, &mesh.positions);
         let results = surface.eval_batch(&queries);
-        let n = surface.table.num_ptex_faces();
+        let n = surface.table().num_ptex_faces();
         return write_samples(a, rows(&queries, &results), n, "ptex faces");
     }
     let (mesh, table) = a.surface.table_for(mesh)?;
@@ -68,7 +68,7 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
             // Holes (no patch) are known from the patch map alone: only the rest is sent.
             let found: Vec<bool> = queries
                 .iter()
-                .map(|&(f, u, v)| table.patch_map.find(f as usize, u, v).is_some())
+                .map(|&(f, u, v)| table.patch_map().find(f as usize, u, v).is_some())
                 .collect();
             let sent: Vec<(u32, f32, f32)> = queries
                 .iter()

@@ -165,7 +165,7 @@ fn run_adaptive(a: &LimitArgs, mesh: Mesh) -> anyhow::Result<()> {
     let (lo, hi) = adaptive.rate_range();
     crate::say!(
         "{origin}: edge rates {lo}..={hi} on {} ptex faces: {} vertices, {} triangles -> {}",
-        surface.table.num_ptex_faces(),
+        surface.table().num_ptex_faces(),
         out.positions.len(),
         out.num_faces(),
         shown(&a.output, true)

@@ -97,12 +97,12 @@ fn convert<T: Real>(args: &PrepArgs, mesh: &Mesh) -> anyhow::Result<()> {
         )
     })?;
     let nf = p.num_faces();
-    let bquads = nf - p.topology.perturbed_faces.len();
+    let bquads = nf - p.topology().perturbed_faces().len();
     crate::say!(
         "p-rep ({}): {nf} patches, {bquads} B-quads ({:.1}%), max valence {}",
         T::NAME,
         100.0 * bquads as f64 / nf.max(1) as f64,
-        p.topology.max_valence
+        p.topology().max_valence()
     );
     if let Some(out) = &args.output {
         let t = p.tessellate(args.tess as usize);
@@ -167,8 +167,8 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
     let nf = topo.num_faces();
     crate::say!(
         "p-rep (f32, GPU): {nf} patches, {} perturbed, max valence {}",
-        topo.perturbed_faces.len(),
-        topo.max_valence
+        topo.perturbed_faces().len(),
+        topo.max_valence()
     );
     if let Some(out) = &args.output {
         let grid = gpu
@@ -192,7 +192,7 @@ fn convert_gpu(args: &PrepArgs, mesh: &Mesh, quadrangulate: bool) -> anyhow::Res
         let mut data = Vec::with_capacity(36 * 3 * nf);
         for f in 0..nf {
             let g: Vec<[f32; 3]> = (16 * f..16 * f + 16).map(pt).collect();
-            let hi = topo.h_index[f];
+            let hi = topo.h_index()[f];
             let h: Option<Vec<[f32; 3]>> = (hi != u32::MAX).then(|| {
                 (16 * (nf + hi as usize)..16 * (nf + hi as usize) + 16)
                     .map(pt)

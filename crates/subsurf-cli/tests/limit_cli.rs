@@ -35,7 +35,7 @@ fn eval_writes_the_library_samples() {
         PatchTable::build(&t, &PatchOptions::default()).unwrap(),
         &mesh.positions,
     );
-    assert_eq!(lines.len(), s.table.num_ptex_faces() * 9);
+    assert_eq!(lines.len(), s.table().num_ptex_faces() * 9);
     for (k, l) in lines.iter().enumerate() {
         assert_eq!(l.len(), 12);
         let (f, i, j) = (k / 9, k % 3, (k / 3) % 3);
@@ -108,7 +108,7 @@ fn f64_flags_write_the_double_precision_surface() {
     let table = PatchTable::<f64>::build_real(&t, &PatchOptions::default()).unwrap();
     let s = LimitSurface::new(table, &mesh.positions);
     let text = std::fs::read_to_string(&out_path).unwrap();
-    assert_eq!(text.lines().count(), s.table.num_ptex_faces() * 4);
+    assert_eq!(text.lines().count(), s.table().num_ptex_faces() * 4);
     for l in text.lines() {
         let x: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
         let r = s.eval(x[0] as usize, x[1], x[2]).unwrap();

@@ -236,30 +236,30 @@ impl GpuLimit {
                 .clamp(1, adapter.max_workgroups_per_dimension),
             max_stride: 12,
         };
-        if table.level_inputs.len() != table.level_stencils.len()
-            || table.level_offsets.len() != table.level_stencils.len() + 2
+        if table.level_inputs().len() != table.level_stencils().len()
+            || table.level_offsets().len() != table.level_stencils().len() + 2
         {
             return Err(GpuError::InvalidStencil(format!(
                 "{} level stencils, {} level inputs, {} level offsets",
-                table.level_stencils.len(),
-                table.level_inputs.len(),
-                table.level_offsets.len()
+                table.level_stencils().len(),
+                table.level_inputs().len(),
+                table.level_offsets().len()
             )));
         }
         let gather_limits = ChunkLimits {
             max_stride: 3,
             ..limits
         };
-        let mut levels = Vec::with_capacity(table.level_stencils.len());
+        let mut levels = Vec::with_capacity(table.level_stencils().len());
         for (d, (s, inputs)) in table
-            .level_stencils
+            .level_stencils()
             .iter()
-            .zip(&table.level_inputs)
+            .zip(table.level_inputs())
             .enumerate()
         {
             // Row i of the gather copies flat point level_offsets[d] + inputs[i] (weight 1:
             // exact).
-            let first = table.level_offsets[d];
+            let first = table.level_offsets()[d];
             let offsets: Vec<u32> = (0..=inputs.len() as u32).collect();
             let indices: Vec<u32> = inputs.iter().map(|&i| first + i).collect();
             let weights = vec![1.0f32; inputs.len()];
@@ -268,7 +268,7 @@ impl GpuLimit {
                 &StencilTable::new(&offsets, &indices, &weights)?,
                 gather_limits,
             )?;
-            let child = (table.level_offsets[d + 2] - table.level_offsets[d + 1]) as usize;
+            let child = (table.level_offsets()[d + 2] - table.level_offsets()[d + 1]) as usize;
             let refiner = GpuRefiner::from_stencils(
                 ctx,
                 &[inputs.len(), child],
@@ -279,9 +279,9 @@ impl GpuLimit {
         }
         let num_points = table.num_points();
         let points = VertexBuffer::zeroed(ctx, num_points, 3)?;
-        let lp = &table.local_points;
+        let lp = &table.local_points();
         let local = if lp.num_rows() > 0 {
-            let t = StencilTable::new(&lp.offsets, &lp.indices, &lp.weights)?;
+            let t = StencilTable::new(&lp.offsets(), &lp.indices(), &lp.weights())?;
             // Relative rows, as `PatchTable::points` (long rows at high-valence vertices).
             let kernel = StencilKernel::with_limits(
                 ctx,
@@ -317,7 +317,7 @@ impl GpuLimit {
         } else {
             Tables::Chunked {
                 tables: t,
-                cv_offsets: table.cv_offsets.clone(),
+                cv_offsets: table.cv_offsets().to_vec(),
             }
         };
         let pipeline = auto_pipeline(ctx, "limit_eval", shaders::LIMIT_EVAL, "main")?;
@@ -325,8 +325,8 @@ impl GpuLimit {
             (ctx.limits().min_storage_buffer_offset_alignment as usize / WORD as usize).max(1);
         Ok(Self {
             levels,
-            level_offsets: table.level_offsets.clone(),
-            num_base: table.level_offsets[1] as usize,
+            level_offsets: table.level_offsets().to_vec(),
+            num_base: table.level_offsets()[1] as usize,
             points,
             local,
             tables,

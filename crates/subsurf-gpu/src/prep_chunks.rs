@@ -77,7 +77,7 @@ pub struct PrepChunks {
 
 fn ring(t: &PrepTopology, v: u32) -> &[u32] {
     let v = v as usize;
-    &t.ring_indices[t.ring_offsets[v] as usize..t.ring_offsets[v + 1] as usize]
+    &t.ring_indices()[t.ring_offsets()[v] as usize..t.ring_offsets()[v + 1] as usize]
 }
 
 impl PrepChunks {
@@ -87,37 +87,37 @@ impl PrepChunks {
     pub fn new(t: &PrepTopology, max_binding_bytes: u64) -> Result<Self> {
         let too_big =
             |what: &str| GpuError::BufferMismatch(format!("{what} exceed 32-bit indexing"));
-        let s = t.sector_vertex.len();
-        if 3 * (3 * t.num_vertices + 2 * s) >= u32::MAX as usize {
+        let s = t.sector_vertex().len();
+        if 3 * (3 * t.num_vertices() + 2 * s) >= u32::MAX as usize {
             return Err(too_big("vertex data"));
         }
-        if 3 * 16 * (t.num_faces() + t.perturbed_faces.len()) >= u32::MAX as usize {
+        if 3 * 16 * (t.num_faces() + t.perturbed_faces().len()) >= u32::MAX as usize {
             return Err(too_big("patch coefficients"));
         }
         let whole = Load {
-            local: t.num_vertices as u64,
-            core: t.num_vertices as u64,
+            local: t.num_vertices() as u64,
+            core: t.num_vertices() as u64,
             sectors: s as u64,
             faces: t.num_faces() as u64,
-            perturbed: t.perturbed_faces.len() as u64,
+            perturbed: t.perturbed_faces().len() as u64,
             edges: t.num_edges() as u64,
         };
         if whole.largest_binding() <= max_binding_bytes {
             return Ok(Self::whole(t));
         }
         let ranges = partition(t, max_binding_bytes)?;
-        let mut owner = vec![0u32; t.num_vertices];
-        let mut seen = vec![false; t.num_vertices];
+        let mut owner = vec![0u32; t.num_vertices()];
+        let mut seen = vec![false; t.num_vertices()];
         for (k, r) in ranges.iter().enumerate() {
-            for &v in &t.face_verts[4 * r.start..4 * r.end] {
+            for &v in &t.face_verts()[4 * r.start..4 * r.end] {
                 if !seen[v as usize] {
                     seen[v as usize] = true;
                     owner[v as usize] = k as u32;
                 }
             }
         }
-        let consts = valence_consts(t.max_valence.max(3));
-        let mut local_id = vec![NONE; t.num_vertices];
+        let consts = valence_consts(t.max_valence().max(3));
+        let mut local_id = vec![NONE; t.num_vertices()];
         let chunks = ranges
             .iter()
             .enumerate()
@@ -130,13 +130,13 @@ impl PrepChunks {
     fn with_chunks(t: &PrepTopology, chunks: Vec<PrepTables>) -> Self {
         Self {
             chunks,
-            num_vertices: t.num_vertices,
+            num_vertices: t.num_vertices(),
             num_edges: t.num_edges(),
             num_faces: t.num_faces(),
-            ring_offsets: t.ring_offsets.clone(),
-            face_verts: t.face_verts.clone(),
-            face_edges: t.face_edges.clone(),
-            num_perturbed: t.perturbed_faces.len(),
+            ring_offsets: t.ring_offsets().to_vec(),
+            face_verts: t.face_verts().to_vec(),
+            face_edges: t.face_edges().to_vec(),
+            num_perturbed: t.perturbed_faces().len(),
         }
     }
 
@@ -145,22 +145,22 @@ impl PrepChunks {
         let iota = |n: usize| (0..n as u32).collect::<Vec<_>>();
         let tables = PrepTables {
             config: PrepConfig {
-                num_vertices: t.num_vertices as u32,
-                num_sectors: t.sector_vertex.len() as u32,
+                num_vertices: t.num_vertices() as u32,
+                num_sectors: t.sector_vertex().len() as u32,
                 num_faces: t.num_faces() as u32,
                 num_edges: t.num_edges() as u32,
-                owned_vertices: t.num_vertices as u32,
+                owned_vertices: t.num_vertices() as u32,
                 ..Default::default()
             },
-            ring_offsets: t.ring_offsets.clone(),
-            ring_indices: t.ring_indices.clone(),
-            valence_consts: valence_consts(t.max_valence.max(3)),
-            face_verts: t.face_verts.clone(),
-            corner_sector: t.corner_sector.clone(),
-            edge_corner: t.edge_corner.clone(),
-            h_index: t.h_index.clone(),
-            num_perturbed: t.perturbed_faces.len(),
-            vertex_ids: iota(t.num_vertices),
+            ring_offsets: t.ring_offsets().to_vec(),
+            ring_indices: t.ring_indices().to_vec(),
+            valence_consts: valence_consts(t.max_valence().max(3)),
+            face_verts: t.face_verts().to_vec(),
+            corner_sector: t.corner_sector().to_vec(),
+            edge_corner: t.edge_corner().to_vec(),
+            h_index: t.h_index().to_vec(),
+            num_perturbed: t.perturbed_faces().len(),
+            vertex_ids: iota(t.num_vertices()),
             edge_ids: iota(t.num_edges()),
             first_face: 0,
             first_h: 0,
@@ -358,12 +358,12 @@ impl PrepChunks {
 /// Face ranges of the sub-problems: greedy in face order, each as large as the limit allows.
 fn partition(t: &PrepTopology, limit: u64) -> Result<Vec<Range<usize>>> {
     let nf = t.num_faces();
-    let mut core = vec![NONE; t.num_vertices];
-    let mut local = vec![NONE; t.num_vertices];
+    let mut core = vec![NONE; t.num_vertices()];
+    let mut local = vec![NONE; t.num_vertices()];
     let mut load = Load::default();
     // Vertices of no face: the first sub-problem's.
-    for v in 0..t.num_vertices {
-        if t.valence[v] == 0 {
+    for v in 0..t.num_vertices() {
+        if t.valence()[v] == 0 {
             core[v] = 0;
             local[v] = 0;
             load.core += 1;
@@ -378,14 +378,14 @@ fn partition(t: &PrepTopology, limit: u64) -> Result<Vec<Range<usize>>> {
             let before = load;
             added_core.clear();
             added_local.clear();
-            for &v in &t.face_verts[4 * f..4 * f + 4] {
+            for &v in &t.face_verts()[4 * f..4 * f + 4] {
                 if core[v as usize] == k {
                     continue;
                 }
                 core[v as usize] = k;
                 added_core.push(v);
                 load.core += 1;
-                load.sectors += u64::from(t.valence[v as usize]);
+                load.sectors += u64::from(t.valence()[v as usize]);
                 for &u in std::iter::once(&v).chain(ring(t, v)) {
                     if local[u as usize] != k {
                         local[u as usize] = k;
@@ -395,9 +395,11 @@ fn partition(t: &PrepTopology, limit: u64) -> Result<Vec<Range<usize>>> {
                 }
             }
             load.faces += 1;
-            load.perturbed += u64::from(t.h_index[f] != NONE);
+            load.perturbed += u64::from(t.h_index()[f] != NONE);
             load.edges += (0..4)
-                .filter(|&c| t.edge_corner[t.face_edges[4 * f + c] as usize] as usize == 4 * f + c)
+                .filter(|&c| {
+                    t.edge_corner()[t.face_edges()[4 * f + c] as usize] as usize == 4 * f + c
+                })
                 .count() as u64;
             let needed = load.largest_binding();
             if needed <= limit {
@@ -437,9 +439,9 @@ fn build_chunk(
     const MARK: u32 = NONE - 1;
     let mut core: Vec<u32> = Vec::new();
     if k == 0 {
-        core.extend((0..t.num_vertices as u32).filter(|&v| t.valence[v as usize] == 0));
+        core.extend((0..t.num_vertices() as u32).filter(|&v| t.valence()[v as usize] == 0));
     }
-    for &v in &t.face_verts[4 * faces.start..4 * faces.end] {
+    for &v in &t.face_verts()[4 * faces.start..4 * faces.end] {
         if local_id[v as usize] == NONE {
             local_id[v as usize] = MARK;
             core.push(v);
@@ -473,12 +475,12 @@ fn build_chunk(
         ring_offsets.push(ring_indices.len() as u32);
     }
     let f0 = faces.start;
-    let face_verts = t.face_verts[4 * f0..4 * faces.end]
+    let face_verts = t.face_verts()[4 * f0..4 * faces.end]
         .iter()
         .map(|&v| local_id[v as usize])
         .collect();
     let mut num_perturbed = 0u32;
-    let h_index: Vec<u32> = t.h_index[faces.clone()]
+    let h_index: Vec<u32> = t.h_index()[faces.clone()]
         .iter()
         .map(|&h| {
             if h == NONE {
@@ -489,7 +491,7 @@ fn build_chunk(
             }
         })
         .collect();
-    let first_h = t.h_index[faces.clone()]
+    let first_h = t.h_index()[faces.clone()]
         .iter()
         .find(|&&h| h != NONE)
         .copied()
@@ -497,8 +499,8 @@ fn build_chunk(
     let mut edges: Vec<(u32, u32)> = Vec::new();
     for f in faces.clone() {
         for c in 0..4 {
-            let e = t.face_edges[4 * f + c];
-            if t.edge_corner[e as usize] as usize == 4 * f + c {
+            let e = t.face_edges()[4 * f + c];
+            if t.edge_corner()[e as usize] as usize == 4 * f + c {
                 edges.push((e, (4 * (f - f0) + c) as u32));
             }
         }
@@ -520,7 +522,7 @@ fn build_chunk(
         ring_indices,
         valence_consts: consts.to_vec(),
         face_verts,
-        corner_sector: t.corner_sector[4 * f0..4 * faces.end].to_vec(),
+        corner_sector: t.corner_sector()[4 * f0..4 * faces.end].to_vec(),
         edge_corner: edges.iter().map(|e| e.1).collect(),
         h_index,
         num_perturbed: num_perturbed as usize,

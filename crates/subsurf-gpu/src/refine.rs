@@ -144,7 +144,7 @@ impl GpuRefiner {
                 )));
             }
             let too_big = |n: usize| (n * STRIDE) as u64 * WORD > b;
-            let gathered = too_big(s.num_parent_vertices) || too_big(s.num_rows());
+            let gathered = too_big(s.num_parent_vertices()) || too_big(s.num_rows());
             if gathered && b < 3072 {
                 return Err(GpuError::TooLarge {
                     what: "the windows of a refined level larger than one binding",
@@ -154,7 +154,7 @@ impl GpuRefiner {
             }
             for (table, first_row) in level_dispatches(s) {
                 bytes += table.size_bytes() as u64;
-                let t = StencilTable::new(&table.offsets, &table.indices, &table.weights)?;
+                let t = StencilTable::new(&table.offsets(), &table.indices(), &table.weights())?;
                 if t.min_source_vertices() > s.num_rows() {
                     return Err(GpuError::InvalidStencil(format!(
                         "level {} table references input {} beyond the child vertices",
@@ -165,18 +165,18 @@ impl GpuRefiner {
                 let plan_limits = if gathered { &gather_limits } else { &limits };
                 for range in plan_chunks(&t, plan_limits, 1)? {
                     let (r0, r1) = (range.row_start, range.row_end);
-                    let (e0, e1) = (table.offsets[r0] as usize, table.offsets[r1] as usize);
-                    let offsets: Vec<u32> = table.offsets[r0..=r1]
+                    let (e0, e1) = (table.offsets()[r0] as usize, table.offsets()[r1] as usize);
+                    let offsets: Vec<u32> = table.offsets()[r0..=r1]
                         .iter()
-                        .map(|&o| o - table.offsets[r0])
+                        .map(|&o| o - table.offsets()[r0])
                         .collect();
-                    let indices = &table.indices[e0..e1];
-                    let weights = table.weights[e0..e1].to_vec();
+                    let indices = &table.indices()[e0..e1];
+                    let weights = table.weights()[e0..e1].to_vec();
                     let first = first_row + r0;
                     if !gathered {
                         specs.push(Spec {
                             first_row: first as u32,
-                            num_parent: s.num_parent_vertices as u32,
+                            num_parent: s.num_parent_vertices() as u32,
                             offsets,
                             indices: indices.to_vec(),
                             weights,
@@ -185,7 +185,7 @@ impl GpuRefiner {
                         });
                         continue;
                     }
-                    let plan = plan_gather(indices, s.num_parent_vertices, window, 1);
+                    let plan = plan_gather(indices, s.num_parent_vertices(), window, 1);
                     for g in plan.gathers {
                         let n = g.rel.len();
                         let lvl = level + usize::from(g.child);

@@ -16,7 +16,7 @@ use subsurf_gpu::{ChunkLimits, GpuLimit};
 /// Samples of the tessellation plan plus ptex faces out of range (zeros either way), 1024 of
 /// them first so that the first chunks read no point at all.
 fn queries(table: &PatchTable, n: usize) -> Vec<(u32, f32, f32)> {
-    let roots = table.patch_map.roots.len() as u32;
+    let roots = table.patch_map().roots().len() as u32;
     let mut q = vec![(roots, 0.5, 0.5); 1024];
     q.extend(table.tessellation_plan(n).unwrap().queries);
     q.insert(q.len() / 2, (roots + 7, 0.5, 0.5));
@@ -40,7 +40,7 @@ fn compacted_chunks_reproduce_the_whole_tables_bit_for_bit() {
         let words = pack_queries(&q);
         let chunks = plan(
             &t,
-            &table.cv_offsets,
+            &table.cv_offsets(),
             points.len(),
             &words,
             stride,
@@ -113,7 +113,7 @@ fn a_block_too_big_for_one_binding_is_a_typed_error() {
     let q = pack_queries(&queries(&table, 3));
     let r = plan(
         &LimitTables::new(&table),
-        &table.cv_offsets,
+        &table.cv_offsets(),
         table.points(&mesh.positions).len(),
         &q,
         6,
@@ -213,7 +213,7 @@ fn point_array_over_one_binding_matches_whole_bindings() {
         let point_bytes = 12 * table.num_points() as u64;
         // Sparse levels, end caps, and points several times the binding.
         assert!(
-            !table.level_stencils.is_empty() && table.local_points.num_rows() > 0,
+            !table.level_stencils().is_empty() && table.local_points().num_rows() > 0,
             "{name}"
         );
         assert!(

@@ -87,7 +87,11 @@ fn shapes_cover_every_patch_kind() {
         let c = table.counts();
         crease += c.single_crease;
         gregory += c.gregory;
-        fractional += table.sharpness.iter().filter(|s| s.fract() != 0.0).count();
+        fractional += table
+            .sharpness()
+            .iter()
+            .filter(|s| s.fract() != 0.0)
+            .count();
         holes += mesh.holes.len();
         ngons += mesh.face_counts.iter().filter(|&&n| n != 4).count();
     }
@@ -136,7 +140,7 @@ fn twin_matches_the_library_on_every_catmark_shape() {
         let (mesh, table) = load(file.trim_end_matches(".obj"), 2);
         let surface = LimitSurface::new(table.clone(), &mesh.positions);
         let want = surface.tessellate(5).unwrap();
-        let got = tessellate_cpu(&table, &surface.points, 5).unwrap();
+        let got = tessellate_cpu(&table, &surface.points(), 5).unwrap();
         // Tessellation's PartialEq compares f32 values: NaN-free by the same comparison.
         assert!(
             got == want,
@@ -202,7 +206,7 @@ fn gpu_tessellation_matches_cpu() {
         gpu.update(&ctx, &mesh.positions).unwrap();
         // The point array (refinement + end-cap stencils) first.
         let points = gpu.download_points(&ctx).unwrap();
-        for (i, (g, w)) in points.iter().zip(&surface.points).enumerate() {
+        for (i, (g, w)) in points.iter().zip(surface.points()).enumerate() {
             assert!(
                 dist(*g, *w) <= 1e-6 * diag,
                 "{name}: point {i}: {g:?} vs {w:?}"

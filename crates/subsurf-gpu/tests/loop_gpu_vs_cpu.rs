@@ -14,7 +14,7 @@
 mod common;
 
 use common::{bits, context_or_skip};
-use subsurf::refine::{LevelStencils, StencilTable};
+use subsurf::refine::LevelStencils;
 use subsurf::{Refiner, Topology};
 use subsurf_gpu::cpu::refine_level::refine_level_step;
 use subsurf_gpu::{GpuRefiner, StencilKernel};
@@ -23,18 +23,7 @@ use subsurf_gpu::{GpuRefiner, StencilKernel};
 /// (`eps` = 2u, so a factor 2 of slack for the bound's own f32 evaluation), formed by the twin
 /// itself on `|w|` and `|x|` and, for the row lengths `n`, on unit weights and values.
 fn rounding_bound(s: &LevelStencils, parent: &[f32]) -> Vec<f32> {
-    let with = |f: &dyn Fn(f32) -> f32| {
-        let map = |t: &StencilTable| StencilTable {
-            weights: t.weights.iter().map(|&w| f(w)).collect(),
-            ..t.clone()
-        };
-        LevelStencils {
-            face: map(&s.face),
-            vertex: map(&s.vertex),
-            edge: map(&s.edge),
-            ..s.clone()
-        }
-    };
+    let with = |f: &dyn Fn(f32) -> f32| s.map_weights(|&w| f(w));
     let abs: Vec<f32> = parent.iter().map(|x| x.abs()).collect();
     let magnitude = refine_level_step(&with(&f32::abs), &abs, 3).unwrap();
     let lengths = refine_level_step(&with(&|_| 1.0), &vec![1.0; parent.len()], 3).unwrap();

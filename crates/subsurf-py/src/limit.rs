@@ -158,7 +158,7 @@ impl PyLimit {
                 let mut s = surface.write().map_err(poisoned)?;
                 // A copy only while an evaluation still holds the surface.
                 let s = Arc::make_mut(&mut s);
-                s.points = s.table.points(&p);
+                s.set_positions(&p);
                 *pos = p;
                 Ok::<_, PyErr>(())
             })?,
@@ -299,11 +299,7 @@ impl PyLimit {
             let pos = positions.lock().map_err(|_| None)?;
             let mut s = surface.write().map_err(|_| None)?;
             let s = Arc::make_mut(&mut s);
-            let o = s.table.apply_sharpness(&edits).map_err(Some)?;
-            if o != EditOutcome::Unchanged {
-                s.points = s.table.points(&pos);
-            }
-            Ok(o)
+            s.apply_sharpness(&edits, &pos).map_err(Some)
         });
         match outcome {
             Ok(EditOutcome::Unchanged) => Ok("unchanged"),

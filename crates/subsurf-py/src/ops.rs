@@ -249,9 +249,9 @@ impl PyRefiner {
         let r = self.refiner.clone();
         let t = py.detach(move || r.stencil_table());
         (
-            out1(py, t.offsets),
-            out1(py, t.indices),
-            out1(py, t.weights),
+            out1(py, t.offsets().to_vec()),
+            out1(py, t.indices().to_vec()),
+            out1(py, t.weights().to_vec()),
         )
     }
 

@@ -35,7 +35,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| table.points(black_box(&mesh.positions)))
     });
     let s = LimitSurface::new(table, &mesh.positions);
-    let n = s.table.num_ptex_faces() as u32;
+    let n = s.table().num_ptex_faces() as u32;
     let queries: Vec<(u32, f32, f32)> = (0..10_000u32)
         .map(|k| {
             let h = k.wrapping_mul(2654435761);
@@ -50,7 +50,7 @@ fn bench(c: &mut Criterion) {
     g.bench_function("eval_batch_10k", |b| {
         b.iter(|| s.eval_batch(black_box(&queries)))
     });
-    g.throughput(Throughput::Elements(s.table.num_ptex_faces() as u64 * 81));
+    g.throughput(Throughput::Elements(s.table().num_ptex_faces() as u64 * 81));
     g.bench_function("tessellate_9", |b| {
         b.iter(|| s.tessellate(black_box(9)).unwrap())
     });

@@ -40,7 +40,7 @@ fn prep(c: &mut Criterion) {
     let topo = Topology::new(&mesh).unwrap();
     let mut p = PrepPatches::<f32>::from_topology(&topo, &mesh.positions).unwrap();
     let nf = p.num_faces();
-    let bq = nf - p.topology.perturbed_faces.len();
+    let bq = nf - p.topology().perturbed_faces().len();
     eprintln!(
         "bench mesh: {} vertices, {nf} faces, {:.1}% B-quads, {} threads",
         mesh.num_vertices(),

@@ -10,71 +10,71 @@ use subsurf::{Error, Mesh, MeshError, Real, StencilTable, Topology};
 
 fn same_weights<R: Real>(a: &StencilTable<R>, b: &StencilTable<R>) -> bool {
     let bits = |t: &StencilTable<R>| {
-        t.weights
+        t.weights()
             .iter()
             .map(|w| w.to_f64().to_bits())
             .collect::<Vec<_>>()
     };
-    a.offsets == b.offsets
-        && a.indices == b.indices
-        && a.num_inputs == b.num_inputs
+    a.offsets() == b.offsets()
+        && a.indices() == b.indices()
+        && a.num_inputs() == b.num_inputs()
         && bits(a) == bits(b)
 }
 
 /// Every array of the two tables is the same, weights compared by their bits.
 fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
     assert_eq!(
-        a.base.arrays().edge_sharpness,
-        b.base.arrays().edge_sharpness,
+        a.base().arrays().edge_sharpness,
+        b.base().arrays().edge_sharpness,
         "{what}"
     );
     assert_eq!(
-        a.base.arrays().vert_sharpness,
-        b.base.arrays().vert_sharpness,
+        a.base().arrays().vert_sharpness,
+        b.base().arrays().vert_sharpness,
         "{what}"
     );
     assert_eq!(
-        a.base.arrays().vert_rule,
-        b.base.arrays().vert_rule,
+        a.base().arrays().vert_rule,
+        b.base().arrays().vert_rule,
         "{what}"
     );
     assert_eq!(
-        a.base.arrays().edge_tags,
-        b.base.arrays().edge_tags,
+        a.base().arrays().edge_tags,
+        b.base().arrays().edge_tags,
         "{what}"
     );
     assert_eq!(
-        a.base.arrays().vert_tags,
-        b.base.arrays().vert_tags,
+        a.base().arrays().vert_tags,
+        b.base().arrays().vert_tags,
         "{what}"
     );
     assert_eq!(
-        a.base.arrays().face_is_hole,
-        b.base.arrays().face_is_hole,
+        a.base().arrays().face_is_hole,
+        b.base().arrays().face_is_hole,
         "{what}"
     );
-    assert_eq!(a.kinds, b.kinds, "{what}");
-    assert_eq!(a.cv_offsets, b.cv_offsets, "{what}");
-    assert_eq!(a.cvs, b.cvs, "{what}");
-    assert_eq!(a.params, b.params, "{what}");
+    assert_eq!(a.kinds(), b.kinds(), "{what}");
+    assert_eq!(a.cv_offsets(), b.cv_offsets(), "{what}");
+    assert_eq!(a.cvs(), b.cvs(), "{what}");
+    assert_eq!(a.params(), b.params(), "{what}");
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&a.sharpness), bits(&b.sharpness), "{what}");
-    assert_eq!(a.ptex_offsets, b.ptex_offsets, "{what}");
-    assert_eq!(a.patch_map, b.patch_map, "{what}");
-    assert_eq!(a.level_offsets, b.level_offsets, "{what}");
-    assert_eq!(a.level_inputs, b.level_inputs, "{what}");
-    assert_eq!(a.level_stencils.len(), b.level_stencils.len(), "{what}");
-    for (x, y) in a.level_stencils.iter().zip(&b.level_stencils) {
-        assert_eq!(x.num_parent_vertices, y.num_parent_vertices, "{what}");
-        assert!(same_weights(&x.face, &y.face), "{what}: face stencils");
+    assert_eq!(bits(&a.sharpness()), bits(&b.sharpness()), "{what}");
+    assert_eq!(a.ptex_offsets(), b.ptex_offsets(), "{what}");
+    assert_eq!(a.patch_map(), b.patch_map(), "{what}");
+    assert_eq!(a.level_offsets(), b.level_offsets(), "{what}");
+    assert_eq!(a.level_inputs(), b.level_inputs(), "{what}");
+    assert_eq!(a.level_stencils().len(), b.level_stencils().len(), "{what}");
+    for (x, y) in a.level_stencils().iter().zip(b.level_stencils()) {
+        assert_eq!(x.num_parent_vertices(), y.num_parent_vertices(), "{what}");
+        assert!(same_weights(&x.face(), &y.face()), "{what}: face stencils");
         assert!(
-            same_weights(&x.vertex, &y.vertex),
+            same_weights(&x.vertex(), &y.vertex()),
             "{what}: vertex stencils"
         );
-        assert!(same_weights(&x.edge, &y.edge), "{what}: edge stencils");
+        assert!(same_weights(&x.edge(), &y.edge()), "{what}: edge stencils");
     }
     assert!(
-        same_weights(&a.local_points, &b.local_points),
+        same_weights(&a.local_points(), &b.local_points()),
         "{what}: end caps"
     );
 }

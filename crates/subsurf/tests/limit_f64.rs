@@ -42,16 +42,16 @@ struct Deviation {
 /// Like OpenSubdiv 3.5's CPU `EvaluateBasis`, which evaluates a single-crease patch as a
 /// B-spline patch with its crease edge a boundary; other patches as `eval_raw`.
 fn osd_like_eval(s: &LimitSurface<f64>, f: usize, u: f64, v: f64) -> Option<LimitPoint<f64>> {
-    let p = s.table.patch_map.find(f, u, v)? as usize;
-    if s.table.patch_type(p) != PatchType::SingleCrease {
+    let p = s.table().patch_map().find(f, u, v)? as usize;
+    if s.table().patch_type(p) != PatchType::SingleCrease {
         return s.eval_raw(f, u, v);
     }
-    let w = patch_weights(PatchKind::Regular, &s.table.params[p], 0.0f64, u, v);
-    let cvs = s.table.patch_cvs(p);
-    let x0 = s.points[cvs[0] as usize];
+    let w = patch_weights(PatchKind::Regular, &s.table().params()[p], 0.0f64, u, v);
+    let cvs = s.table().patch_cvs(p);
+    let x0 = s.points()[cvs[0] as usize];
     let mut r = LimitPoint::<f64>::default();
     for (k, &cv) in cvs.iter().enumerate() {
-        let x = s.points[cv as usize];
+        let x = s.points()[cv as usize];
         for c in 0..3 {
             let d = x[c] - x0[c];
             r.p[c] += w.p[k] * d;
@@ -90,7 +90,7 @@ fn compare(name: &str, mesh: &Mesh, level: u32, n: usize) -> Deviation {
             .unwrap_or_else(|| panic!("{name}: no patch at ptex {f} ({u}, {v})"));
         let d = |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).abs()).fold(0.0, f64::max);
         let dev = d(r.p, o.p).max(d(r.du, o.du)).max(d(r.dv, o.dv)) / diag;
-        let p = s.table.patch_map.find(f, u, v).unwrap() as usize;
+        let p = s.table().patch_map().find(f, u, v).unwrap() as usize;
         let want = cross(o.du, o.dv);
         let scale = dot(o.du, o.du).max(dot(o.dv, o.dv));
         let normal = if dot(want, want).sqrt() > DEGENERATE * scale {
@@ -98,7 +98,7 @@ fn compare(name: &str, mesh: &Mesh, level: u32, n: usize) -> Deviation {
         } else {
             0.0
         };
-        match s.table.patch_type(p) {
+        match s.table().patch_type(p) {
             PatchType::Gregory => {
                 e.end_cap = e.end_cap.max(dev);
                 e.end_cap_normal = e.end_cap_normal.max(normal);
@@ -166,23 +166,31 @@ fn f64_table_has_the_f32_tables_patches() {
         let o = PatchOptions::default();
         let a = PatchTable::build(&topo, &o).unwrap();
         let b = PatchTable::<f64>::build_real(&topo, &o).unwrap();
-        assert_eq!(a.kinds, b.kinds, "{name}");
-        assert_eq!(a.cvs, b.cvs, "{name}");
-        assert_eq!(a.params, b.params, "{name}");
-        assert_eq!(a.sharpness, b.sharpness, "{name}");
-        assert_eq!(a.patch_map, b.patch_map, "{name}");
-        assert_eq!(a.local_points.indices, b.local_points.indices, "{name}");
-        close(name, &a.local_points.weights, &b.local_points.weights);
-        assert_eq!(a.level_stencils.len(), b.level_stencils.len(), "{name}");
-        for (x, y) in a.level_stencils.iter().zip(&b.level_stencils) {
+        assert_eq!(a.kinds(), b.kinds(), "{name}");
+        assert_eq!(a.cvs(), b.cvs(), "{name}");
+        assert_eq!(a.params(), b.params(), "{name}");
+        assert_eq!(a.sharpness(), b.sharpness(), "{name}");
+        assert_eq!(a.patch_map(), b.patch_map(), "{name}");
+        assert_eq!(
+            a.local_points().indices(),
+            b.local_points().indices(),
+            "{name}"
+        );
+        close(
+            name,
+            &a.local_points().weights(),
+            &b.local_points().weights(),
+        );
+        assert_eq!(a.level_stencils().len(), b.level_stencils().len(), "{name}");
+        for (x, y) in a.level_stencils().iter().zip(b.level_stencils()) {
             for (s, t) in [
-                (&x.face, &y.face),
-                (&x.vertex, &y.vertex),
-                (&x.edge, &y.edge),
+                (&x.face(), &y.face()),
+                (&x.vertex(), &y.vertex()),
+                (&x.edge(), &y.edge()),
             ] {
-                assert_eq!(s.offsets, t.offsets, "{name}");
-                assert_eq!(s.indices, t.indices, "{name}");
-                close(name, &s.weights, &t.weights);
+                assert_eq!(s.offsets(), t.offsets(), "{name}");
+                assert_eq!(s.indices(), t.indices(), "{name}");
+                close(name, &s.weights(), &t.weights());
             }
         }
     }

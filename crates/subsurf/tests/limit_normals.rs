@@ -86,12 +86,12 @@ fn normal_errors(name: &str, mesh: &Mesh, level: u32, n: usize) -> NormalError {
             e.deriv = e.deriv.max(d(r.du, o.du).max(d(r.dv, o.dv)));
         }
         let p = s
-            .table
-            .patch_map
+            .table()
+            .patch_map()
             .find(f, u, v)
             .unwrap_or_else(|| panic!("{name}: no patch at ptex {f} ({u}, {v})"))
             as usize;
-        let (a, b) = s.table.params[p].normalize(u, v);
+        let (a, b) = s.table().params()[p].normalize(u, v);
         let edge = |x: f32| x.min(1.0 - x) < CORNER;
         if edge(a) && edge(b) {
             continue;
@@ -110,7 +110,7 @@ fn normal_errors(name: &str, mesh: &Mesh, level: u32, n: usize) -> NormalError {
         if err > e.worst() {
             e.worst_at = (o.face, u, v);
         }
-        if s.table.patch_type(p) == PatchType::Gregory {
+        if s.table().patch_type(p) == PatchType::Gregory {
             e.end_cap = e.end_cap.max(err);
         } else {
             e.regular = e.regular.max(err);

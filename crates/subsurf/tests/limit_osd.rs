@@ -50,7 +50,7 @@ fn compare(name: &str, level: u32, n: usize) -> Deviation {
     let diag = bbox_diagonal(&mesh.positions);
     let mut dev = Deviation {
         samples: osd.len(),
-        patches: (s.table.num_patches(), stats.num_patches),
+        patches: (s.table().num_patches(), stats.num_patches),
         ..Default::default()
     };
     for o in &osd {
@@ -61,12 +61,16 @@ fn compare(name: &str, level: u32, n: usize) -> Deviation {
             .sum::<f32>()
             .sqrt()
             / diag;
-        let p = s.table.patch_map.find(o.face as usize, o.u, o.v).unwrap() as usize;
+        let p = s
+            .table()
+            .patch_map()
+            .find(o.face as usize, o.u, o.v)
+            .unwrap() as usize;
         let dd = (0..3)
             .map(|c| (r.du[c] - o.du[c]).abs().max((r.dv[c] - o.dv[c]).abs()))
             .fold(0.0, f32::max)
             / diag;
-        if s.table.patch_type(p) == PatchType::Gregory {
+        if s.table().patch_type(p) == PatchType::Gregory {
             dev.end_cap = dev.end_cap.max(d);
             dev.end_cap_deriv = dev.end_cap_deriv.max(dd);
         } else {
@@ -81,14 +85,14 @@ fn compare(name: &str, level: u32, n: usize) -> Deviation {
 /// sharpness of single-crease patches and treats their crease edge as a boundary; other
 /// patches as [`LimitSurface::eval_raw`].
 fn osd_like_eval(s: &LimitSurface, f: usize, u: f32, v: f32) -> Option<LimitPoint> {
-    let p = s.table.patch_map.find(f, u, v)? as usize;
-    if s.table.patch_type(p) != PatchType::SingleCrease {
+    let p = s.table().patch_map().find(f, u, v)? as usize;
+    if s.table().patch_type(p) != PatchType::SingleCrease {
         return s.eval_raw(f, u, v);
     }
-    let w = patch_weights(PatchKind::Regular, &s.table.params[p], 0.0f32, u, v);
+    let w = patch_weights(PatchKind::Regular, &s.table().params()[p], 0.0f32, u, v);
     let mut r = LimitPoint::default();
-    for (k, &cv) in s.table.patch_cvs(p).iter().enumerate() {
-        let x = s.points[cv as usize];
+    for (k, &cv) in s.table().patch_cvs(p).iter().enumerate() {
+        let x = s.points()[cv as usize];
         for c in 0..3 {
             r.p[c] += w.p[k] * x[c];
             r.du[c] += w.du[k] * x[c];

@@ -32,7 +32,7 @@ fn ngon_subfaces_follow_the_child_face_layout() {
             let fv = t.face_vertices(f);
             let fe = t.face_edges(f);
             for k in 0..n {
-                let ptex = s.table.ptex_offsets[f] as usize + k;
+                let ptex = s.table().ptex_offsets()[f] as usize + k;
                 let prev = (k + n - 1) % n;
                 let c1 = &r.levels[1];
                 // The child face of corner k has exactly these corners, in this order.

@@ -47,7 +47,7 @@ fn torus_faces_are_bicubic_bspline_patches() {
     let (nu, nv) = (7, 5);
     let mesh = torus(nu, nv, 2.0, 0.7);
     let s = surface(&mesh, 4);
-    assert_eq!(s.table.num_patches(), nu * nv);
+    assert_eq!(s.table().num_patches(), nu * nv);
     let id = |i: isize, j: isize| {
         (j.rem_euclid(nv as isize) as usize * nu + i.rem_euclid(nu as isize) as usize) as u32
     };
@@ -56,13 +56,13 @@ fn torus_faces_are_bicubic_bspline_patches() {
     for j in 0..nv as isize {
         for i in 0..nu as isize {
             let f = j as usize * nu + i as usize;
-            let p = s.table.patch_map.find(f, 0.3, 0.6).unwrap() as usize;
-            assert_eq!(s.table.patch_type(p), PatchType::Regular);
-            assert_eq!(s.table.params[p].depth(), 0);
+            let p = s.table().patch_map().find(f, 0.3, 0.6).unwrap() as usize;
+            assert_eq!(s.table().patch_type(p), PatchType::Regular);
+            assert_eq!(s.table().params()[p].depth(), 0);
             let expect: Vec<u32> = (0..16)
                 .map(|k| id(i - 1 + (k % 4) as isize, j - 1 + (k / 4) as isize))
                 .collect();
-            assert_eq!(s.table.patch_cvs(p), &expect[..], "face {f}");
+            assert_eq!(s.table().patch_cvs(p), &expect[..], "face {f}");
             for (u, v) in [(0.0, 0.0), (0.25, 0.7), (1.0, 0.5), (0.9, 1.0), (0.5, 0.5)] {
                 let (bu, du) = bspline(u);
                 let (bv, dv) = bspline(v);
@@ -139,7 +139,7 @@ fn brute_force(
 fn crease_matches_refinement(s: f32, along_u: bool, level: u32) {
     let mesh = creased_torus(s, along_u);
     let surf = surface(&mesh, level);
-    let counts = surf.table.counts();
+    let counts = surf.table().counts();
     assert_eq!(counts.single_crease, 16, "s = {s}: {counts:?}");
     assert_eq!(counts.gregory, 0);
     let k = 5;
@@ -192,7 +192,7 @@ fn capped_sharpness_is_opensubdivs() {
     let table = PatchTable::build(&t, &o).unwrap();
     let creased: Vec<f32> = (0..table.num_patches())
         .filter(|&p| table.patch_type(p) == PatchType::SingleCrease)
-        .map(|p| table.sharpness[p])
+        .map(|p| table.sharpness()[p])
         .collect();
     assert_eq!(creased, vec![2.0; 16]);
 }

@@ -57,7 +57,7 @@ fn closed_shapes_tessellate_watertight() {
             let bad: Vec<_> = uses.iter().filter(|(_, &c)| c != 2).collect();
             assert!(bad.is_empty(), "{name} N={n}: {} open edges", bad.len());
             // Euler characteristic of a closed surface is preserved: V − E + F = 2 − 2g.
-            let base = &s.table.base;
+            let base = &s.table().base();
             let chi0 =
                 base.num_vertices() as i64 - base.num_edges() as i64 + base.num_faces() as i64;
             let chi = t.positions.len() as i64 - uses.len() as i64 + t.triangles().len() as i64;
@@ -116,7 +116,7 @@ fn derivatives_match_finite_differences() {
         let h = 1e-3f32;
         let mut worst = 0.0f32;
         let mut count = 0;
-        for ptex in 0..s.table.num_ptex_faces() {
+        for ptex in 0..s.table().num_ptex_faces() {
             for (u, v) in [(0.31f32, 0.42f32), (0.77, 0.13), (0.55, 0.81)] {
                 let Some(r) = s.eval(ptex, u, v) else {
                     continue;

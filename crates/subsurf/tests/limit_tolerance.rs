@@ -23,7 +23,7 @@ fn surface(mesh: &Mesh, table: PatchTable<f64>) -> LimitSurface<f64> {
 fn patches_of(t: &PatchTable<f64>) -> Vec<Vec<(PatchType, subsurf::patch::PatchParam)>> {
     let mut out = vec![Vec::new(); t.num_ptex_faces()];
     for p in 0..t.num_patches() {
-        out[t.params[p].face_id() as usize].push((t.patch_type(p), t.params[p]));
+        out[t.params()[p].face_id() as usize].push((t.patch_type(p), t.params()[p]));
     }
     out
 }
@@ -47,7 +47,7 @@ fn each_region_is_the_table_of_its_level() {
         let t = Topology::new(&mesh).unwrap();
         let levels: Vec<u8> = (0..t.num_faces()).map(|_| 2 + rng.next(4) as u8).collect();
         let mixed = PatchTable::<f64>::build_face_levels(&t, &isolated(2), &levels).unwrap();
-        assert_eq!(mixed.face_levels.as_deref(), Some(&levels[..]), "{name}");
+        assert_eq!(mixed.face_levels().as_deref(), Some(&levels[..]), "{name}");
         let uniform: Vec<PatchTable<f64>> = (2..6)
             .map(|l| PatchTable::build_real(&t, &isolated(l)).unwrap())
             .collect();
@@ -61,7 +61,7 @@ fn each_region_is_the_table_of_its_level() {
         let mut worst = 0.0f64;
         for f in 0..t.num_faces() {
             let l = levels[f] as usize - 2;
-            for ptex in mixed.ptex_offsets[f]..mixed.ptex_offsets[f + 1] {
+            for ptex in mixed.ptex_offsets()[f]..mixed.ptex_offsets()[f + 1] {
                 let ptex = ptex as usize;
                 assert_eq!(pm[ptex], pu[l][ptex], "{name}: ptex face {ptex}");
                 for i in 0..=6 {
@@ -90,11 +90,11 @@ fn plain_levels_give_the_plain_table_and_bad_levels_are_refused() {
     let plain = PatchTable::<f64>::build_real(&t, &isolated(4)).unwrap();
     let low =
         PatchTable::<f64>::build_face_levels(&t, &isolated(4), &vec![2; t.num_faces()]).unwrap();
-    assert!(low.face_levels.is_none());
-    assert_eq!(low.kinds, plain.kinds);
-    assert_eq!(low.params, plain.params);
-    assert_eq!(low.cvs, plain.cvs);
-    assert_eq!(low.patch_map, plain.patch_map);
+    assert!(low.face_levels().is_none());
+    assert_eq!(low.kinds(), plain.kinds());
+    assert_eq!(low.params(), plain.params());
+    assert_eq!(low.cvs(), plain.cvs());
+    assert_eq!(low.patch_map(), plain.patch_map());
 
     let mut levels = vec![4u8; t.num_faces()];
     levels[17] = 11;
@@ -125,10 +125,10 @@ fn deviation_of(
     diag: f64,
     kinds: &[PatchType],
 ) -> f64 {
-    let t = &s.table;
+    let t = &s.table();
     let mut worst = 0.0f64;
     for p in (0..t.num_patches()).filter(|&p| kinds.contains(&t.patch_type(p))) {
-        let pp = t.params[p];
+        let pp = t.params()[p];
         let ptex = pp.face_id() as usize;
         for i in 0..=8 {
             for j in 0..=8 {
@@ -282,7 +282,7 @@ fn tolerance_bounds_the_whole_approximation() {
     let (s, chords) =
         adaptive_surface(&t, &mesh.positions, &policy, "tolerance", &isolated(4)).unwrap();
     assert_eq!(chords, RatePolicy::Tolerance(split_tolerance(e).1));
-    assert!(s.table.face_levels.is_some());
+    assert!(s.table().face_levels().is_some());
     let truth = |p: u32, u: f64, v: f64| reference.eval_position(p as usize, u, v).unwrap();
     let a = tessellate_adaptive(&s, &chords, "tolerance", &Cpu).unwrap();
     let whole = worst(&a.tessellation, &a.triangle_uv, &truth);
@@ -291,7 +291,7 @@ fn tolerance_bounds_the_whole_approximation() {
         PatchTable::build(&t, &isolated(4)).unwrap(),
         &mesh.positions,
     );
-    let mut p = plan(&plain.table, &policy.rates(&plain, "").unwrap(), "").unwrap();
+    let mut p = plan(&plain.table(), &policy.rates(&plain, "").unwrap(), "").unwrap();
     let uv = std::mem::take(&mut p.triangle_uv);
     let before = worst(&plain.eval_plan(p), &uv, &truth);
     eprintln!(
@@ -324,7 +324,7 @@ fn tolerance_bounds_the_whole_approximation() {
     let worst = choice.deviation.iter().copied().fold(0.0f32, f32::max);
     assert!(worst > 7.5e-5 && worst <= 1.5e-4, "{worst:e}");
     assert_eq!(chords, RatePolicy::Tolerance(3e-4 - worst));
-    assert_eq!(s.table.face_levels.as_ref().map(|l| l[576]), Some(10));
+    assert_eq!(s.table().face_levels().as_ref().map(|l| l[576]), Some(10));
     // The pawn's pole keeps its end caps about 1.4e-4 off at isolation 10: 1e-4 is out of
     // reach (more than half of it), and said so.
     let e = adaptive_surface(
@@ -378,12 +378,12 @@ fn edits_keep_the_levels() {
         &levels,
     )
     .unwrap();
-    assert_eq!(table.face_levels, fresh.face_levels);
-    assert_eq!(table.kinds, fresh.kinds);
-    assert_eq!(table.params, fresh.params);
-    assert_eq!(table.cvs, fresh.cvs);
-    assert_eq!(table.patch_map, fresh.patch_map);
+    assert_eq!(table.face_levels(), fresh.face_levels());
+    assert_eq!(table.kinds(), fresh.kinds());
+    assert_eq!(table.params(), fresh.params());
+    assert_eq!(table.cvs(), fresh.cvs());
+    assert_eq!(table.patch_map(), fresh.patch_map());
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&table.sharpness), bits(&fresh.sharpness));
-    assert_eq!(table.level_offsets, fresh.level_offsets);
+    assert_eq!(bits(&table.sharpness()), bits(&fresh.sharpness()));
+    assert_eq!(table.level_offsets(), fresh.level_offsets());
 }

@@ -16,7 +16,7 @@ fn all_valence_4_is_bicubic_bspline() {
     let mesh = wobble(torus(nu, nv), 0.05);
     let p64 = PrepPatches::<f64>::build(&mesh).unwrap();
     let p32 = PrepPatches::<f32>::build(&mesh).unwrap();
-    assert!(p64.h.is_empty(), "a B-quad mesh has no perturbation");
+    assert!(p64.h().is_empty(), "a B-quad mesh has no perturbation");
     let basis = |t: f64| {
         let s = 1.0 - t;
         [
@@ -88,7 +88,7 @@ fn g1_along_every_edge() {
 #[test]
 fn g1_measure_detects_missing_perturbation() {
     let mut p = PrepPatches::<f64>::build(&wobble(mixed40(), 0.02)).unwrap();
-    p.h.iter_mut().for_each(|x| *x = [0.0; 3]);
+    p.h_mut().iter_mut().for_each(|x| *x = [0.0; 3]);
     let a = max_normal_angle(&p, 33);
     assert!(a > 1e-2, "h = 0 should not be G1, got {a:e}");
 }
@@ -210,13 +210,13 @@ fn tessellation_is_watertight() {
         for [a, b] in edge_corners(&p) {
             for corner in [a, b] {
                 let (f, c) = (corner / 4, corner % 4);
-                let v0 = p.topology.face_verts[4 * f + c];
-                let v1 = p.topology.face_verts[4 * f + (c + 1) % 4];
-                let e = p.topology.face_edges[corner] as usize;
+                let v0 = p.topology().face_verts()[4 * f + c];
+                let v1 = p.topology().face_verts()[4 * f + (c + 1) % 4];
+                let e = p.topology().face_edges()[corner] as usize;
                 for s in 1..n - 1 {
                     let _ = (v0, v1);
                     let x = edge_curve(&p, f, c, s as f32 / (n - 1) as f32);
-                    let idx = p.topology.num_vertices + e * (n - 2) + s - 1;
+                    let idx = p.topology().num_vertices() + e * (n - 2) + s - 1;
                     assert_eq!(
                         bits(x),
                         bits(t.positions[idx]),
@@ -237,8 +237,8 @@ fn edge_curve(p: &PrepPatches<f32>, f: usize, c: usize, t: f32) -> [f32; 3] {
     let g = p.face_g(f);
     let mut x = [0.0f32; 3];
     // Coefficients of this face read in the edge's canonical direction.
-    let v0 = p.topology.face_verts[4 * f + c];
-    let v1 = p.topology.face_verts[4 * f + (c + 1) % 4];
+    let v0 = p.topology().face_verts()[4 * f + c];
+    let v1 = p.topology().face_verts()[4 * f + (c + 1) % 4];
     let fwd = v0 < v1;
     for i in 0..4 {
         let ii = if fwd { i } else { 3 - i };
@@ -270,7 +270,7 @@ fn tessellation_normals_consistent() {
     let t = p.tessellate(5);
     for f in 0..p.num_faces() {
         for c in 0..4 {
-            let v = p.topology.face_verts[4 * f + c] as usize;
+            let v = p.topology().face_verts()[4 * f + c] as usize;
             let s = eval_on_edge(&p, f, c, 0.0);
             let a = angle(s.normal(), t.normals[v]);
             assert!(a < 1e-12, "corner normal of vertex {v} vs face {f}: {a:e}");
@@ -288,10 +288,10 @@ fn parallel_equals_sequential() {
     let mesh = quad_mesh_big();
     let a = PrepPatches::<f32>::build(&mesh).unwrap();
     let b = PrepPatches::<f32>::build_sequential(&mesh).unwrap();
-    assert_eq!(a.g, b.g);
-    assert_eq!(a.h, b.h);
-    assert_eq!(a.vertex.tangent, b.vertex.tangent);
-    assert_eq!(a.vertex.interior, b.vertex.interior);
+    assert_eq!(a.g(), b.g());
+    assert_eq!(a.h(), b.h());
+    assert_eq!(a.vertex().tangent, b.vertex().tangent);
+    assert_eq!(a.vertex().interior, b.vertex().interior);
 }
 
 fn quad_mesh_big() -> subsurf::Mesh {
@@ -306,7 +306,7 @@ fn limit_point_is_invariant_under_catmull_clark() {
     let mesh = wobble(spindle(5, 2), 0.03);
     let p = PrepPatches::<f64>::build(&mesh).unwrap();
     let v = 0; // the top pole, valence 5
-    let ring = p.topology.ring(v).to_vec();
+    let ring = p.topology().ring(v).to_vec();
     let n = ring.len() / 2;
     assert_eq!(n, 5);
     let pos = |i: u32| mesh.positions[i as usize].map(|x| x as f64);
@@ -346,7 +346,7 @@ fn limit_point_is_invariant_under_catmull_clark() {
         g
     };
     let refined = limit(vp, &edge, &face);
-    let g00 = p.vertex.limit[v];
+    let g00 = p.vertex().limit[v];
     for k in 0..3 {
         assert!(
             (refined[k] - g00[k]).abs() < 1e-14,
@@ -355,7 +355,7 @@ fn limit_point_is_invariant_under_catmull_clark() {
     }
     for f in 0..p.num_faces() {
         for c in 0..4 {
-            if p.topology.face_verts[4 * f + c] as usize == v {
+            if p.topology().face_verts()[4 * f + c] as usize == v {
                 let s = eval_on_edge(&p, f, c, 0.0).position;
                 for k in 0..3 {
                     assert!(

@@ -27,32 +27,32 @@ fn stencils_from_the_plans_are_the_masks_tables() {
         let r = Refiner::new(Topology::new(&m).unwrap(), level).unwrap();
         for (k, s) in r.stencils().iter().enumerate() {
             let want = level_stencils(&r.levels[k], &r.levels[k + 1]);
-            assert_eq!(s.num_parent_vertices, want.num_parent_vertices);
+            assert_eq!(s.num_parent_vertices(), want.num_parent_vertices());
             for (got, want, what) in [
-                (&s.face, &want.face, "face"),
-                (&s.vertex, &want.vertex, "vertex"),
-                (&s.edge, &want.edge, "edge"),
+                (&s.face(), &want.face(), "face"),
+                (&s.vertex(), &want.vertex(), "vertex"),
+                (&s.edge(), &want.edge(), "edge"),
             ] {
                 assert_eq!(
-                    got.offsets,
-                    want.offsets,
+                    got.offsets(),
+                    want.offsets(),
                     "{} step {k} {what}",
                     path.display()
                 );
                 assert_eq!(
-                    got.indices,
-                    want.indices,
+                    got.indices(),
+                    want.indices(),
                     "{} step {k} {what}",
                     path.display()
                 );
                 let bits = |w: &[f32]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 assert_eq!(
-                    bits(&got.weights),
-                    bits(&want.weights),
+                    bits(&got.weights()),
+                    bits(&want.weights()),
                     "{} step {k} {what}",
                     path.display()
                 );
-                assert_eq!(got.num_inputs, want.num_inputs);
+                assert_eq!(got.num_inputs(), want.num_inputs());
             }
             steps += 1;
         }

@@ -73,7 +73,7 @@ fn every_triangle_meets_the_tolerance() {
 
         // The rate curves' estimate alone (the plan before the check) misses the budget.
         let rates = chords.rates(&s, "tolerance").unwrap();
-        let p = plan(&s.table, &rates, "").unwrap();
+        let p = plan(&s.table(), &rates, "").unwrap();
         let before = worst(
             &p.triangles,
             &p.triangle_uv,
@@ -84,7 +84,7 @@ fn every_triangle_meets_the_tolerance() {
             &own,
         );
         // `chord_errors` reads the same.
-        let per_face = chord_errors(&s, &p, &s.table.ptex_base_faces(), None);
+        let per_face = chord_errors(&s, &p, &s.table().ptex_base_faces(), None);
         let most = per_face.iter().copied().fold(0.0, f64::max);
         assert!(
             (most - before).abs() <= 1e-6 * diag,

@@ -52,7 +52,7 @@ fn random_rates_are_watertight_on_every_shape() {
     let mut degenerate_shapes = Vec::new();
     for name in shape_names() {
         let (_, table) = table(&name);
-        let t = &table.base;
+        let t = &table.base();
         let live = |f: u32| !t.face_is_hole(f as usize);
         for round in 0..2 {
             let max = if round == 0 { 6 } else { 40 };
@@ -150,7 +150,7 @@ fn mixed_rates_up_to_64_to_1_make_no_slivers_or_flips() {
         "catmark_smoothtris0",
     ] {
         let (mesh, table) = table(name);
-        let t = &table.base;
+        let t = &table.base();
         let rates = EdgeRates {
             edges: (0..t.num_edges())
                 .map(|_| if rng.below(2) == 0 { 1 } else { 64 })
@@ -158,7 +158,7 @@ fn mixed_rates_up_to_64_to_1_make_no_slivers_or_flips() {
             faces: Vec::new(),
         };
         let s = LimitSurface::new(table, &mesh.positions);
-        let p = plan(&s.table, &rates, "test").unwrap();
+        let p = plan(&s.table(), &rates, "test").unwrap();
         let uv = p.triangle_uv.clone();
         let p_rates = p.ptex_rates.clone();
         let out = s.eval_plan(p);

@@ -185,11 +185,11 @@ fn limit_case(ctx: Option<&GpuContext>, adapter: &str, name: &str, mesh: &Mesh, 
         let plan = table.tessellation_plan(n).expect("plan");
         let samples = plan.queries.len() as f64;
         let t_eval = median(|| {
-            surface.points = surface.table.points(&mesh.positions);
+            surface.set_positions(&mesh.positions);
             std::hint::black_box(surface.eval_batch(&plan.queries));
         });
         let t_tess = median(|| {
-            surface.points = surface.table.points(&mesh.positions);
+            surface.set_positions(&mesh.positions);
             std::hint::black_box(surface.tessellate(n).expect("tessellate"));
         });
         for (what, t) in [("points + eval_batch(plan)", t_eval), ("points + tessellate", t_tess)] {

@@ -77,24 +77,24 @@ pub struct LimitTables {
 impl LimitTables {
     /// Flattens `table`'s patch map, per-patch data and control indices.
     pub fn new(table: &PatchTable) -> Self {
-        let map = &table.patch_map;
-        let mut patch_map = map.roots.clone();
-        patch_map.extend(map.nodes.iter().flatten());
+        let map = &table.patch_map();
+        let mut patch_map = map.roots().to_vec();
+        patch_map.extend(map.nodes().iter().flatten());
         let mut patch_info = Vec::with_capacity(PATCH_WORDS * table.num_patches());
         for p in 0..table.num_patches() {
             patch_info.extend([
-                u32::from(table.kinds[p]),
-                table.cv_offsets[p],
-                table.params[p].field0,
-                table.params[p].field1,
-                table.sharpness[p].to_bits(),
+                u32::from(table.kinds()[p]),
+                table.cv_offsets()[p],
+                table.params()[p].field0,
+                table.params()[p].field1,
+                table.sharpness()[p].to_bits(),
             ]);
         }
         Self {
-            num_roots: map.roots.len() as u32,
+            num_roots: map.roots().len() as u32,
             patch_map,
             patch_info,
-            cvs: table.cvs.clone(),
+            cvs: table.cvs().to_vec(),
         }
     }
 }

@@ -72,18 +72,18 @@ pub fn refine_level(
 
 /// The three dispatches of one level, as `(table, first child row)` in dispatch order.
 pub fn level_dispatches(s: &LevelStencils) -> [(&StencilTable, usize); 3] {
-    let p = s.num_parent_vertices;
-    let f = s.face.num_rows();
-    [(&s.face, p), (&s.vertex, 0), (&s.edge, p + f)]
+    let p = s.num_parent_vertices();
+    let f = s.face().num_rows();
+    [(&s.face(), p), (&s.vertex(), 0), (&s.edge(), p + f)]
 }
 
 /// One refinement step of `parent` (`stride` floats per vertex, 1..=4).
 pub fn refine_level_step(s: &LevelStencils, parent: &[f32], stride: usize) -> Result<Vec<f32>> {
-    if !(1..=4).contains(&stride) || parent.len() != s.num_parent_vertices * stride {
+    if !(1..=4).contains(&stride) || parent.len() != s.num_parent_vertices() * stride {
         return Err(GpuError::BufferMismatch(format!(
             "{} floats of stride {stride} for {} parent vertices (stride must be 1..=4)",
             parent.len(),
-            s.num_parent_vertices
+            s.num_parent_vertices()
         )));
     }
     let mut child = vec![0.0f32; s.num_rows() * stride];
@@ -93,14 +93,14 @@ pub fn refine_level_step(s: &LevelStencils, parent: &[f32], stride: usize) -> Re
             stride: stride as u32,
             grid_width: table.num_rows() as u32,
             first_row: first_row as u32,
-            num_parent: s.num_parent_vertices as u32,
+            num_parent: s.num_parent_vertices() as u32,
             _pad: [0; 3],
         };
         refine_level(
             &config,
-            &table.offsets,
-            &table.indices,
-            &table.weights,
+            &table.offsets(),
+            &table.indices(),
+            &table.weights(),
             parent,
             &mut child,
         );

@@ -62,24 +62,24 @@ fn fingerprint(parts: &[&[u32]]) -> u64 {
 
 fn level_print(s: &LevelStencils) -> u64 {
     let mut parts: Vec<&[u32]> = Vec::with_capacity(9);
-    for t in [&s.face, &s.vertex, &s.edge] {
+    for t in [&s.face(), &s.vertex(), &s.edge()] {
         parts.extend([
-            &t.offsets[..],
-            &t.indices[..],
-            bytemuck::cast_slice(&t.weights),
+            &t.offsets()[..],
+            &t.indices()[..],
+            bytemuck::cast_slice(&t.weights()),
         ]);
     }
     fingerprint(&parts)
 }
 
 fn fixed_print(table: &PatchTable, t: &LimitTables) -> u64 {
-    let lp = &table.local_points;
-    let mut parts: Vec<&[u32]> = vec![&t.patch_map, &t.cvs, &table.level_offsets];
-    parts.extend(table.level_inputs.iter().map(Vec::as_slice));
+    let lp = &table.local_points();
+    let mut parts: Vec<&[u32]> = vec![&t.patch_map, &t.cvs, &table.level_offsets()];
+    parts.extend(table.level_inputs().iter().map(Vec::as_slice));
     parts.extend([
-        &lp.offsets[..],
-        &lp.indices[..],
-        bytemuck::cast_slice(&lp.weights),
+        &lp.offsets()[..],
+        &lp.indices()[..],
+        bytemuck::cast_slice(&lp.weights()),
     ]);
     fingerprint(&parts)
 }
@@ -87,7 +87,7 @@ fn fixed_print(table: &PatchTable, t: &LimitTables) -> u64 {
 impl Uploaded {
     pub(super) fn new(table: &PatchTable, t: &LimitTables) -> Uploaded {
         Uploaded {
-            levels: table.level_stencils.iter().map(level_print).collect(),
+            levels: table.level_stencils().iter().map(level_print).collect(),
             patch_info: t.patch_info.clone(),
             fixed: fixed_print(table, t),
         }
@@ -109,7 +109,7 @@ impl GpuLimit {
     /// [`GpuLimit::new`].
     pub fn apply_edit(&mut self, ctx: &GpuContext, table: &PatchTable) -> Result<EditUpload> {
         let t = LimitTables::new(table);
-        if table.level_stencils.len() != self.levels.len()
+        if table.level_stencils().len() != self.levels.len()
             || t.patch_info.len() != self.uploaded.patch_info.len()
             || fixed_print(table, &t) != self.uploaded.fixed
         {
@@ -120,13 +120,13 @@ impl GpuLimit {
             ));
         }
         let mut out = EditUpload::default();
-        for (d, s) in table.level_stencils.iter().enumerate() {
+        for (d, s) in table.level_stencils().iter().enumerate() {
             let print = level_print(s);
             if print == self.uploaded.levels[d] {
                 continue;
             }
-            let inputs = table.level_inputs[d].len();
-            let child = (table.level_offsets[d + 2] - table.level_offsets[d + 1]) as usize;
+            let inputs = table.level_inputs()[d].len();
+            let child = (table.level_offsets()[d + 2] - table.level_offsets()[d + 1]) as usize;
             let refiner = GpuRefiner::from_stencils(
                 ctx,
                 &[inputs, child],

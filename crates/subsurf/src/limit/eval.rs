@@ -43,9 +43,21 @@ pub struct LimitPoint<R = f32> {
 #[derive(Debug, Clone)]
 pub struct LimitSurface<R = f32> {
     /// The patches.
-    pub table: PatchTable<R>,
+    pub(crate) table: PatchTable<R>,
     /// The flat point array ([`PatchTable::points`]).
-    pub points: Vec<[R; 3]>,
+    pub(crate) points: Vec<[R; 3]>,
+}
+
+impl<R> LimitSurface<R> {
+    /// The patches.
+    pub fn table(&self) -> &PatchTable<R> {
+        &self.table
+    }
+
+    /// The flat point array ([`PatchTable::points`]).
+    pub fn points(&self) -> &[[R; 3]] {
+        &self.points
+    }
 }
 
 use crate::util::vec3::cross;
@@ -59,6 +71,26 @@ impl<R: Real> LimitSurface<R> {
     pub fn new(table: PatchTable<R>, positions: &[[f32; 3]]) -> LimitSurface<R> {
         let points = table.points(positions);
         LimitSurface { table, points }
+    }
+
+    /// Moves the base vertices: the patch points are formed again from `positions` (one per
+    /// base vertex); the table is kept.
+    pub fn set_positions(&mut self, positions: &[[f32; 3]]) {
+        self.points = self.table.points(positions);
+    }
+
+    /// Edits creases ([`PatchTable::apply_sharpness`]) and, where the table changed, forms
+    /// the points again from the base `positions`.
+    pub fn apply_sharpness(
+        &mut self,
+        edits: &[super::SharpnessEdit],
+        positions: &[[f32; 3]],
+    ) -> crate::Result<super::EditOutcome> {
+        let outcome = self.table.apply_sharpness(edits)?;
+        if outcome != super::EditOutcome::Unchanged {
+            self.set_positions(positions);
+        }
+        Ok(outcome)
     }
 
     /// Position and first derivatives at `(u, v)` of ptex face `ptex`, without the normal;

@@ -29,9 +29,21 @@ pub const LEAF: u32 = 1 << 31;
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct PatchMap {
     /// One handle per ptex face.
-    pub roots: Vec<u32>,
+    pub(crate) roots: Vec<u32>,
     /// Four child handles per inner node.
-    pub nodes: Vec<[u32; 4]>,
+    pub(crate) nodes: Vec<[u32; 4]>,
+}
+
+impl PatchMap {
+    /// One handle per ptex face.
+    pub fn roots(&self) -> &[u32] {
+        &self.roots
+    }
+
+    /// Four child handles per inner node.
+    pub fn nodes(&self) -> &[[u32; 4]] {
+        &self.nodes
+    }
 }
 
 /// A leaf of a ptex face's quadtree and its square: `[iu, iu + 1) × [iv, iv + 1)` scaled by

@@ -29,15 +29,39 @@ pub const ISOLINES_PER_PTEX: usize = 2 * ISOLINES.len();
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RateCurves {
     /// `(ptex face, u, v)` of every sample, [`CURVE_POINTS`] per curve, curve after curve.
-    pub queries: Vec<(u32, f32, f32)>,
+    pub(crate) queries: Vec<(u32, f32, f32)>,
     /// Per curve: whether it lies on the surface. A dead curve (the edge of holes only, or
     /// a ptex face without patches) measures zero; its queries name ptex face `u32::MAX`.
-    pub live: Vec<bool>,
+    pub(crate) live: Vec<bool>,
     /// Number of base edges: curve `e < num_edges` is base edge `e`'s.
-    pub num_edges: usize,
+    pub(crate) num_edges: usize,
     /// Per base face, the first of its isolines (curves `face_curves[f]..face_curves[f + 1]`,
     /// [`ISOLINES_PER_PTEX`] per ptex face; none for holes); `num_faces + 1` entries.
-    pub face_curves: Vec<u32>,
+    pub(crate) face_curves: Vec<u32>,
+}
+
+impl RateCurves {
+    /// `(ptex face, u, v)` of every sample, [`CURVE_POINTS`] per curve, curve after curve.
+    pub fn queries(&self) -> &[(u32, f32, f32)] {
+        &self.queries
+    }
+
+    /// Per curve: whether it lies on the surface. A dead curve (the edge of holes only, or
+    /// a ptex face without patches) measures zero; its queries name ptex face `u32::MAX`.
+    pub fn live(&self) -> &[bool] {
+        &self.live
+    }
+
+    /// Number of base edges: curve `e < num_edges` is base edge `e`'s.
+    pub fn num_edges(&self) -> usize {
+        self.num_edges
+    }
+
+    /// Per base face, the first of its isolines (curves `face_curves[f]..face_curves[f + 1]`,
+    /// [`ISOLINES_PER_PTEX`] per ptex face; none for holes); `num_faces + 1` entries.
+    pub fn face_curves(&self) -> &[u32] {
+        &self.face_curves
+    }
 }
 
 /// Parameter of sample `i` of a curve.

@@ -145,45 +145,122 @@ impl PatchType {
 #[derive(Debug, Clone)]
 pub struct PatchTable<R = f32> {
     /// The options used.
-    pub options: PatchOptions,
+    pub(crate) options: PatchOptions,
     /// The base topology.
-    pub base: Topology,
+    pub(crate) base: Topology,
     /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
     /// `d` that was refined ([`super::sparse`]).
-    pub level_stencils: Vec<LevelStencils<R>>,
+    pub(crate) level_stencils: Vec<LevelStencils<R>>,
     /// `level_inputs[d][i]`: the level-`d` vertex that is vertex `i` of that sub-mesh (the
     /// input of `level_stencils[d]`).
-    pub level_inputs: Vec<Vec<u32>>,
+    pub(crate) level_inputs: Vec<Vec<u32>>,
     /// Offsets of each level's vertices in the flat point array (one more than the number of
     /// levels, which stops early where nothing is left to isolate).
-    pub level_offsets: Vec<u32>,
+    pub(crate) level_offsets: Vec<u32>,
     /// End-cap points as stencils over the level vertices (flat indices).
-    pub local_points: StencilTable<R>,
+    pub(crate) local_points: StencilTable<R>,
     /// [`PatchType`] per patch.
-    pub kinds: Vec<u8>,
+    pub(crate) kinds: Vec<u8>,
     /// `P + 1` offsets into `cvs`.
-    pub cv_offsets: Vec<u32>,
+    pub(crate) cv_offsets: Vec<u32>,
     /// Control point indices into the flat point array.
-    pub cvs: Vec<u32>,
+    pub(crate) cvs: Vec<u32>,
     /// Packed parameter per patch.
-    pub params: Vec<PatchParam>,
+    pub(crate) params: Vec<PatchParam>,
     /// Crease sharpness per patch (0 unless single-crease).
-    pub sharpness: Vec<f32>,
+    pub(crate) sharpness: Vec<f32>,
     /// `F + 1` offsets: base face `f` has ptex faces `ptex_offsets[f]..ptex_offsets[f + 1]`.
-    pub ptex_offsets: Vec<u32>,
+    pub(crate) ptex_offsets: Vec<u32>,
     /// Patch lookup per ptex face.
-    pub patch_map: PatchMap,
+    pub(crate) patch_map: PatchMap,
     /// The levels kept for incremental crease edits ([`super::edit_region`]), made by the
     /// first [`PatchTable::set_sharpness`]; `None` after a plain build.
     pub(crate) edit_state: Option<std::sync::Arc<super::edit_region::EditState>>,
     /// Per base face, the isolation level of its region when the levels were chosen per
     /// region ([`PatchTable::build_face_levels`], [`super::tolerance`]); `None` when
     /// `options.isolation_level` applies everywhere.
-    pub face_levels: Option<Vec<u8>>,
+    pub(crate) face_levels: Option<Vec<u8>>,
     /// The rate curves' layout, formed on first use ([`PatchTable::rate_curves`]) and kept
     /// (shared by clones): it reads only the base topology, the ptex faces and which of them
     /// have patches, which a crease edit keeps (an edit that rebuilds makes a new table).
     pub(crate) rate_curves: std::sync::OnceLock<std::sync::Arc<super::rate_curves::RateCurves>>,
+}
+
+impl<R> PatchTable<R> {
+    /// The options used.
+    pub fn options(&self) -> &PatchOptions {
+        &self.options
+    }
+
+    /// The base topology.
+    pub fn base(&self) -> &Topology {
+        &self.base
+    }
+
+    /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
+    /// `d` that was refined ([`super::sparse`]).
+    pub fn level_stencils(&self) -> &[LevelStencils<R>] {
+        &self.level_stencils
+    }
+
+    /// `level_inputs[d][i]`: the level-`d` vertex that is vertex `i` of that sub-mesh (the
+    /// input of `level_stencils[d]`).
+    pub fn level_inputs(&self) -> &[Vec<u32>] {
+        &self.level_inputs
+    }
+
+    /// Offsets of each level's vertices in the flat point array (one more than the number of
+    /// levels, which stops early where nothing is left to isolate).
+    pub fn level_offsets(&self) -> &[u32] {
+        &self.level_offsets
+    }
+
+    /// End-cap points as stencils over the level vertices (flat indices).
+    pub fn local_points(&self) -> &StencilTable<R> {
+        &self.local_points
+    }
+
+    /// [`PatchType`] per patch.
+    pub fn kinds(&self) -> &[u8] {
+        &self.kinds
+    }
+
+    /// `P + 1` offsets into `cvs`.
+    pub fn cv_offsets(&self) -> &[u32] {
+        &self.cv_offsets
+    }
+
+    /// Control point indices into the flat point array.
+    pub fn cvs(&self) -> &[u32] {
+        &self.cvs
+    }
+
+    /// Packed parameter per patch.
+    pub fn params(&self) -> &[PatchParam] {
+        &self.params
+    }
+
+    /// Crease sharpness per patch (0 unless single-crease).
+    pub fn sharpness(&self) -> &[f32] {
+        &self.sharpness
+    }
+
+    /// `F + 1` offsets: base face `f` has ptex faces `ptex_offsets[f]..ptex_offsets[f + 1]`.
+    pub fn ptex_offsets(&self) -> &[u32] {
+        &self.ptex_offsets
+    }
+
+    /// Patch lookup per ptex face.
+    pub fn patch_map(&self) -> &PatchMap {
+        &self.patch_map
+    }
+
+    /// Per base face, the isolation level of its region when the levels were chosen per
+    /// region ([`PatchTable::build_face_levels`], [`super::tolerance`]); `None` when
+    /// `options.isolation_level` applies everywhere.
+    pub fn face_levels(&self) -> Option<&[u8]> {
+        self.face_levels.as_deref()
+    }
 }
 
 /// Patch counts by type.

@@ -115,17 +115,51 @@ use scalar::{zero3, V3};
 #[derive(Debug, Clone)]
 pub struct PrepPatches<T> {
     /// Connectivity tables (reusable for new positions with [`PrepPatches::update`]).
-    pub topology: PrepTopology,
+    pub(crate) topology: PrepTopology,
     /// Vertex-pass outputs.
-    pub vertex: VertexData<T>,
+    pub(crate) vertex: VertexData<T>,
     /// Bi-3 coefficients, 16 per face, `g[16 f + 4 i + j]` (i along `v0 → v1`, j along `v0 → v3`).
-    pub g: Vec<V3<T>>,
+    pub(crate) g: Vec<V3<T>>,
     /// Per face, the block index into `h`, or `u32::MAX` for a B-quad (h = 0).
-    pub h_index: Vec<u32>,
+    pub(crate) h_index: Vec<u32>,
     /// Non-zero bi-5 perturbation coefficients, 16 per perturbed face, in
     /// [`patch_pass::H_SLOTS`] order.
-    pub h: Vec<V3<T>>,
+    pub(crate) h: Vec<V3<T>>,
     consts: ValenceTable<T>,
+}
+
+impl<T> PrepPatches<T> {
+    /// Connectivity tables (reusable for new positions with [`PrepPatches::update`]).
+    pub fn topology(&self) -> &PrepTopology {
+        &self.topology
+    }
+
+    /// Vertex-pass outputs.
+    pub fn vertex(&self) -> &VertexData<T> {
+        &self.vertex
+    }
+
+    /// Bi-3 coefficients, 16 per face, `g[16 f + 4 i + j]` (i along `v0 → v1`, j along `v0 → v3`).
+    pub fn g(&self) -> &[V3<T>] {
+        &self.g
+    }
+
+    /// Per face, the block index into `h`, or `u32::MAX` for a B-quad (h = 0).
+    pub fn h_index(&self) -> &[u32] {
+        &self.h_index
+    }
+
+    /// Non-zero bi-5 perturbation coefficients, 16 per perturbed face, in
+    /// [`patch_pass::H_SLOTS`] order.
+    pub fn h(&self) -> &[V3<T>] {
+        &self.h
+    }
+
+    /// The perturbation coefficients, to change in place (for instance zeroed, which leaves
+    /// the C0 bicubic surface of `g` alone: a negative control of a G1 measure).
+    pub fn h_mut(&mut self) -> &mut [V3<T>] {
+        &mut self.h
+    }
 }
 
 impl<T: Real> PrepPatches<T> {

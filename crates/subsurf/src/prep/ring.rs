@@ -26,33 +26,102 @@ use crate::topology::Topology;
 #[derive(Debug, Clone, Default)]
 pub struct PrepTopology {
     /// Number of vertices `V`.
-    pub num_vertices: usize,
+    pub(crate) num_vertices: usize,
     /// Valence of each vertex (count: V); 0 for a vertex used by no face.
-    pub valence: Vec<u32>,
+    pub(crate) valence: Vec<u32>,
     /// Offsets into `ring_indices` (count: V + 1); vertex v's ring is `2 valence(v)` long.
-    pub ring_offsets: Vec<u32>,
+    pub(crate) ring_offsets: Vec<u32>,
     /// `p1 … p2n` of every vertex, concatenated (count: 2 S).
-    pub ring_indices: Vec<u32>,
+    pub(crate) ring_indices: Vec<u32>,
     /// The vertex of each sector (count: S); vertex v's sectors are `ring_offsets[v]/2 ..`.
-    pub sector_vertex: Vec<u32>,
+    pub(crate) sector_vertex: Vec<u32>,
     /// Vertex of each face corner (count: 4 F) (faces are quads).
-    pub face_verts: Vec<u32>,
+    pub(crate) face_verts: Vec<u32>,
     /// Sector number `k` of face f at corner c (count: 4 F), i.e. the face is `(p0, p_{2k+1}, p_{2k+2}, p_{2k+3})`
     /// of the corner's vertex.
-    pub corner_sector: Vec<u32>,
+    pub(crate) corner_sector: Vec<u32>,
     /// Edge of each face corner (count: 4 F): edge c of a face joins corner c and corner c+1.
-    pub face_edges: Vec<u32>,
+    pub(crate) face_edges: Vec<u32>,
     /// End vertices of each edge (count: E), lower index first (the canonical direction).
-    pub edge_verts: Vec<[u32; 2]>,
+    pub(crate) edge_verts: Vec<[u32; 2]>,
     /// For each edge (count: E), the face corner `4 f + c` whose edge runs in the canonical direction.
-    pub edge_corner: Vec<u32>,
+    pub(crate) edge_corner: Vec<u32>,
     /// Index of each face's block of 16 `h` coefficients (count: F), `u32::MAX` for a B-quad
     /// (all four vertices of valence 4).
-    pub h_index: Vec<u32>,
+    pub(crate) h_index: Vec<u32>,
     /// The faces that are not B-quads, in `h_index` order.
-    pub perturbed_faces: Vec<u32>,
+    pub(crate) perturbed_faces: Vec<u32>,
     /// Largest valence.
-    pub max_valence: usize,
+    pub(crate) max_valence: usize,
+}
+
+impl PrepTopology {
+    /// Number of vertices `V`.
+    pub fn num_vertices(&self) -> usize {
+        self.num_vertices
+    }
+
+    /// Valence of each vertex (count: V); 0 for a vertex used by no face.
+    pub fn valence(&self) -> &[u32] {
+        &self.valence
+    }
+
+    /// Offsets into `ring_indices` (count: V + 1); vertex v's ring is `2 valence(v)` long.
+    pub fn ring_offsets(&self) -> &[u32] {
+        &self.ring_offsets
+    }
+
+    /// `p1 … p2n` of every vertex, concatenated (count: 2 S).
+    pub fn ring_indices(&self) -> &[u32] {
+        &self.ring_indices
+    }
+
+    /// The vertex of each sector (count: S); vertex v's sectors are `ring_offsets[v]/2 ..`.
+    pub fn sector_vertex(&self) -> &[u32] {
+        &self.sector_vertex
+    }
+
+    /// Vertex of each face corner (count: 4 F) (faces are quads).
+    pub fn face_verts(&self) -> &[u32] {
+        &self.face_verts
+    }
+
+    /// Sector number `k` of face f at corner c (count: 4 F), i.e. the face is `(p0, p_{2k+1}, p_{2k+2}, p_{2k+3})`
+    /// of the corner's vertex.
+    pub fn corner_sector(&self) -> &[u32] {
+        &self.corner_sector
+    }
+
+    /// Edge of each face corner (count: 4 F): edge c of a face joins corner c and corner c+1.
+    pub fn face_edges(&self) -> &[u32] {
+        &self.face_edges
+    }
+
+    /// End vertices of each edge (count: E), lower index first (the canonical direction).
+    pub fn edge_verts(&self) -> &[[u32; 2]] {
+        &self.edge_verts
+    }
+
+    /// For each edge (count: E), the face corner `4 f + c` whose edge runs in the canonical direction.
+    pub fn edge_corner(&self) -> &[u32] {
+        &self.edge_corner
+    }
+
+    /// Index of each face's block of 16 `h` coefficients (count: F), `u32::MAX` for a B-quad
+    /// (all four vertices of valence 4).
+    pub fn h_index(&self) -> &[u32] {
+        &self.h_index
+    }
+
+    /// The faces that are not B-quads, in `h_index` order.
+    pub fn perturbed_faces(&self) -> &[u32] {
+        &self.perturbed_faces
+    }
+
+    /// Largest valence.
+    pub fn max_valence(&self) -> usize {
+        self.max_valence
+    }
 }
 
 const CONSTRUCTION: &str = "the p-rep";

@@ -256,13 +256,46 @@ impl RowKind<'_> {
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LevelStencils<W = f32> {
     /// Number of parent vertices `P`.
-    pub num_parent_vertices: usize,
+    pub(crate) num_parent_vertices: usize,
     /// Face points over parent vertices.
-    pub face: StencilTable<W>,
+    pub(crate) face: StencilTable<W>,
     /// Children of vertices over parent vertices and face points.
-    pub vertex: StencilTable<W>,
+    pub(crate) vertex: StencilTable<W>,
     /// Edge points over parent vertices and face points.
-    pub edge: StencilTable<W>,
+    pub(crate) edge: StencilTable<W>,
+}
+
+impl<W> LevelStencils<W> {
+    /// The same stencils with every weight replaced by `f(weight)`
+    /// ([`StencilTable::map_weights`]).
+    pub fn map_weights<V>(&self, f: impl Fn(&W) -> V) -> LevelStencils<V> {
+        LevelStencils {
+            num_parent_vertices: self.num_parent_vertices,
+            face: self.face.map_weights(&f),
+            vertex: self.vertex.map_weights(&f),
+            edge: self.edge.map_weights(&f),
+        }
+    }
+
+    /// Number of parent vertices `P`.
+    pub fn num_parent_vertices(&self) -> usize {
+        self.num_parent_vertices
+    }
+
+    /// Face points over parent vertices.
+    pub fn face(&self) -> &StencilTable<W> {
+        &self.face
+    }
+
+    /// Children of vertices over parent vertices and face points.
+    pub fn vertex(&self) -> &StencilTable<W> {
+        &self.vertex
+    }
+
+    /// Edge points over parent vertices and face points.
+    pub fn edge(&self) -> &StencilTable<W> {
+        &self.edge
+    }
 }
 
 impl<W> LevelStencils<W> {

@@ -44,13 +44,46 @@ use rayon::prelude::*;
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct StencilTable<W = f32> {
     /// `rows + 1` offsets into `indices` / `weights`.
-    pub offsets: Vec<u32>,
+    pub(crate) offsets: Vec<u32>,
     /// Input vertex of each entry.
-    pub indices: Vec<u32>,
+    pub(crate) indices: Vec<u32>,
     /// Weight of each entry.
-    pub weights: Vec<W>,
+    pub(crate) weights: Vec<W>,
     /// Number of input vertices the indices refer to.
-    pub num_inputs: usize,
+    pub(crate) num_inputs: usize,
+}
+
+impl<W> StencilTable<W> {
+    /// The same rows with every weight replaced by `f(weight)` (for instance `|w|` for a
+    /// rounding bound).
+    pub fn map_weights<V>(&self, f: impl Fn(&W) -> V) -> StencilTable<V> {
+        StencilTable {
+            offsets: self.offsets.clone(),
+            indices: self.indices.clone(),
+            weights: self.weights.iter().map(f).collect(),
+            num_inputs: self.num_inputs,
+        }
+    }
+
+    /// `rows + 1` offsets into `indices` / `weights`.
+    pub fn offsets(&self) -> &[u32] {
+        &self.offsets
+    }
+
+    /// Input vertex of each entry.
+    pub fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// Weight of each entry.
+    pub fn weights(&self) -> &[W] {
+        &self.weights
+    }
+
+    /// Number of input vertices the indices refer to.
+    pub fn num_inputs(&self) -> usize {
+        self.num_inputs
+    }
 }
 
 impl<W> StencilTable<W> {

@@ -339,9 +339,9 @@ pub fn eval_on_edge<T: Real>(p: &PrepPatches<T>, face: usize, c: usize, t: f64) 
 
 /// For each edge, its two face corners `4 f + c`.
 pub fn edge_corners<T: Real>(p: &PrepPatches<T>) -> Vec<[usize; 2]> {
-    let topo = &p.topology;
+    let topo = &p.topology();
     let mut out = vec![[usize::MAX; 2]; topo.num_edges()];
-    for (i, &e) in topo.face_edges.iter().enumerate() {
+    for (i, &e) in topo.face_edges().iter().enumerate() {
         let slot = &mut out[e as usize];
         if slot[0] == usize::MAX {
             slot[0] = i;
