@@ -11,8 +11,9 @@ use crate::common::{
 };
 use crate::progress::note;
 use subsurf::prep::quadrangulate;
-use subsurf::prep::{PrepPatches, Real};
+use subsurf::prep::PrepPatches;
 use subsurf::Mesh;
+use subsurf::Real;
 
 /// Arguments of `subsurf prep`.
 #[derive(clap::Args, Debug, Clone)]

@@ -221,7 +221,7 @@ pub fn read_mesh(path: &Path) -> anyhow::Result<Mesh> {
 /// [`read_mesh`], with `flatten` applying glTF node transforms (`--flatten`). Notes on what a
 /// glTF file held that was left out are printed.
 pub fn read_mesh_with(path: &Path, flatten: bool) -> anyhow::Result<Mesh> {
-    use subsurf::io::gltf_read;
+    use subsurf::io::gltf as gltf_read;
     let opts = gltf_read::ReadOptions { flatten };
     let read = if is_stdio(path) {
         let mut bytes = Vec::new();

@@ -3,7 +3,7 @@
 
 use anyhow::Context as _;
 use std::path::Path;
-use subsurf::io::usd::{xform, MeshPrim, Stage};
+use subsurf::io::usd::{transform_point, MeshPrim, Stage};
 use subsurf::{Corner, Crease, FaceVarying, Mesh};
 
 /// Whether `path` names a USD file (`.usda`, `.usdc`, `.usd`, `.usdz`).
@@ -63,7 +63,7 @@ pub fn merge_world(meshes: &[MeshPrim]) -> Mesh {
             m.mesh
                 .positions
                 .iter()
-                .map(|&p| xform::transform_point(&m.world, p)),
+                .map(|&p| transform_point(&m.world, p)),
         );
         out.face_counts.extend_from_slice(&m.mesh.face_counts);
         out.face_indices

@@ -141,7 +141,7 @@ fn refine_writes_every_mesh_prim_back_into_its_stage() {
         .mesh
         .positions
         .iter()
-        .map(|&p| subsurf::io::usd::xform::transform_point(&b.world, p))
+        .map(|&p| subsurf::io::usd::transform_point(&b.world, p))
         .collect();
     assert_ne!(
         world, b.mesh.positions,

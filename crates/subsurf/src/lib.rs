@@ -1,9 +1,11 @@
 //! # subsurf
 //!
-//! Catmull-Clark subdivision surfaces in pure Rust: uniform refinement that matches
-//! OpenSubdiv, limit-surface evaluation, and the p-rep C1 conversion of quad meshes.
+//! Subdivision surfaces in pure Rust: Catmull-Clark, Loop and bilinear refinement that
+//! matches OpenSubdiv, limit-surface evaluation and tessellation, and the p-rep G1 conversion
+//! of quad meshes (Myles, Yeo & Peters 2008).
 //!
-//! The data flows one way (see `design.md` in the repository):
+//! The data flows one way (the layers are described in `docs/architecture.md` of the
+//! repository):
 //!
 //! ```text
 //! file ──io──▶ Mesh ──Topology::new──▶ Topology ──refine──▶ refined levels + stencils
@@ -64,9 +66,22 @@
 //! # Ok::<(), subsurf::Error>(())
 //! ```
 //!
-//! Module by module: [`io`] (files), [`Topology`] (validated tables), [`Refiner`] (uniform
-//! refinement of positions and UVs), [`StencilTable`] (the tables a GPU uploads),
-//! [`limit`] (patch tables and limit evaluation), [`prep`] (the p-rep and its Bezier form).
+//! # Where to start
+//!
+//! | to … | use |
+//! |---|---|
+//! | read and write meshes (OBJ, PLY, glTF, USD) | [`io::read_path`], [`io::write_path`], [`Mesh`] |
+//! | validate a mesh and walk its connectivity | [`Topology`] |
+//! | refine uniformly, animate with stencils | [`Refiner`], [`StencilTable`], [`refine`] |
+//! | evaluate the limit surface anywhere | [`limit::PatchTable`], [`limit::LimitSurface`] |
+//! | tessellate adaptively (tolerance, edge length, pixels) | [`tess`] |
+//! | edit creases of a built surface | [`limit::SharpnessEdit`], [`limit::PatchTable::set_sharpness`] |
+//! | convert to G1 patches and export Bezier | [`prep::PrepPatches`] |
+//! | one call from a mesh to a drawable surface, CPU or GPU | [`surface`] |
+//! | patch basis functions (B-spline, Gregory, box-spline) | [`patch`] |
+//! | refuse requests that would not fit in memory | [`budget`] |
+//!
+//! Tutorials, one small program each, are the crate's examples (`docs/tutorials.md`).
 
 #![warn(missing_docs)]
 pub(crate) mod error;
@@ -93,14 +108,20 @@ pub mod budget {
     pub use crate::util::budget::{check, count, human, Budget};
 }
 
+#[doc(inline)]
 pub use error::{Error, MeshError, QueryError, Result, TessError};
+#[doc(inline)]
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
+#[doc(inline)]
 pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
     TriangleSubdivision,
 };
+#[doc(inline)]
 pub use real::Real;
+#[doc(inline)]
 pub use refine::{RefineOptions, Refiner, StencilTable};
+#[doc(inline)]
 pub use topology::{Topology, TopologyArrays};
 
 /// Sharpness at or above which an edge or vertex is infinitely sharp (RenderMan rule).

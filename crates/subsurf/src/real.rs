@@ -51,7 +51,7 @@ pub trait Real:
     fn sqrt(self) -> Self;
     /// Name used in messages and bench labels.
     const NAME: &'static str;
-    /// Three values as one ([`vec3`]: an SSE register for `f32` on x86-64).
+    /// Three values as one (`vec3`: an SSE register for `f32` on x86-64).
     type V3: Vec3<Self>;
     /// `0` (same as [`Real::ZERO`]).
     #[inline(always)]

@@ -10,7 +10,7 @@ mod common;
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
-use subsurf::io::gltf_read::{self, ReadOptions};
+use subsurf::io::gltf::{self as gltf_read, ReadOptions};
 use subsurf::io::{gltf as glb, obj};
 use subsurf::{Error, Mesh};
 

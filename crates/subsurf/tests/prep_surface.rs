@@ -6,7 +6,8 @@ mod prep_shapes;
 
 use prep_shapes::*;
 use subsurf::prep::kernel::{corner_index, H_SLOTS};
-use subsurf::prep::{PrepPatches, Real};
+use subsurf::prep::PrepPatches;
+use subsurf::Real;
 
 /// All valences 4: the surface is the uniform bicubic B-spline of the control net.
 /// Measured: f64 max error 1.3e-15, f32 max error 5.5e-7 on a torus of outer radius 2.7.

@@ -11,6 +11,9 @@
 //! triangles from their first corner; faces tagged as holes are left out. UVs are flipped
 //! (`v' = 1 - v`) because glTF puts the texture origin at the top left.
 
+#[doc(inline)]
+pub use super::gltf_read::{is_glb, read, read_file, GltfRead, ReadOptions};
+
 use crate::error::{Error, MeshError, Result};
 use crate::mesh::Mesh;
 use std::collections::HashMap;

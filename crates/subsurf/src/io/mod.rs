@@ -3,10 +3,8 @@
 //! - [`obj`]: Wavefront OBJ with OpenSubdiv's `t` tag lines (creases, corners, holes, options)
 //!   and face-varying UVs.
 //! - [`ply`]: Stanford PLY, ASCII and binary in, binary little-endian out.
-//! - [`gltf`]: binary glTF 2.0 (`.glb`) out.
-//! - [`gltf_read`]: glTF 2.0 in (`.gltf` with its buffers, `.glb`): triangle primitives
-//!   welded into one cage, `TEXCOORD_0` as face-varying UVs.
-//!
+//! - [`gltf`]: glTF 2.0 in (`.gltf` with its buffers, `.glb`: triangle primitives welded
+//!   into one cage, `TEXCOORD_0` as face-varying UVs) and binary glTF (`.glb`) out.
 //! - [`usd`]: USD stages (`.usda`, `.usdc`, `.usdz`) in and out, `UsdGeomMesh` prims.
 //!
 //! Every malformed input is reported as [`Error::Parse`] with the 1-based line at fault
@@ -47,7 +45,7 @@
 
 pub mod gltf;
 mod gltf_access;
-pub mod gltf_read;
+mod gltf_read;
 pub mod obj;
 mod obj_tags;
 pub mod ply;

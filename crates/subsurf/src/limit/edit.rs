@@ -139,13 +139,13 @@ pub enum EditOutcome {
     /// Nothing changed (the same values, or elements kept infinitely sharp).
     Unchanged,
     /// The isolation structure was kept: the table was updated in place
-    /// ([`super::edit_region`]).
+    /// (`super::edit_region`).
     Updated,
     /// The table was rebuilt (the first edit of a table that does not keep its levels, or a
     /// change of structure at the base).
     Rebuilt,
     /// The isolation structure changed from `level` down: the levels above it were kept and
-    /// the table rebuilt from it ([`super::edit_rebuild`]).
+    /// the table rebuilt from it (`super::edit_rebuild`).
     RebuiltFrom {
         /// The first level (from the base) whose faces were decided differently.
         level: u32,
@@ -198,7 +198,7 @@ impl<R: Real> PatchTable<R> {
 
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
     /// same element winning) and updates the table to equal a fresh build of the edited mesh
-    /// (see the [module documentation](super::edit)). Returns whether the table changed.
+    /// (see the module documentation). Returns whether the table changed.
     ///
     /// Bad edits are refused before any work with [`MeshError::BadSharpnessEdit`], naming
     /// the edit and the value or element; the table is then unchanged.
@@ -207,9 +207,9 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
-    /// isolation structure is kept ([`super::edit_region`]), rebuilt from the first level
+    /// isolation structure is kept (`super::edit_region`), rebuilt from the first level
     /// whose faces are decided differently where that is below the base (the levels above
-    /// kept, [`super::edit_rebuild`]), else rebuilt. The first edit of a table that does not
+    /// kept, `super::edit_rebuild`), else rebuilt. The first edit of a table that does not
     /// keep its levels ([`PatchTable::is_editable`]) rebuilds it, keeping them for the next
     /// edits.
     pub fn apply_sharpness(&mut self, edits: &[SharpnessEdit]) -> Result<EditOutcome> {

@@ -157,7 +157,7 @@ pub fn tri_boundary_mask(t: &Topology, f: usize) -> u8 {
 }
 
 impl LoopLimit {
-    /// Isolates `base` to `isolation_level` ([`loop_leaves`]), refines `positions` through
+    /// Isolates `base` to `isolation_level` (`loop_leaves`), refines `positions` through
     /// the levels and gathers the points of every regular patch.
     pub fn new(base: &Topology, positions: &[[f32; 3]], isolation_level: u32) -> Result<Self> {
         if positions.len() != base.num_vertices() {

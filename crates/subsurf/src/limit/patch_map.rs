@@ -118,7 +118,7 @@ impl PatchMap {
     }
 
     /// [`PatchMap::find`] with the leaf's square, so that nearby queries can test
-    /// [`Cell::contains`] instead of walking the tree again.
+    /// `Cell::contains` instead of walking the tree again.
     pub fn find_cell<R: Real>(&self, ptex: usize, u: R, v: R) -> Option<Cell> {
         let mut h = *self.roots.get(ptex)?;
         let (mut u, mut v) = (clamp01(u), clamp01(v));

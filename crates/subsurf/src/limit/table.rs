@@ -77,7 +77,7 @@ pub struct PatchOptions {
     pub single_crease: bool,
     /// Store `min(s, L − level)` as a single-crease patch's sharpness and make crease faces
     /// at the isolation level plain B-spline patches, as OpenSubdiv 3.5 does (default
-    /// `false`: the level's own sharpness is stored, which [`crate::patch::single_crease`]
+    /// `false`: the level's own sharpness is stored, which `crate::patch::single_crease`
     /// evaluates exactly for any value).
     pub cap_crease_sharpness: bool,
 }
@@ -198,7 +198,7 @@ impl<R> PatchTable<R> {
     }
 
     /// `level_stencils[d]`: the vertices of level `d + 1` from those of the sub-mesh of level
-    /// `d` that was refined ([`super::sparse`]).
+    /// `d` that was refined (`super::sparse`).
     pub fn level_stencils(&self) -> &[LevelStencils<R>] {
         &self.level_stencils
     }
@@ -256,7 +256,7 @@ impl<R> PatchTable<R> {
     }
 
     /// Per base face, the isolation level of its region when the levels were chosen per
-    /// region ([`PatchTable::build_face_levels`], [`super::tolerance`]); `None` when
+    /// region ([`PatchTable::build_face_levels`], `super::tolerance`); `None` when
     /// `options.isolation_level` applies everywhere.
     pub fn face_levels(&self) -> Option<&[u8]> {
         self.face_levels.as_deref()
@@ -424,9 +424,9 @@ impl<R> Builder<'_, R> {
 
 impl PatchTable {
     /// Builds the patch table of `base` (Catmull-Clark only) by sparse feature-adaptive
-    /// refinement ([`super::sparse`]). Refuses with [`crate::error::MeshError::TooLarge`],
+    /// refinement (`super::sparse`). Refuses with [`crate::error::MeshError::TooLarge`],
     /// giving the estimate, a construction whose levels would not fit in 80% of the
-    /// available memory ([`super::budget`]).
+    /// available memory (`super::budget`).
     pub fn build(base: &Topology, options: &PatchOptions) -> Result<PatchTable> {
         Self::build_with(base, options, Selection::Sparse)
     }
@@ -757,7 +757,7 @@ impl<R: Real> PatchTable<R> {
 
     /// The flat point array for base vertex data `base` (`N` components): every level's
     /// vertices, then the local points; every stencil row is applied relative to its first
-    /// input ([`super::points`]), so the rounding is relative to the patch, not the origin.
+    /// input (`super::points`), so the rounding is relative to the patch, not the origin.
     pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[R; N]> {
         let mut all = Vec::with_capacity(self.num_points());
         all.extend(base.iter().map(|x| x.map(R::from_f32)));

@@ -5,7 +5,7 @@
 //! along one of an n-gon's spokes (edge midpoint → centre), or a face-interior sample. A
 //! sample is evaluated once, from the first ptex face that uses it, and every face refers
 //! to it by index; a shared edge is thus the same vertices from both sides — no cracks, no
-//! T-junctions (the p-rep seed, section 6, and `design.md`: exact, not approximate).
+//! T-junctions (the p-rep seed, section 6: exact, not approximate).
 //!
 //! A face with `n ≠ 4` corners has `n` ptex sub-faces whose sides are half edges; they take
 //! `M = (N + 1)/2` samples per side, so the `2M − 1 = N` samples along a base edge meet the

@@ -6,14 +6,14 @@
 //!
 //! | patch type | points | file |
 //! |---|---|---|
-//! | regular bicubic B-spline, with boundary/corner extrapolation | 16 | [`bspline`] |
-//! | regular B-spline with one semi-sharp crease edge (Nießner, Loop & Greiner 2012) | 16 | [`single_crease`] |
-//! | bicubic Bézier (used by the Gregory end cap) | 16 | [`bezier`] |
-//! | 20-point Gregory basis end cap (Loop, Schaefer, Ni & Castaño 2009) | 20 | [`gregory`] |
-//! | quartic box spline, the regular Loop triangle (Stam 1998), with boundary variants | 12 | [`box_spline`] |
-//! | quartic Gregory triangle, the Loop end cap | 18 | [`gregory_tri`] |
+//! | regular bicubic B-spline, with boundary/corner extrapolation | 16 | [`eval_bspline_patch`] |
+//! | regular B-spline with one semi-sharp crease edge (Nießner, Loop & Greiner 2012) | 16 | [`eval_single_crease_patch`] |
+//! | bicubic Bézier (used by the Gregory end cap) | 16 | [`eval_bezier_patch`] |
+//! | 20-point Gregory basis end cap (Loop, Schaefer, Ni & Castaño 2009) | 20 | [`eval_gregory_patch`] |
+//! | quartic box spline, the regular Loop triangle (Stam 1998), with boundary variants | 12 | [`eval_box_spline_patch`] |
+//! | quartic Gregory triangle, the Loop end cap | 18 | [`eval_gregory_triangle`] |
 //!
-//! Triangular patches have their own parameterization and entry point ([`tri_basis`]).
+//! Triangular patches have their own parameterization and entry point ([`tri_patch_weights`]).
 //!
 //! # Conventions (OpenSubdiv 3.x `Far`)
 //!
@@ -64,7 +64,7 @@ pub(crate) mod single_crease;
 pub(crate) mod tri_basis;
 pub(crate) mod weights;
 
-pub use crate::real::Real;
+pub(crate) use crate::real::Real;
 pub use basis::{
     patch_first_weights, patch_position_weights, patch_weights, patch_weights_normalized,
     AnyPatchWeights, PatchKind,

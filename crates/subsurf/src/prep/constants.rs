@@ -107,14 +107,14 @@ impl<T: Real> Valence<T> {
     }
 }
 
-/// Constants for every valence `0..=max` (entries below [`MIN_VALENCE`] are unused).
+/// Constants for every valence `0..=max` (entries below `MIN_VALENCE` are unused).
 #[derive(Debug, Clone)]
 pub struct ValenceTable<T> {
     table: Vec<Valence<T>>,
 }
 
 impl<T: Real> ValenceTable<T> {
-    /// Table for valences up to `max` (at most [`MAX_VALENCE`]).
+    /// Table for valences up to `max` (at most `MAX_VALENCE`).
     pub fn new(max: usize) -> Self {
         let max = max.clamp(MIN_VALENCE, MAX_VALENCE);
         ValenceTable {

@@ -202,7 +202,7 @@ impl<T: Real> PrepPatches<T> {
         grid.n = n;
     }
 
-    /// Evaluates every face on the grid tabulated in `basis` (see [`GridBasis`]) into
+    /// Evaluates every face on the grid tabulated in `basis` (see `GridBasis`) into
     /// `grid` (`grid.n` is left to the caller), in parallel over faces.
     pub fn eval_grid_with(&self, basis: &GridBasis<T>, grid: &mut Grid<T>) {
         let per = basis.len();

@@ -38,16 +38,16 @@ pub use quadrangulate::quadrangulate;
 /// the wgpu backend's CPU twins call these — and for checks of single formulas.
 pub mod kernel {
     #[doc(inline)]
-    pub use super::constants::{c_n, Valence, ValenceTable};
+    pub use crate::prep::constants::{c_n, Valence, ValenceTable};
     #[doc(inline)]
-    pub use super::eval::{eval_patch, Basis};
+    pub use crate::prep::eval::{eval_patch, Basis};
     #[doc(inline)]
-    pub use super::patch_pass::{corner_index, edge_h, EdgeInputs, H_SLOTS};
+    pub use crate::prep::patch_pass::{corner_index, edge_h, EdgeInputs, H_SLOTS};
     #[doc(inline)]
-    pub use super::vertex_pass::{frame_from_ring, interior_coeff, tangent_coeff};
+    pub use crate::prep::vertex_pass::{frame_from_ring, interior_coeff, tangent_coeff};
 }
 pub use ring::{check_input, PrepTopology};
-pub use scalar::Real;
+pub(crate) use scalar::Real;
 pub use vertex_pass::VertexData;
 
 use crate::error::{MeshError, Result};

@@ -252,7 +252,7 @@ impl RowKind<'_> {
 ///
 /// Child vertex data is laid out `[vertex rows | face rows | edge rows]`, OpenSubdiv's order.
 ///
-/// Weights are `W` (`f32` by default, `f64` for [`level_stencils_real`]).
+/// Weights are `W` (`f32` by default, `f64` for `level_stencils_real`).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct LevelStencils<W = f32> {
     /// Number of parent vertices `P`.

@@ -380,7 +380,7 @@ impl Refiner {
         acc
     }
 
-    /// The stencils moving the last level's vertices to the limit surface ([`limit_stencils`]),
+    /// The stencils moving the last level's vertices to the limit surface (`limit_stencils`),
     /// built on first use and kept: an animated mesh applies them every frame, on the CPU
     /// ([`Self::limit`]) or uploaded to a GPU.
     pub fn limit_table(&self) -> &StencilTable {
@@ -403,7 +403,7 @@ impl Refiner {
     }
 
     /// The stencils moving the last level's face-varying values of `fvar` (a refinement of
-    /// this refiner's levels) to the limit surface ([`fvar_limit_stencils`]).
+    /// this refiner's levels) to the limit surface (`fvar_limit_stencils`).
     pub fn fvar_limit_table(&self, fvar: &FVarRefinement) -> Result<StencilTable> {
         if fvar.levels.len() != self.levels.len() {
             return Err(MeshError::FaceVarying {
@@ -423,7 +423,7 @@ impl Refiner {
 
     /// Moves the last level's face-varying values (`last`, one per value of
     /// `fvar.levels[max_level]`, as [`FVarRefinement::refine`] gives them) to the limit
-    /// surface, as OpenSubdiv's `PrimvarRefiner::LimitFaceVarying` ([`fvar_limit_stencils`];
+    /// surface, as OpenSubdiv's `PrimvarRefiner::LimitFaceVarying` (`fvar_limit_stencils`;
     /// tested against it at levels 1–2 on every regression shape with UVs in all six modes).
     /// On the unrefined level the two differ where value numbers are not vertex sibling slots:
     /// OpenSubdiv 3.5 looks a value's tags up by its value index in the per-slot tag array

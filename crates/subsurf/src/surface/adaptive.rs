@@ -63,8 +63,8 @@ pub fn tessellate(
 ///
 /// Under [`RatePolicy::Tolerance`]`(e)` the tolerance bounds the whole approximation: the
 /// isolation is chosen per region so that the end caps are within `e/4` of the limit surface
-/// ([`crate::limit::tolerance`]), and the chords get the other `3e/4`
-/// ([`table_for_tolerance`]). Where the deepest isolation
+/// (`crate::limit::tolerance`), and the chords get the other `3e/4`
+/// (`table_for_tolerance`). Where the deepest isolation
 /// ([`crate::limit::MAX_ISOLATION_LEVEL`]) leaves end caps further off than `e/4` (a pole of
 /// high valence under a small tolerance), the end caps take their estimated distance, up to
 /// `e/2`, and the chords the rest. Every other policy takes the table of `options` as it is.

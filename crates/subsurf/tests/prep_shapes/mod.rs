@@ -2,8 +2,9 @@
 #![allow(dead_code)]
 
 use subsurf::prep::quadrangulate;
-use subsurf::prep::{PrepPatches, Real, Sample};
+use subsurf::prep::{PrepPatches, Sample};
 use subsurf::Mesh;
+use subsurf::Real;
 
 /// Unit cube `[0,1]^3`, vertex `(x,y,z)` has index `4x+2y+z` (spec §10).
 pub fn cube() -> Mesh {

@@ -60,14 +60,14 @@ mod crate_write;
 mod layer;
 mod mesh_read;
 mod mesh_write;
-pub mod xform;
+pub(crate) mod xform;
 
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
 use attrs::PrimReader;
 use openusd::sdf::{self, schema::ChildrenKey, schema::FieldKey, AbstractData, SpecType, Value};
 use std::path::Path;
-pub use xform::Matrix;
+pub use xform::{transform_point, Matrix};
 
 /// Prim nesting deeper than this is refused (a guard against stack exhaustion).
 const MAX_DEPTH: usize = 256;
