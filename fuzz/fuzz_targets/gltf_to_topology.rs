@@ -5,8 +5,8 @@
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use subsurf::io::gltf_read::{read, ReadOptions};
-use subsurf::topology::Topology;
+use subsurf::io::gltf::{read, ReadOptions};
+use subsurf::Topology;
 use subsurf::Error;
 
 fuzz_target!(|data: &[u8]| {

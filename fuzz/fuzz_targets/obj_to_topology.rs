@@ -5,7 +5,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use subsurf::io::obj;
-use subsurf::topology::Topology;
+use subsurf::Topology;
 use subsurf::Error;
 
 fuzz_target!(|data: &[u8]| {

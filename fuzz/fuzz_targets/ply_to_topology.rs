@@ -4,7 +4,7 @@
 
 use libfuzzer_sys::fuzz_target;
 use subsurf::io::ply;
-use subsurf::topology::Topology;
+use subsurf::Topology;
 use subsurf::Error;
 
 fuzz_target!(|data: &[u8]| {

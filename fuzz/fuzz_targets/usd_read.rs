@@ -13,7 +13,7 @@
 use libfuzzer_sys::fuzz_target;
 use std::sync::Once;
 use subsurf::io::usd::{Stage, UsdFormat};
-use subsurf::topology::Topology;
+use subsurf::Topology;
 use subsurf::Error;
 
 static QUIET: Once = Once::new();

@@ -14,10 +14,12 @@ use subsurf::Refiner;
 pub fn frame_bytes(r: &Refiner) -> (usize, usize) {
     let (mut plan, mut tables) = (0, 0);
     for s in r.stencils() {
-        let values = 12 * (s.num_parent_vertices + s.num_rows());
+        let values = 12 * (s.num_parent_vertices() + s.num_rows());
         plan += values
-            + 4 * (s.face.indices.len() + s.vertex.offsets.len() + s.vertex.indices.len())
-            + 4 * s.edge.indices.len();
+            + 4 * (s.face().indices().len()
+                + s.vertex().offsets().len()
+                + s.vertex().indices().len())
+            + 4 * s.edge().indices().len();
         tables += values + s.size_bytes();
     }
     (plan, tables)
