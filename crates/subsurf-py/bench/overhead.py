@@ -3,7 +3,7 @@
 
     python crates/subsurf-py/bench/overhead.py [--runs 11] [--rounds 5] [--level 3]
 
-The Rust side is `crates/subsurf/examples/surface_timing.rs` (built here with
+The Rust side is `crates/subsurf/examples/perf/surface_timing.rs` (built here with
 `cargo build --release -p subsurf --example surface_timing` unless --rust names a binary),
 which times the very calls the package makes (`subsurf::surface::refine_mesh` and
 `Refiner::refine_positions`) in-process. Rounds alternate Python and Rust; each round takes the

@@ -28,4 +28,4 @@
 //! `GPU_PIPELINE_ONLY=refine|refine_large|prep|prep_large|limit` one section (`refine_large`, the
 //! car at level 7, only when named).
 
-include!("../benches/common/pipeline.rs");
+include!("../../benches/common/pipeline.rs");
