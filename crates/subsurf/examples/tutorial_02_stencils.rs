@@ -21,7 +21,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let to_limit: StencilTable = table.then(refiner.limit_table());
     println!(
         "{} base points -> {} refined points: {} stencil entries ({:.1} per row), {} KiB",
-        table.num_inputs,
+        table.num_inputs(),
         table.num_rows(),
         table.num_entries(),
         table.num_entries() as f64 / table.num_rows() as f64,
@@ -31,8 +31,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Every row is an affine combination (its weights sum to 1), so moving every control
     // point by d moves every refined point by d.
     for r in 0..table.num_rows() {
-        let (lo, hi) = (table.offsets[r] as usize, table.offsets[r + 1] as usize);
-        let sum: f32 = table.weights[lo..hi].iter().sum();
+        let (lo, hi) = (table.offsets()[r] as usize, table.offsets()[r + 1] as usize);
+        let sum: f32 = table.weights()[lo..hi].iter().sum();
         assert!((sum - 1.0).abs() < 1e-5, "row {r} sums to {sum}");
     }
 

@@ -33,9 +33,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             v1: 1,
             sharpness,
         };
-        let outcome = surface.table.apply_sharpness(&[edit])?;
-        // The table changed: its points are made again from the same base positions.
-        surface.points = surface.table.points(&cube.positions);
+        let outcome = surface.apply_sharpness(&[edit], &cube.positions)?;
+        // Where the table changed, its points were made again from the base positions.
         let now = gap(&surface);
         println!("sharpness {sharpness:.1}: surface {now:.4} from the cage edge ({outcome:?})");
         assert!(now < last);
@@ -54,11 +53,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .sqrt()
     };
     let before = corner_gap(&surface);
-    surface.table.set_sharpness(&[SharpnessEdit::Vertex {
-        vertex: 3,
-        sharpness: 10.0,
-    }])?;
-    surface.points = surface.table.points(&cube.positions);
+    surface.apply_sharpness(
+        &[SharpnessEdit::Vertex {
+            vertex: 3,
+            sharpness: 10.0,
+        }],
+        &cube.positions,
+    )?;
     let after = corner_gap(&surface);
     println!("corner 3: surface {before:.4} -> {after:.4} from its control point");
     assert!(after < 0.5 * before);
@@ -77,7 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     });
     let fresh = PatchTable::build(&Topology::new(&edited)?, &options)?;
     let fresh = LimitSurface::new(fresh, &edited.positions);
-    assert_eq!(fresh.table.num_patches(), surface.table.num_patches());
+    assert_eq!(fresh.table().num_patches(), surface.table().num_patches());
     let (a, b) = (surface.tessellate(9)?, fresh.tessellate(9)?);
     assert_eq!(a.quads, b.quads);
     assert!(a
@@ -87,7 +88,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .all(|(p, q)| p.map(f32::to_bits) == q.map(f32::to_bits)));
     println!(
         "edited table == fresh build: {} patches, {} samples identical",
-        surface.table.num_patches(),
+        surface.table().num_patches(),
         a.positions.len()
     );
     Ok(())

@@ -11,8 +11,8 @@
 //! ```
 
 use std::time::Instant;
-use subsurf::limit::loop_eval::LoopLimit;
-use subsurf::limit::loop_tessellate::tri_tessellation_plan;
+use subsurf::limit::tri_tessellation_plan;
+use subsurf::limit::LoopLimit;
 use subsurf::Topology;
 use subsurf_gpu::loop_limit::plan_queries;
 use subsurf_gpu::{GpuContext, GpuLoopLimit};

@@ -50,7 +50,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let tess = surf.tessellate(n)?;
         let tess_ms = ms(t);
         assert!(!tess.positions.is_empty());
-        let c = surf.table.counts();
+        let c = surf.table().counts();
 
         let osd_level = if s >= 10 { 10 } else { s.max(4) };
         let o = OsdOptions {
@@ -75,11 +75,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         println!(
             "| {s} | {} ({}/{}/{}) | {} | {build:.1} | {tess_ms:.1} | {osd_level} | {osd_patches} | {osd_bytes} | {osd_ms} |",
-            surf.table.num_patches(),
+            surf.table().num_patches(),
             c.regular,
             c.single_crease,
             c.gregory,
-            surf.table.size_bytes(),
+            surf.table().size_bytes(),
         );
     }
     println!(

@@ -34,7 +34,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let c = mesh.creases.first().ok_or("the mesh has no crease")?;
     let e = topo.find_edge(c.v0, c.v1).ok_or("crease without an edge")?;
     let f = topo.edge_faces(e as usize)[0] as usize;
-    let ptex = table.ptex_offsets[f] as usize;
+    let ptex = table.ptex_offsets()[f] as usize;
     println!("{path}: {} creases", mesh.creases.len());
     for step in 0..=8 {
         let s = 0.5 * step as f32;

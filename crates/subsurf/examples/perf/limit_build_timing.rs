@@ -101,7 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             osd.0,
             table.num_patches(),
             osd.1,
-            table.level_offsets.last().copied().unwrap_or(0),
+            table.level_offsets().last().copied().unwrap_or(0),
             osd.2,
         );
     }

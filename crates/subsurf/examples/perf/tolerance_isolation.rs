@@ -34,13 +34,13 @@ fn main() {
             build_for_tolerance::<f64>(&t, &PatchOptions::default(), &mesh.positions, b).unwrap();
         let ms = t0.elapsed().as_secs_f64() * 1e3;
         let s = LimitSurface::new(tb, &mesh.positions);
-        let tb = &s.table;
+        let tb = &s.table();
         let mut worst = 0.0f64;
         for p in 0..tb.num_patches() {
             if tb.patch_type(p) != PatchType::Gregory {
                 continue;
             }
-            let pp = tb.params[p];
+            let pp = tb.params()[p];
             let ptex = pp.face_id() as usize;
             for a in 0..=8 {
                 for c in 0..=8 {

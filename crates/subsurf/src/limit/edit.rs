@@ -190,8 +190,9 @@ impl<R: Real> PatchTable<R> {
     /// topology of refined levels 1, 2, … and of each refined sub-mesh, the maps between
     /// them, the faces refined and the leaves, the vertex tags; level 0 is the table's base
     /// and left empty); `None` where none are kept ([`PatchTable::is_editable`]). Read-only:
-    /// what an edit that changes the structure has to bring up to date with the table
-    /// (`examples/crease_edit_bound`).
+    /// what an edit that changes the structure has to bring up to date with the table.
+    /// Hidden: the levels' type is internal; the crate's tests compare two tables' levels.
+    #[doc(hidden)]
     pub fn kept_levels(&self) -> Option<&super::sparse::Trace> {
         self.edit_state.as_deref().map(|s| s.trace())
     }
