@@ -72,7 +72,7 @@ fn refine_keeps_loop_uvs() {
     let uvs = mesh.uvs.as_ref().expect("shape has UVs");
     let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
     for (flags, mode) in [
-        (vec!["--level", "2"], mesh.options.fvar_interpolation),
+        (vec!["--level", "2"], mesh.options.uv_interpolation),
         (
             vec!["--level", "2", "--uv-interp", "linear"],
             subsurf::FVarLinearInterpolation::All,

@@ -66,7 +66,7 @@ pub fn parse_options(
             )))
         }
     };
-    o.fvar_interpolation = match uv_interpolation {
+    o.uv_interpolation = match uv_interpolation {
         "none" => FVarLinearInterpolation::None,
         "corners-only" => FVarLinearInterpolation::CornersOnly,
         "corners-plus1" => FVarLinearInterpolation::CornersPlus1,
@@ -103,7 +103,7 @@ fn option_names(m: &Mesh) -> [&'static str; 5] {
             TriangleSubdivision::Catmark => "catmark",
             TriangleSubdivision::Smooth => "smooth",
         },
-        match o.fvar_interpolation {
+        match o.uv_interpolation {
             FVarLinearInterpolation::None => "none",
             FVarLinearInterpolation::CornersOnly => "corners-only",
             FVarLinearInterpolation::CornersPlus1 => "corners-plus1",

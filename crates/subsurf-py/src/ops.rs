@@ -214,7 +214,7 @@ impl PyRefiner {
         });
         validate(py, &probe)?;
         let r = self.refiner.clone();
-        let mode = self.mesh.options.fvar_interpolation;
+        let mode = self.mesh.options.uv_interpolation;
         let last = py
             .detach(move || {
                 let f = r.fvar_refinement(&i, v.len(), mode)?;
