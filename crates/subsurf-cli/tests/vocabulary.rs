@@ -21,7 +21,8 @@ struct Row {
     commands: Vec<String>,
     python_keyword: Vec<String>,
     values: Vec<String>,
-    old_names: Vec<String>,
+    /// Old spellings, each with the commands that still read it (CLI aliases).
+    old_names: Vec<(String, Vec<String>)>,
 }
 
 /// The spans between backticks of a cell.
@@ -30,6 +31,26 @@ fn code_spans(cell: &str) -> Vec<String> {
         .enumerate()
         .filter(|(k, _)| k % 2 == 1)
         .map(|(_, s)| s.to_string())
+        .collect()
+}
+
+/// The old names of a cell: `` `--samples` (eval), `n` ``; an old flag is read by the
+/// commands in parentheses after it, else by all of the row's `commands`.
+fn old_names(cell: &str, commands: &[String]) -> Vec<(String, Vec<String>)> {
+    let parts: Vec<&str> = cell.split('`').collect();
+    (1..parts.len())
+        .step_by(2)
+        .map(|k| {
+            let after = parts.get(k + 1).copied().unwrap_or("");
+            let cmds = match (after.find('('), after.find(')')) {
+                (Some(a), Some(b)) if a < b => after[a + 1..b]
+                    .split(',')
+                    .map(|s| s.trim().to_string())
+                    .collect(),
+                _ => commands.to_vec(),
+            };
+            (parts[k].to_string(), cmds)
+        })
         .collect()
 }
 
@@ -84,10 +105,10 @@ fn table() -> Vec<Row> {
             Row {
                 concept: c[0].to_string(),
                 cli_flag,
-                commands,
                 python_keyword: code_spans(c[4]),
                 values: code_spans(c[7]),
-                old_names: code_spans(c[8]),
+                old_names: old_names(c[8], &commands),
+                commands,
             }
         })
         .collect()
@@ -186,7 +207,7 @@ fn help_matches_the_table() {
     }
     // No old spelling is shown.
     for row in &rows {
-        for old in row.old_names.iter().filter(|o| o.starts_with("--")) {
+        for (old, _) in row.old_names.iter().filter(|(o, _)| o.starts_with("--")) {
             for (cmd, h) in &helps {
                 assert!(
                     !mentions(h, old),
@@ -208,9 +229,9 @@ fn old_spellings_still_parse() {
     assert!(!unknown.status.success());
     let mut checked = 0;
     for row in table() {
-        for old in row.old_names.iter().filter(|o| o.starts_with("--")) {
+        for (old, commands) in row.old_names.iter().filter(|(o, _)| o.starts_with("--")) {
             let value = row.values.first().cloned().unwrap_or_else(|| "3".into());
-            for cmd in &row.commands {
+            for cmd in commands {
                 let out = bin()
                     .args([cmd.as_str(), old.as_str(), value.as_str(), "--help"])
                     .output()

@@ -427,11 +427,12 @@ fn rate_policy(
     };
     let py_err = |e| lib_error(py, e, None);
     let t = Topology::new(mesh).map_err(py_err)?;
-    let default = u32::try_from(tess.saturating_sub(1)).unwrap_or(u32::MAX).max(1);
+    let default = u32::try_from(tess.saturating_sub(1))
+        .unwrap_or(u32::MAX)
+        .max(1);
     let mut rates = EdgeRates::uniform(&t, default);
     for (k, [v0, v1, r]) in rows.into_iter().enumerate() {
-        set_edge_rate(&mut rates, &t, &format!("edge_rates[{k}]"), [v0, v1], r)
-            .map_err(py_err)?;
+        set_edge_rate(&mut rates, &t, &format!("edge_rates[{k}]"), [v0, v1], r).map_err(py_err)?;
     }
     Ok(Some((RatePolicy::Explicit(rates), "edge_rates".into())))
 }
@@ -456,9 +457,14 @@ pub fn tessellate(
     let rows = edge_rates
         .map(|a| rows::<3, u64>(&a, "edge_rates"))
         .transpose()?;
-    if let Some((policy, origin)) =
-        rate_policy(py, &mesh.inner, tess.unwrap_or(8), tolerance, max_edge_length, rows)?
-    {
+    if let Some((policy, origin)) = rate_policy(
+        py,
+        &mesh.inner,
+        tess.unwrap_or(8),
+        tolerance,
+        max_edge_length,
+        rows,
+    )? {
         let Method::Limit { options, .. } = o.method else {
             return Err(value_error(format!(
                 "{origin}: adaptive rates need method 'limit', not {method:?}"

@@ -323,13 +323,13 @@ mod vocabulary_tests {
 
     fn round_trip<T: OptionValue + std::fmt::Display + std::str::FromStr>()
     where
-        T::Err: std::fmt::Display,
+        T::Err: std::fmt::Display + std::fmt::Debug,
     {
         for &v in T::ALL {
             let back = v.to_string().parse::<T>().ok();
             assert_eq!(back, Some(v));
         }
-        let e = "nope".parse::<T>().err().expect("refused").to_string();
+        let e = "nope".parse::<T>().expect_err("refused").to_string();
         assert!(T::names().all(|n| e.contains(n)), "{e}");
     }
 

@@ -447,7 +447,12 @@ fn malformed_tag() {
     assert_parse_error(
         &format!("{SQUARE}t creasemethod 0/0/1 wavy\n"),
         5,
-        "unknown method",
+        "unknown value 'wavy' (expected normal, uniform, chaikin)",
+    );
+    assert_parse_error(
+        &format!("{SQUARE}t smoothtriangles 0/0/1 wavy\n"),
+        5,
+        "(expected catmark, smooth)",
     );
     assert_parse_error(&format!("{SQUARE}t sharpen 1/0/0 1\n"), 5, "unknown tag");
     assert_parse_error(
