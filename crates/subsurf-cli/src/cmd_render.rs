@@ -1,7 +1,8 @@
 //! `subsurf render`: a PNG image of a subdivision surface, rendered headlessly with wgpu.
 //!
-//! Methods: `refine` (uniform refinement to `--level`, triangulated) and `prep` (the p-rep
-//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side). Colouring by `sharpness`
+//! Methods: `refine` (uniform refinement to `--level`, triangulated), `prep` (the p-rep
+//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side) and `prep-bicubic` (the
+//! p-rep without its bi-5 perturbations). Colouring by `sharpness`
 //! marks the faces next to tagged creases of the base mesh (orange: semi-sharp, red:
 //! infinitely sharp); `patch-kind` on a p-rep marks B-quads (blue) and perturbed patches
 //! (orange), as in the paper's Figure 7. `limit` tessellates the limit surface's patches
