@@ -2,7 +2,8 @@
 """Refine or tessellate every mesh under a folder (or a list of OBJ/PLY files) on a
 dask.distributed cluster, writing each result next to a summary table.
 
-    python batch.py MESHES_OR_FOLDERS... -o OUT [--op refine|limit|prep] [--n 2]
+    python batch.py MESHES_OR_FOLDERS... -o OUT [--method refine|limit|prep]
+                    [--level 2] [--tess 9]
                     [--workers 2] [--scheduler tcp://host:8786]
 
 Without --scheduler a LocalCluster with --workers single-threaded worker processes runs
@@ -36,9 +37,9 @@ def find_meshes(inputs: List[str]) -> List[Path]:
     return out
 
 
-def process(path: str, out_path: str, op: str, n: int) -> Dict[str, object]:
-    """One task: read, refine (n = level) or tessellate (n = samples), write. Never raises:
-    errors land in the row."""
+def process(path: str, out_path: str, method: str, level: int, tess: int) -> Dict[str, object]:
+    """One task: read, refine to ``level`` or tessellate with ``tess`` samples per side,
+    write. Never raises: errors land in the row."""
     import subsurf
 
     row: Dict[str, object] = {"file": path, "output": out_path, "faces_in": "", "faces_out": "",
@@ -47,12 +48,12 @@ def process(path: str, out_path: str, op: str, n: int) -> Dict[str, object]:
     try:
         mesh = subsurf.read(path)
         row["faces_in"] = mesh.num_faces
-        if op == "refine":
-            out = subsurf.refine(mesh, n)
+        if method == "refine":
+            out = subsurf.refine(mesh, level)
             out.write(out_path)  # hole faces left out, as a viewer should see the mesh
             row["faces_out"] = out.num_faces - len(out.holes)
         else:
-            p, normals, tris = subsurf.tessellate(mesh, op, n)
+            p, normals, tris = subsurf.tessellate(mesh, method, tess=tess)
             subsurf.Mesh(p, tris).write(out_path, normals=normals)
             row["faces_out"] = len(tris)
     except Exception as e:  # reported, not raised: one bad file does not stop the batch
@@ -61,12 +62,13 @@ def process(path: str, out_path: str, op: str, n: int) -> Dict[str, object]:
     return row
 
 
-def output_name(src: Path, root_out: Path, index: int, op: str, ext: str) -> Path:
-    return root_out / f"{index:05d}_{src.stem}.{op}{ext}"
+def output_name(src: Path, root_out: Path, index: int, method: str, ext: str) -> Path:
+    return root_out / f"{index:05d}_{src.stem}.{method}{ext}"
 
 
-def run(inputs: List[str], out_dir: str, op: str = "refine", n: int = 2, workers: int = 2,
-        scheduler: Optional[str] = None, ext: str = ".obj") -> List[Dict[str, object]]:
+def run(inputs: List[str], out_dir: str, method: str = "refine", level: int = 2, tess: int = 9,
+        workers: int = 2, scheduler: Optional[str] = None,
+        ext: str = ".obj") -> List[Dict[str, object]]:
     """Runs the batch and writes OUT/summary.csv; returns the rows in input order."""
     from dask.distributed import Client, LocalCluster
 
@@ -89,7 +91,8 @@ def run(inputs: List[str], out_dir: str, op: str = "refine", n: int = 2, workers
                                dashboard_address=None)
         client = Client(cluster)
     try:
-        futures = [client.submit(process, str(f), str(output_name(f, out, i, op, ext)), op, n, pure=False)
+        futures = [client.submit(process, str(f), str(output_name(f, out, i, method, ext)), method,
+                                 level, tess, pure=False)
                    for i, f in enumerate(files)]
         rows = client.gather(futures)
     finally:
@@ -107,14 +110,16 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("inputs", nargs="+", help="mesh files or folders")
     ap.add_argument("-o", "--output", required=True, help="output folder (summary.csv and results)")
-    ap.add_argument("--op", choices=["refine", "limit", "prep"], default="refine")
-    ap.add_argument("--n", type=int, default=2, help="level (refine) or samples per side")
+    # The names of `subsurf refine|limit|prep` (docs/vocabulary.md).
+    ap.add_argument("--method", choices=["refine", "limit", "prep", "prep-bicubic"], default="refine")
+    ap.add_argument("--level", type=int, default=2, help="refinement level (method refine)")
+    ap.add_argument("--tess", type=int, default=9, help="samples per side (the other methods)")
     ap.add_argument("--workers", type=int, default=max(1, (os.cpu_count() or 2)), help="LocalCluster workers")
     ap.add_argument("--scheduler", help="address of an existing dask scheduler")
     ap.add_argument("--format", choices=["obj", "ply", "glb"], default="obj")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
-    rows = run(a.inputs, a.output, a.op, a.n, a.workers, a.scheduler, "." + a.format)
+    rows = run(a.inputs, a.output, a.method, a.level, a.tess, a.workers, a.scheduler, "." + a.format)
     bad = sum(1 for r in rows if r["error"])
     print(f"{len(rows)} files, {bad} errors, {time.perf_counter() - t0:.2f} s -> {a.output}/summary.csv")
     return 1 if bad == len(rows) and rows else 0

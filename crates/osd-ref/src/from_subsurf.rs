@@ -27,7 +27,7 @@ impl From<&subsurf::Options> for OsdOptions {
                 CreaseMethod::Chaikin => OsdCreaseMethod::Chaikin,
             },
             triangle_smooth: o.triangle_subdivision == subsurf::TriangleSubdivision::Smooth,
-            fvar_interp: match o.fvar_interpolation {
+            fvar_interp: match o.uv_interpolation {
                 FVarLinearInterpolation::None => 0,
                 FVarLinearInterpolation::CornersOnly => 1,
                 FVarLinearInterpolation::CornersPlus1 => 2,

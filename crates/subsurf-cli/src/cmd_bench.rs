@@ -1,7 +1,7 @@
 //! `subsurf bench`: time the refinement stages on a mesh (medians of repeated runs), on the
 //! CPU or on the GPU the machine has.
 
-use crate::common::{gpu_context, Backend, SchemeArgs};
+use crate::common::{gpu_context, option_parser, Backend, SchemeArgs};
 use anyhow::Context as _;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -23,7 +23,7 @@ pub struct BenchArgs {
     pub scheme: SchemeArgs,
     /// Where refinement runs: `gpu` times the upload of the stencil tables, refinement with
     /// the data resident on the GPU, and refinement plus read-back.
-    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
 }
 

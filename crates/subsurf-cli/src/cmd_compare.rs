@@ -14,7 +14,6 @@ use crate::cmd_render::{
 use crate::common::SchemeArgs;
 use crate::progress::Progress;
 use anyhow::{anyhow, Context};
-use clap::ValueEnum;
 use std::path::PathBuf;
 use subsurf_render::RgbaImage;
 
@@ -49,12 +48,10 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
             Some((m, n)) => (m, Some(n)),
             None => (tail, None),
         };
-        let (method, perturbed) = if m.is_empty() {
-            (Some(Method::Refine), true)
-        } else if m.eq_ignore_ascii_case("prep-bicubic") {
-            (Some(Method::Prep), false)
+        let method = if m.is_empty() {
+            Some(Method::Refine)
         } else {
-            (Method::from_str(m, true).ok(), true)
+            m.to_ascii_lowercase().parse::<Method>().ok()
         };
         let number = n.map(|n| n.parse::<usize>());
         if let (Some(method), false) = (method, matches!(number, Some(Err(_)))) {
@@ -70,7 +67,6 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
                 path: PathBuf::from(file),
                 method,
                 level,
-                perturbed,
                 adaptive: None,
             });
         }
@@ -79,7 +75,6 @@ pub fn parse_spec(s: &str, default_level: usize) -> anyhow::Result<SurfaceSpec> 
         path: PathBuf::from(s),
         method: Method::Refine,
         level: default_level,
-        perturbed: true,
         adaptive: None,
     })
 }
@@ -142,7 +137,7 @@ mod tests {
         assert_eq!((s.path, s.method), ("me@host.obj".into(), Method::Refine));
         assert!(parse_spec("@refine:2", 2).is_err());
         let s = parse_spec("p.obj@prep-bicubic:9", 2).unwrap();
-        assert_eq!((s.method, s.level, s.perturbed), (Method::Prep, 9, false));
-        assert!(parse_spec("p.obj@prep", 2).unwrap().perturbed);
+        assert_eq!((s.method, s.level), (Method::PrepBicubic, 9));
+        assert_eq!(parse_spec("p.obj@Prep", 2).unwrap().method, Method::Prep);
     }
 }

@@ -27,11 +27,11 @@ pub struct EvalArgs {
     #[command(flatten)]
     pub surface: SurfaceArgs,
     /// Samples per side of each ptex face, or per edge of each Loop triangle (at least 2).
-    #[arg(long, default_value_t = 5)]
-    pub samples: usize,
+    #[arg(long, alias = "samples", default_value_t = 5)]
+    pub tess: usize,
     /// Evaluate at the queries of this text file instead of a grid: one `face u v` per line
     /// (whitespace-separated, `#` starts a comment).
-    #[arg(long, conflicts_with = "samples")]
+    #[arg(long, conflicts_with = "tess")]
     pub at: Option<PathBuf>,
     /// Output text file (any name; `-` writes standard output).
     #[arg(short, long)]
@@ -44,9 +44,9 @@ type Row<R> = (u32, R, R, [[R; 3]; 3]);
 pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
     check_output_folder(&a.output)?;
     anyhow::ensure!(
-        (2..=4096).contains(&a.samples),
-        "--samples {} not in 2..=4096",
-        a.samples
+        (2..=4096).contains(&a.tess),
+        "--tess {} not in 2..=4096",
+        a.tess
     );
     let mesh = a.surface.scheme.read(&a.surface.input)?;
     if mesh.options.scheme == Scheme::Loop {
@@ -108,7 +108,7 @@ fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
     let queries: Vec<(u32, f64, f64)> = match &a.at {
         Some(path) => read_queries(path)?,
         None => {
-            let n = a.samples;
+            let n = a.tess;
             let samples = topo.num_faces() as f64 * (n * (n + 1) / 2) as f64;
             check_memory::<f64>(a, samples, "Loop triangles")?;
             let d = (n - 1) as f64;
@@ -204,7 +204,7 @@ fn check_memory<R: Real>(a: &EvalArgs, samples: f64, on: &str) -> anyhow::Result
 fn query_source(a: &EvalArgs) -> String {
     match &a.at {
         Some(p) => format!("--at {}", p.display()),
-        None => format!("--samples {}", a.samples),
+        None => format!("--tess {}", a.tess),
     }
 }
 
@@ -223,7 +223,7 @@ fn queries<R: Real>(a: &EvalArgs, num_ptex: usize) -> anyhow::Result<Vec<(u32, R
             .map(|(f, u, v)| (f, R::from_f64(u), R::from_f64(v)))
             .collect());
     }
-    let n = a.samples;
+    let n = a.tess;
     check_memory::<R>(a, num_ptex as f64 * (n * n) as f64, "ptex faces")?;
     let d = R::from_f64((n - 1) as f64);
     let mut queries = Vec::with_capacity(num_ptex * n * n);

@@ -22,7 +22,7 @@ pub struct InfoArgs {
 struct Info {
     file: String,
     scheme: String,
-    boundary_interpolation: String,
+    boundary: String,
     crease_method: String,
     vertices: usize,
     faces: usize,
@@ -70,9 +70,9 @@ fn usd_prims(a: &InfoArgs) -> anyhow::Result<(Vec<PrimInfo>, bool)> {
             vertices: m.mesh.num_vertices(),
             faces: m.mesh.num_faces(),
             scheme: if m.subdivide {
-                format!("{:?}", m.mesh.options.scheme)
+                m.mesh.options.scheme.to_string()
             } else {
-                "None".into()
+                "none".into()
             },
         })
         .collect();
@@ -116,9 +116,9 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
     let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [0.0; 3]));
     let info = Info {
         file: crate::common::shown(&a.input, false),
-        scheme: format!("{:?}", mesh.options.scheme),
-        boundary_interpolation: format!("{:?}", mesh.options.boundary),
-        crease_method: format!("{:?}", mesh.options.crease_method),
+        scheme: mesh.options.scheme.to_string(),
+        boundary: mesh.options.boundary.to_string(),
+        crease_method: mesh.options.crease_method.to_string(),
         vertices: t.num_vertices(),
         faces: t.num_faces(),
         edges: t.num_edges(),
@@ -163,7 +163,7 @@ pub fn run(a: &InfoArgs) -> anyhow::Result<()> {
     println!("file              {}", info.file);
     println!(
         "scheme            {} (boundary {}, creases {})",
-        info.scheme, info.boundary_interpolation, info.crease_method
+        info.scheme, info.boundary, info.crease_method
     );
     println!("vertices          {}", info.vertices);
     println!(

@@ -2,7 +2,9 @@
 //! tessellated watertight with `N` samples per ptex-face side, written as OBJ or PLY with
 //! normals.
 
-use crate::common::{check_mesh_output, gpu_context, shown, write_mesh, Backend, SchemeArgs};
+use crate::common::{
+    check_mesh_output, gpu_context, option_parser, shown, write_mesh, Backend, SchemeArgs,
+};
 use anyhow::Context;
 use std::path::PathBuf;
 use subsurf::limit::{PatchOptions, PatchTable};
@@ -27,7 +29,7 @@ pub struct SurfaceArgs {
     /// evaluation as wgpu kernels (same samples, f32 rounding of the device); with adaptive
     /// rates (`--tolerance`, `--max-edge-length`, `--pixels`) it measures the rate curves and
     /// the CPU evaluates the tessellation.
-    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
     /// Double precision: refinement masks, end-cap points and evaluation in f64 (CPU only;
     /// `eval` prints f64 values, `limit` rounds the f64 surface to f32 once, when writing).

@@ -6,8 +6,8 @@ use std::path::PathBuf;
 use anyhow::Context;
 
 use crate::common::{
-    check_mesh_output, check_output_ext, create_output, gpu_context, is_stdio, read_mesh, shown,
-    write_mesh, Backend,
+    check_mesh_output, check_output_ext, create_output, gpu_context, is_stdio, option_parser,
+    read_mesh, shown, write_mesh, Backend,
 };
 use crate::progress::note;
 use subsurf::prep::quadrangulate;
@@ -45,7 +45,7 @@ pub struct PrepArgs {
     #[arg(long = "f32")]
     pub f32: bool,
     /// Where the p-rep is built and tessellated (the GPU backend is f32 only).
-    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
 }
 

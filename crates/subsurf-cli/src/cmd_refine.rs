@@ -2,7 +2,9 @@
 //! stage refines every mesh prim, or `--prim`, and is written back whole).
 
 use crate::cmd_limit::surface_backend;
-use crate::common::{check_mesh_output, output_mesh, shown, write_mesh, Backend, SchemeArgs};
+use crate::common::{
+    check_mesh_output, option_parser, output_mesh, shown, write_mesh, Backend, SchemeArgs,
+};
 use crate::usd_stage::{is_usd, read_stage, select};
 use anyhow::Context as _;
 use std::path::PathBuf;
@@ -28,43 +30,13 @@ pub struct RefineArgs {
     #[arg(long)]
     pub limit: bool,
     /// Face-varying (UV) interpolation; default: the mesh's own option (linear unless tagged).
-    #[arg(long, value_enum)]
-    pub uv_interp: Option<UvInterp>,
+    #[arg(long, alias = "uv-interp", value_parser = option_parser::<FVarLinearInterpolation>())]
+    pub uv_interpolation: Option<FVarLinearInterpolation>,
     /// Where the refinement stencils are applied.
-    #[arg(long, value_enum, default_value_t = Backend::Cpu)]
+    #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
     #[command(flatten)]
     pub scheme: SchemeArgs,
-}
-
-/// OpenSubdiv's `FVarLinearInterpolation` modes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum UvInterp {
-    /// Smooth everywhere, UV boundaries included.
-    None,
-    /// Smooth, with sharp UV corners.
-    CornersOnly,
-    /// Smooth, with sharp UV corners and junctions (variant 1).
-    CornersPlus1,
-    /// Smooth, with sharp UV corners and junctions (variant 2).
-    CornersPlus2,
-    /// Smooth inside, linear along UV boundaries.
-    Boundaries,
-    /// Linear everywhere.
-    Linear,
-}
-
-impl From<UvInterp> for FVarLinearInterpolation {
-    fn from(u: UvInterp) -> Self {
-        match u {
-            UvInterp::None => FVarLinearInterpolation::None,
-            UvInterp::CornersOnly => FVarLinearInterpolation::CornersOnly,
-            UvInterp::CornersPlus1 => FVarLinearInterpolation::CornersPlus1,
-            UvInterp::CornersPlus2 => FVarLinearInterpolation::CornersPlus2,
-            UvInterp::Boundaries => FVarLinearInterpolation::Boundaries,
-            UvInterp::Linear => FVarLinearInterpolation::All,
-        }
-    }
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
@@ -128,7 +100,7 @@ fn refine_one(
         mesh,
         a.level,
         a.limit,
-        a.uv_interp.map(Into::into),
+        a.uv_interpolation,
         backend,
     )?)
 }

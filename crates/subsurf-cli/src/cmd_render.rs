@@ -1,7 +1,8 @@
 //! `subsurf render`: a PNG image of a subdivision surface, rendered headlessly with wgpu.
 //!
-//! Methods: `refine` (uniform refinement to `--level`, triangulated) and `prep` (the p-rep
-//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side). Colouring by `sharpness`
+//! Methods: `refine` (uniform refinement to `--level`, triangulated), `prep` (the p-rep
+//! of Myles, Yeo and Peters 2008, `--tess` samples per patch side) and `prep-bicubic` (the
+//! p-rep without its bi-5 perturbations). Colouring by `sharpness`
 //! marks the faces next to tagged creases of the base mesh (orange: semi-sharp, red:
 //! infinitely sharp); `patch-kind` on a p-rep marks B-quads (blue) and perturbed patches
 //! (orange), as in the paper's Figure 7. `limit` tessellates the limit surface's patches
@@ -17,7 +18,7 @@
 //! Gregory-triangle end caps red); per-edge rates and `prep` are Catmull-Clark constructions
 //! and are refused.
 
-use crate::common::{read_mesh_with, SchemeArgs};
+use crate::common::{option_parser, read_mesh_with, SchemeArgs};
 use crate::progress::{note, quiet, Progress};
 use anyhow::{bail, Context};
 use std::io::Write as _;
@@ -26,46 +27,10 @@ use subsurf::surface::{Colors, Method as SurfaceMethod, SurfaceOptions};
 use subsurf::Mesh;
 use subsurf_render::{Fit, Gpu, RenderMesh, RenderOptions, RgbaImage, UpAxis, View};
 
-/// How the surface is turned into triangles.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum Method {
-    /// Uniform Catmull-Clark refinement to `--level`.
-    Refine,
-    /// Limit surface patches, tessellated `--tess` times per patch edge.
-    Limit,
-    /// P-rep C1 patches, tessellated `--tess` times per patch edge.
-    Prep,
-}
-
-/// What the face colours show.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum ColorBy {
-    /// One colour.
-    None,
-    /// Patch kind. Limit: regular (blue), adaptive-level regular (green), single crease
-    /// (orange), end cap (red). P-rep: B-quad (blue) or perturbed (orange).
-    PatchKind,
-    /// Adaptive refinement level of the limit patch.
-    Level,
-    /// Faces next to semi-sharp (orange) and infinitely sharp (red) creases of the base mesh.
-    Sharpness,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum ViewArg {
-    Front,
-    Back,
-    Left,
-    Right,
-    Top,
-    Iso,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum UpArg {
-    Y,
-    Z,
-}
+/// How the surface is turned into triangles: `refine` (uniform refinement to `--level`),
+/// `limit` (limit patches, `--tess` samples per patch side), `prep` (the p-rep, `--tess`
+/// samples per patch side) or `prep-bicubic` (the p-rep without its bi-5 perturbations).
+pub use subsurf::surface::MethodName as Method;
 
 /// Image options shared by `render` and `compare`.
 #[derive(Debug, Clone, clap::Args)]
@@ -73,34 +38,31 @@ pub struct LookArgs {
     /// Draw the control cage (base mesh edges) over the surface.
     #[arg(long)]
     pub cage: bool,
-    /// Face colouring.
-    #[arg(long, value_enum, default_value_t = ColorBy::None)]
-    pub color_by: ColorBy,
+    /// Face colouring: patch-kind (limit: regular blue, adaptive-level regular green, single
+    /// crease orange, end cap red; p-rep: B-quad blue, perturbed orange), level (adaptive level
+    /// of the limit patch), sharpness (faces next to semi-sharp (orange) and infinitely sharp
+    /// (red) creases of the base mesh).
+    #[arg(long, value_parser = option_parser::<Colors>(), default_value_t = Colors::None)]
+    pub color_by: Colors,
     /// Image size in pixels, WIDTHxHEIGHT.
     #[arg(long, default_value = "800x600", value_parser = parse_size)]
     pub size: (u32, u32),
     /// View direction.
-    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
-    pub view: ViewArg,
+    #[arg(long, value_parser = option_parser::<View>(), default_value_t = View::Iso)]
+    pub view: View,
     /// Model axis pointing up.
-    #[arg(long, value_enum, default_value_t = UpArg::Y)]
-    pub up: UpArg,
+    #[arg(long, value_parser = option_parser::<UpAxis>(), default_value_t = UpAxis::Y)]
+    pub up: UpAxis,
     /// Background: white, black, transparent or RRGGBB.
-    #[arg(long, default_value = "white", value_parser = parse_background)]
+    #[arg(long, default_value = "white", value_parser = subsurf_render::parse_background)]
     pub background: [u8; 4],
     /// Cage line width in pixels.
     #[arg(long, default_value_t = 1.5)]
     pub line_width: f32,
     /// Framing: `tight` fits the model's points, `sphere` its bounding sphere (the same
     /// distance from every view).
-    #[arg(long, value_enum, default_value_t = FitArg::Tight)]
-    pub fit: FitArg,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum FitArg {
-    Tight,
-    Sphere,
+    #[arg(long, value_parser = option_parser::<Fit>(), default_value_t = Fit::Tight)]
+    pub fit: Fit,
 }
 
 /// Render a subdivision surface to PNG.
@@ -114,16 +76,16 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Surface construction.
-    #[arg(long, value_enum, default_value_t = Method::Refine)]
+    #[arg(long, value_parser = option_parser::<Method>(), default_value_t = Method::Refine)]
     pub method: Method,
     /// Refinement level (method refine).
     #[arg(short, long, conflicts_with = "tess")]
     pub level: Option<usize>,
-    /// Samples per patch side (methods limit and prep).
+    /// Samples per patch side (methods limit, prep and prep-bicubic).
     #[arg(long)]
     pub tess: Option<usize>,
-    /// Method prep: leave out the bi-5 perturbations (bicubic part only).
-    #[arg(long)]
+    /// The older spelling of `--method prep-bicubic` (hidden; read for one release).
+    #[arg(long, hide = true)]
     pub no_perturbation: bool,
     #[command(flatten)]
     pub look: LookArgs,
@@ -149,48 +111,17 @@ pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     Ok((p(w)?, p(h)?))
 }
 
-/// A background name or `RRGGBB` to RGBA.
-pub fn parse_background(s: &str) -> Result<[u8; 4], String> {
-    match s.to_ascii_lowercase().as_str() {
-        "white" => return Ok([255, 255, 255, 255]),
-        "black" => return Ok([0, 0, 0, 255]),
-        "transparent" | "none" => return Ok([255, 255, 255, 0]),
-        _ => {}
-    }
-    let hex = s.trim_start_matches('#');
-    if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
-        return Err(format!(
-            "background '{s}': use white, black, transparent or RRGGBB"
-        ));
-    }
-    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|e| e.to_string());
-    Ok([byte(0)?, byte(2)?, byte(4)?, 255])
-}
-
 impl LookArgs {
     /// Renderer options for these arguments.
     pub fn options(&self) -> RenderOptions {
         RenderOptions {
             width: self.size.0,
             height: self.size.1,
-            view: match self.view {
-                ViewArg::Front => View::Front,
-                ViewArg::Back => View::Back,
-                ViewArg::Left => View::Left,
-                ViewArg::Right => View::Right,
-                ViewArg::Top => View::Top,
-                ViewArg::Iso => View::Iso,
-            },
-            up: match self.up {
-                UpArg::Y => UpAxis::Y,
-                UpArg::Z => UpAxis::Z,
-            },
+            view: self.view,
+            up: self.up,
             background: self.background,
             line_width: self.line_width,
-            fit: match self.fit {
-                FitArg::Tight => Fit::Tight,
-                FitArg::Sphere => Fit::Sphere,
-            },
+            fit: self.fit,
             ..Default::default()
         }
     }
@@ -205,8 +136,6 @@ pub struct SurfaceSpec {
     pub method: Method,
     /// Level (refine) or tessellation rate (limit, prep).
     pub level: usize,
-    /// Method prep: with the bi-5 perturbations.
-    pub perturbed: bool,
     /// Method limit: per-edge rates instead of `level` samples per side.
     pub adaptive: Option<crate::tess_args::AdaptiveArgs>,
 }
@@ -219,23 +148,14 @@ pub fn build(
     progress: &Progress,
 ) -> anyhow::Result<RenderMesh> {
     let color_by = match (spec.method, look.color_by) {
-        (Method::Refine, c @ (ColorBy::Level | ColorBy::PatchKind))
-        | (Method::Prep, c @ (ColorBy::Level | ColorBy::Sharpness))
-        | (Method::Limit, c @ ColorBy::Sharpness) => {
+        (Method::Refine, c @ (Colors::Level | Colors::PatchKind))
+        | (Method::Prep | Method::PrepBicubic, c @ (Colors::Level | Colors::Sharpness))
+        | (Method::Limit, c @ Colors::Sharpness) => {
             note(format!(
-                "--color-by {} is not available with --method {}; drawing without colours",
-                match c {
-                    ColorBy::Level => "level",
-                    ColorBy::PatchKind => "patch-kind",
-                    _ => "sharpness",
-                },
-                match spec.method {
-                    Method::Prep => "prep",
-                    Method::Limit => "limit",
-                    Method::Refine => "refine",
-                }
+                "--color-by {c} is not available with --method {}; drawing without colours",
+                spec.method
             ));
-            ColorBy::None
+            Colors::None
         }
         (_, c) => c,
     };
@@ -247,10 +167,10 @@ pub fn build(
             },
             format!("refining {} to level {}", spec.path.display(), spec.level),
         ),
-        Method::Prep => (
+        Method::Prep | Method::PrepBicubic => (
             SurfaceMethod::Prep {
                 samples: spec.level,
-                perturbed: spec.perturbed,
+                perturbed: spec.method == Method::Prep,
             },
             format!(
                 "p-rep of {} at {} samples per side",
@@ -292,12 +212,7 @@ pub fn build(
     progress.stage(what);
     let options = SurfaceOptions {
         method,
-        colors: match color_by {
-            ColorBy::None => Colors::None,
-            ColorBy::PatchKind => Colors::PatchKind,
-            ColorBy::Level => Colors::Level,
-            ColorBy::Sharpness => Colors::Sharpness,
-        },
+        colors: color_by,
         cage: look.cage,
     };
     let surface = subsurf::surface::build(mesh, &options, &subsurf::surface::Cpu)
@@ -357,22 +272,25 @@ pub fn save(image: &RgbaImage, path: &Path) -> anyhow::Result<()> {
 pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
     crate::common::check_output_ext(&a.output, "png")?;
     let level = match (a.method, a.level, a.tess) {
-        (Method::Refine, _, Some(_)) => bail!("--tess applies to --method limit|prep; use --level"),
+        (Method::Refine, _, Some(_)) => {
+            bail!("--tess applies to --method limit|prep|prep-bicubic; use --level")
+        }
         (Method::Refine, l, None) => l.unwrap_or(3),
         (_, Some(_), _) => bail!("--level applies to --method refine; use --tess"),
         (_, None, t) => t.unwrap_or(8),
     };
-    if a.no_perturbation && a.method != Method::Prep {
-        bail!("--no-perturbation applies to --method prep");
-    }
+    let method = match a.method {
+        Method::Prep if a.no_perturbation => Method::PrepBicubic,
+        _ if a.no_perturbation => bail!("--no-perturbation applies to --method prep"),
+        m => m,
+    };
     if a.adaptive.any() && a.method != Method::Limit {
         bail!("--tolerance, --max-edge-length, --pixels and --edge-rates apply to --method limit");
     }
     let spec = SurfaceSpec {
         path: a.input.clone(),
-        method: a.method,
+        method,
         level,
-        perturbed: !a.no_perturbation,
         adaptive: Some(a.adaptive.clone()),
     };
     let progress = Progress::start("reading");
@@ -385,9 +303,9 @@ pub fn run(a: &RenderArgs) -> anyhow::Result<()> {
     save(&image, &a.output)?;
     drop(progress);
     crate::say!(
-        "rendered {} triangles ({:?}, {}) at {}x{} on {} -> {}",
+        "rendered {} triangles ({}, {}) at {}x{} on {} -> {}",
         tris,
-        a.method,
+        method,
         level,
         image.width,
         image.height,

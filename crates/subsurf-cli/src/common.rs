@@ -5,23 +5,32 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::OnceLock;
 use subsurf::io::Format;
+use subsurf::options::OptionValue;
 use subsurf::{BoundaryInterpolation, CreaseMethod, Mesh, Scheme, TriangleSubdivision};
+
+/// The parser of an option flag: the option's names ([`OptionValue`], one per value, as in
+/// `docs/vocabulary.md`) as clap's possible values, shown in `--help` and listed in errors.
+pub fn option_parser<T: OptionValue>() -> impl clap::builder::TypedValueParser<Value = T> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(T::names())
+        .map(|s: String| T::from_name(&s).expect("one of the possible values"))
+}
 
 /// Scheme and crease options that override what the input file says.
 #[derive(Debug, Clone, clap::Args)]
 pub struct SchemeArgs {
     /// Boundary interpolation (default: from the file's tags, else edge-only).
-    #[arg(long, value_enum)]
-    pub boundary: Option<BoundaryArg>,
+    #[arg(long, value_parser = option_parser::<BoundaryInterpolation>())]
+    pub boundary: Option<BoundaryInterpolation>,
     /// Crease decay method (default: from the file's tags, else uniform).
-    #[arg(long, value_enum)]
-    pub crease_method: Option<CreaseArg>,
+    #[arg(long, value_parser = option_parser::<CreaseMethod>())]
+    pub crease_method: Option<CreaseMethod>,
     /// Subdivision scheme (default: from the file name prefix, else catmark).
-    #[arg(long, value_enum)]
-    pub scheme: Option<SchemeArg>,
-    /// Triangle rule for Catmull-Clark.
-    #[arg(long, value_enum)]
-    pub triangles: Option<TriArg>,
+    #[arg(long, value_parser = option_parser::<Scheme>())]
+    pub scheme: Option<Scheme>,
+    /// Triangle rule for Catmull-Clark (default: from the file's tags, else catmark).
+    #[arg(long, alias = "triangles", value_parser = option_parser::<TriangleSubdivision>())]
+    pub triangle_subdivision: Option<TriangleSubdivision>,
     /// glTF and USD input: apply node (prim) transforms and merge every mesh of the scene
     /// in world space (default: each mesh in its own coordinates, an error when the scene
     /// places several meshes under different transforms).
@@ -31,32 +40,6 @@ pub struct SchemeArgs {
     /// prim; `refine` and `render` default to all of them).
     #[arg(long)]
     pub prim: Option<String>,
-}
-
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum BoundaryArg {
-    None,
-    EdgeOnly,
-    EdgeAndCorner,
-}
-
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum CreaseArg {
-    Uniform,
-    Chaikin,
-}
-
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum SchemeArg {
-    Catmark,
-    Bilinear,
-    Loop,
-}
-
-#[derive(Debug, Clone, Copy, clap::ValueEnum)]
-pub enum TriArg {
-    Catmark,
-    Smooth,
 }
 
 impl SchemeArgs {
@@ -73,31 +56,18 @@ impl SchemeArgs {
 
     /// Applies the overrides to `mesh`.
     pub fn apply(&self, mesh: &mut Mesh) {
+        let o = &mut mesh.options;
         if let Some(b) = self.boundary {
-            mesh.options.boundary = match b {
-                BoundaryArg::None => BoundaryInterpolation::None,
-                BoundaryArg::EdgeOnly => BoundaryInterpolation::EdgeOnly,
-                BoundaryArg::EdgeAndCorner => BoundaryInterpolation::EdgeAndCorner,
-            };
+            o.boundary = b;
         }
         if let Some(c) = self.crease_method {
-            mesh.options.crease_method = match c {
-                CreaseArg::Uniform => CreaseMethod::Uniform,
-                CreaseArg::Chaikin => CreaseMethod::Chaikin,
-            };
+            o.crease_method = c;
         }
         if let Some(s) = self.scheme {
-            mesh.options.scheme = match s {
-                SchemeArg::Catmark => Scheme::Catmark,
-                SchemeArg::Bilinear => Scheme::Bilinear,
-                SchemeArg::Loop => Scheme::Loop,
-            };
+            o.scheme = s;
         }
-        if let Some(t) = self.triangles {
-            mesh.options.triangle_subdivision = match t {
-                TriArg::Catmark => TriangleSubdivision::Catmark,
-                TriArg::Smooth => TriangleSubdivision::Smooth,
-            };
+        if let Some(t) = self.triangle_subdivision {
+            o.triangle_subdivision = t;
         }
     }
 }
@@ -277,15 +247,9 @@ pub fn create_output(path: &Path) -> anyhow::Result<Box<dyn Write>> {
     Ok(Box::new(std::io::BufWriter::new(file)))
 }
 
-/// Where the numeric work runs.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, clap::ValueEnum)]
-pub enum Backend {
-    /// Multithreaded CPU.
-    #[default]
-    Cpu,
-    /// wgpu compute kernels (Vulkan, Metal, DX12; `WGPU_BACKEND`, `SUBSURF_ADAPTER` respected).
-    Gpu,
-}
+/// Where the numeric work runs (`--backend cpu|gpu`; the GPU: wgpu compute kernels on
+/// Vulkan, Metal or DX12, `WGPU_BACKEND` and `SUBSURF_ADAPTER` respected).
+pub use subsurf::surface::BackendName as Backend;
 
 /// Opens the GPU device, with a message that says what to do when there is none.
 pub fn gpu_context() -> anyhow::Result<subsurf_gpu::GpuContext> {

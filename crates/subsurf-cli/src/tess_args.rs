@@ -8,7 +8,8 @@ use subsurf::tess::{parse_edge_rates, RatePolicy, ScreenCamera};
 use subsurf::Topology;
 use subsurf_render::{Camera, UpAxis, View};
 
-use crate::cmd_render::{parse_size, UpArg, ViewArg};
+use crate::cmd_render::parse_size;
+use crate::common::option_parser;
 
 /// How the per-edge tessellation rates are chosen (at most one).
 #[derive(Debug, Clone, clap::Args)]
@@ -37,11 +38,11 @@ pub struct ScreenArgs {
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     pub screen: Option<(u32, u32)>,
     /// View direction for `--pixels`.
-    #[arg(long, value_enum, default_value_t = ViewArg::Iso)]
-    pub view: ViewArg,
+    #[arg(long, value_parser = option_parser::<View>(), default_value_t = View::Iso)]
+    pub view: View,
     /// Model axis pointing up for `--pixels`.
-    #[arg(long, value_enum, default_value_t = UpArg::Y)]
-    pub up: UpArg,
+    #[arg(long, value_parser = option_parser::<UpAxis>(), default_value_t = UpAxis::Y)]
+    pub up: UpAxis,
 }
 
 impl AdaptiveArgs {
@@ -101,22 +102,10 @@ impl ScreenArgs {
 /// (the base mesh's: `render` frames its output's points, which lie close to them).
 pub fn screen_camera(
     (w, h): (u32, u32),
-    view: ViewArg,
-    up: UpArg,
+    view: View,
+    up: UpAxis,
     cage: &[[f32; 3]],
 ) -> Option<ScreenCamera> {
-    let view = match view {
-        ViewArg::Front => View::Front,
-        ViewArg::Back => View::Back,
-        ViewArg::Left => View::Left,
-        ViewArg::Right => View::Right,
-        ViewArg::Top => View::Top,
-        ViewArg::Iso => View::Iso,
-    };
-    let up = match up {
-        UpArg::Y => UpAxis::Y,
-        UpArg::Z => UpAxis::Z,
-    };
     let defaults = subsurf_render::RenderOptions::default();
     let cam = Camera::frame_points(
         cage.iter(),

@@ -119,7 +119,7 @@ fn oversize_requests_are_refused_with_the_true_estimate() {
         (&car, &["refine", "--level", "40"]),
         (&car, &["limit", "--tess", "4000"]),
         (&car, &["limit", "--max-edge-length", "1e-9"]),
-        (&car, &["eval", "--samples", "4096"]),
+        (&car, &["eval", "--tess", "4096"]),
         (&loop_mesh, &["eval", "--isolation", "10"]),
         (&loop_mesh, &["refine", "--level", "30"]),
     ];

@@ -205,7 +205,7 @@ fn eval_lines(path: &Path) -> Vec<Vec<f32>> {
 fn eval_gpu_matches_cpu() {
     let input = repo("testdata/shapes/catmark_hole_test1.obj");
     let (g, c) = (tmp("eval_gpu.txt"), tmp("eval_cpu.txt"));
-    if !run_both("eval", &input, &["--samples", "4"], &g, &c) {
+    if !run_both("eval", &input, &["--tess", "4"], &g, &c) {
         return;
     }
     let (gl, cl) = (eval_lines(&g), eval_lines(&c));

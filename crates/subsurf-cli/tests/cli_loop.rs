@@ -68,7 +68,7 @@ fn loop_refuses_a_quad_naming_it() {
 
 /// A Loop mesh's UVs are refined with it (the library's face-varying Loop refinement, tested
 /// against OpenSubdiv in `osd-ref`), corner for corner, in the mesh's own mode and with
-/// `--uv-interp`.
+/// `--uv-interpolation`.
 #[test]
 fn refine_keeps_loop_uvs() {
     let input = repo("testdata/shapes/loop_fvar_bound1.obj");
@@ -76,9 +76,9 @@ fn refine_keeps_loop_uvs() {
     let uvs = mesh.uvs.as_ref().expect("shape has UVs");
     let refiner = Refiner::new(Topology::new(&mesh).unwrap(), 2).unwrap();
     for (flags, mode) in [
-        (vec!["--level", "2"], mesh.options.fvar_interpolation),
+        (vec!["--level", "2"], mesh.options.uv_interpolation),
         (
-            vec!["--level", "2", "--uv-interp", "linear"],
+            vec!["--level", "2", "--uv-interpolation", "linear"],
             subsurf::FVarLinearInterpolation::All,
         ),
     ] {
@@ -180,7 +180,7 @@ fn eval_writes_the_loop_limit_samples() {
         let mut cmd = bin();
         cmd.arg("eval")
             .arg(path)
-            .args(["--samples", "5", "--isolation", "3", "-o"])
+            .args(["--tess", "5", "--isolation", "3", "-o"])
             .arg(&out);
         if let Some(s) = scheme {
             cmd.args(["--scheme", s]);

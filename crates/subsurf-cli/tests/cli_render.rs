@@ -71,6 +71,31 @@ fn compare_puts_two_panels_side_by_side() {
 }
 
 #[test]
+fn prep_bicubic_is_the_old_no_perturbation() {
+    let tet = repo("testdata/shapes/catmark_toroidal_tet.obj");
+    let (new, old) = (tmp("bicubic_new.png"), tmp("bicubic_old.png"));
+    let render = |out: &Path, args: &[&str]| {
+        run_gpu(
+            bin()
+                .arg("render")
+                .arg(&tet)
+                .arg("-o")
+                .arg(out)
+                .args(["--tess", "4", "--size", "48x40", "--color-by", "patch-kind"])
+                .args(args),
+        )
+    };
+    let Some(o) = render(&new, &["--method", "prep-bicubic"]) else {
+        return;
+    };
+    assert!(String::from_utf8_lossy(&o.stderr).contains("(prep-bicubic, 4)"));
+    let Some(_) = render(&old, &["--method", "prep", "--no-perturbation"]) else {
+        return;
+    };
+    assert_eq!(std::fs::read(&new).unwrap(), std::fs::read(&old).unwrap());
+}
+
+#[test]
 fn argument_errors_need_no_gpu() {
     let out = bin()
         .arg("render")

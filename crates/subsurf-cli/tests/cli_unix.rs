@@ -43,7 +43,7 @@ fn read_then_close(args: &[&str], keep: usize) -> (std::process::ExitStatus, Str
 fn a_closed_pipe_ends_every_command_quietly() {
     let car = car();
     let car = car.to_str().unwrap();
-    let eval_out = ["eval", car, "--samples", "9", "-o", "-"];
+    let eval_out = ["eval", car, "--tess", "9", "-o", "-"];
     let refine_out = ["refine", car, "--level", "3", "-o", "-"];
     let info = ["info", car];
     for args in [&refine_out[..], &eval_out[..], &info[..]] {
@@ -135,7 +135,7 @@ fn quiet_leaves_stderr_empty() {
         vec![
             "eval".into(),
             car.clone().into(),
-            "--samples".into(),
+            "--tess".into(),
             "2".into(),
             "-o".into(),
             tmp("q.txt").into(),

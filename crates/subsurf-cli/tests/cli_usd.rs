@@ -230,7 +230,7 @@ fn info_lists_mesh_prims_and_limit_reads_one() {
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["faces"], 9);
-    assert_eq!(v["scheme"], "Bilinear");
+    assert_eq!(v["scheme"], "bilinear");
     let text = run_ok(bin().arg("info").arg(stage_path()));
     assert!(String::from_utf8_lossy(&text.stdout).contains("/World/Group/B"));
     // limit on one prim of the stage.

@@ -21,7 +21,7 @@ fn eval_writes_the_library_samples() {
         bin()
             .arg("eval")
             .arg(shape("catmark_pyramid"))
-            .args(["--samples", "3", "-o"])
+            .args(["--tess", "3", "-o"])
             .arg(&out_path),
     );
     let text = std::fs::read_to_string(&out_path).unwrap();
@@ -73,12 +73,12 @@ fn bad_arguments_fail_cleanly() {
     let out = bin()
         .arg("eval")
         .arg(shape("catmark_cube"))
-        .args(["--samples", "1", "-o"])
+        .args(["--tess", "1", "-o"])
         .arg(tmp("x.txt"))
         .output()
         .unwrap();
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--samples"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--tess"));
     let out = bin()
         .arg("limit")
         .arg(shape("catmark_cube"))
@@ -100,7 +100,7 @@ fn f64_flags_write_the_double_precision_surface() {
         bin()
             .arg("eval")
             .arg(shape("catmark_chaikin1"))
-            .args(["--samples", "2", "--f64", "-o"])
+            .args(["--tess", "2", "--f64", "-o"])
             .arg(&out_path),
     );
     let mesh = subsurf::io::read_path(shape("catmark_chaikin1")).unwrap();

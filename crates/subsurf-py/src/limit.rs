@@ -19,7 +19,7 @@ use subsurf::{Mesh, Scheme, Topology};
 use crate::arrays::{out2, rows, vec1};
 use crate::errors::{lib_error, value_error};
 use crate::mesh::PyMesh;
-use crate::ops::tess_out;
+use crate::ops::{check_tess, tess_out};
 
 /// What the surface is built from: a patch table or the Loop patches.
 enum Kind {
@@ -132,11 +132,11 @@ impl PyLimit {
     }
 
     /// New control points (same count), e.g. after a deformation.
-    fn update(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
-        let p = rows::<3, f32>(&points, "points")?;
+    fn update(&self, py: Python<'_>, positions: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
+        let p = rows::<3, f32>(&positions, "positions")?;
         if p.len() != self.num_vertices {
             return Err(value_error(format!(
-                "points: {} rows for {} vertices",
+                "positions: {} rows for {} vertices",
                 p.len(),
                 self.num_vertices
             )));
@@ -177,7 +177,7 @@ impl PyLimit {
         Ok(())
     }
 
-    /// (points, du, dv) at faces `faces` and parameters `u`, `v`: ptex faces and `[0, 1]²`
+    /// (positions, du, dv) at faces `faces` and parameters `u`, `v`: ptex faces and `[0, 1]²`
     /// (float32 results) or Loop base triangles and `u, v >= 0, u + v <= 1` (float64).
     fn evaluate(
         &self,
@@ -244,8 +244,8 @@ impl PyLimit {
         }
     }
 
-    /// New crease sharpness for the base edges `creases` (vertex pairs, `sharpness` one value
-    /// each) and corner sharpness for the vertices `corners` (`corner_sharpness`), later
+    /// New crease sharpness for the base edges `creases` (vertex pairs, `crease_sharpness` one
+    /// value each) and corner sharpness for the vertices `corners` (`corner_sharpness`), later
     /// entries of the same element winning: the patch table is updated in place where its
     /// isolation structure is kept and rebuilt otherwise (from the first level whose faces
     /// are decided differently, the levels above kept), equal either way to the table of
@@ -256,12 +256,12 @@ impl PyLimit {
         &self,
         py: Python<'_>,
         creases: PyReadonlyArray2<'_, u32>,
-        sharpness: PyReadonlyArray1<'_, f32>,
+        crease_sharpness: PyReadonlyArray1<'_, f32>,
         corners: PyReadonlyArray1<'_, u32>,
         corner_sharpness: PyReadonlyArray1<'_, f32>,
     ) -> PyResult<&'static str> {
         let pairs = rows::<2, u32>(&creases, "creases")?;
-        let s = vec1(&sharpness, "sharpness")?;
+        let s = vec1(&crease_sharpness, "crease sharpness")?;
         let cv = vec1(&corners, "corners")?;
         let cs = vec1(&corner_sharpness, "corner sharpness")?;
         if pairs.len() != s.len() || cv.len() != cs.len() {
@@ -310,11 +310,11 @@ impl PyLimit {
         }
     }
 
-    /// Watertight tessellation with `n` samples per side of every ptex face or Loop triangle.
-    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<Arrays3> {
-        if !(2..=1025).contains(&n) {
-            return Err(value_error(format!("n = {n}: use 2..=1025")));
-        }
+    /// Watertight tessellation with `tess` samples per side of every ptex face or Loop
+    /// triangle.
+    fn tessellate(&self, py: Python<'_>, tess: usize) -> PyResult<Arrays3> {
+        check_tess(tess)?;
+        let n = tess;
         match &self.kind {
             Kind::Quad { surface, .. } => {
                 let s = read(surface)?;

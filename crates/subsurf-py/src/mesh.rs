@@ -4,10 +4,8 @@ use std::sync::Arc;
 
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use subsurf::{
-    BoundaryInterpolation, Corner, Crease, CreaseMethod, FVarLinearInterpolation, FaceVarying,
-    Mesh, Scheme, Topology, TriangleSubdivision,
-};
+use subsurf::options::OptionValue;
+use subsurf::{Corner, Crease, FaceVarying, Mesh, Topology};
 
 use crate::arrays::{out1, out2, rows, vec1};
 use crate::errors::{lib_error, mesh_error, value_error};
@@ -19,98 +17,38 @@ pub struct PyMesh {
     pub inner: Arc<Mesh>,
 }
 
+/// An option value from its name (`docs/vocabulary.md`), a `ValueError` listing the accepted
+/// names otherwise.
+pub fn parse<T: OptionValue>(name: &str) -> PyResult<T> {
+    T::from_name(name).map_err(|e| value_error(e.to_string()))
+}
+
 pub fn parse_options(
     mesh: &mut Mesh,
     scheme: &str,
     boundary: &str,
     crease_method: &str,
-    triangles: &str,
+    triangle_subdivision: &str,
     uv_interpolation: &str,
 ) -> PyResult<()> {
     let o = &mut mesh.options;
-    o.scheme = match scheme {
-        "catmark" => Scheme::Catmark,
-        "bilinear" => Scheme::Bilinear,
-        "loop" => Scheme::Loop,
-        s => {
-            return Err(value_error(format!(
-                "scheme {s:?}: use 'catmark', 'bilinear' or 'loop'"
-            )))
-        }
-    };
-    o.boundary = match boundary {
-        "none" => BoundaryInterpolation::None,
-        "edge-only" => BoundaryInterpolation::EdgeOnly,
-        "edge-and-corner" => BoundaryInterpolation::EdgeAndCorner,
-        s => {
-            return Err(value_error(format!(
-                "boundary {s:?}: use 'none', 'edge-only' or 'edge-and-corner'"
-            )))
-        }
-    };
-    o.crease_method = match crease_method {
-        "uniform" => CreaseMethod::Uniform,
-        "chaikin" => CreaseMethod::Chaikin,
-        s => {
-            return Err(value_error(format!(
-                "crease_method {s:?}: use 'uniform' or 'chaikin'"
-            )))
-        }
-    };
-    o.triangle_subdivision = match triangles {
-        "catmark" => TriangleSubdivision::Catmark,
-        "smooth" => TriangleSubdivision::Smooth,
-        s => {
-            return Err(value_error(format!(
-                "triangles {s:?}: use 'catmark' or 'smooth'"
-            )))
-        }
-    };
-    o.fvar_interpolation = match uv_interpolation {
-        "none" => FVarLinearInterpolation::None,
-        "corners-only" => FVarLinearInterpolation::CornersOnly,
-        "corners-plus1" => FVarLinearInterpolation::CornersPlus1,
-        "corners-plus2" => FVarLinearInterpolation::CornersPlus2,
-        "boundaries" => FVarLinearInterpolation::Boundaries,
-        "linear" => FVarLinearInterpolation::All,
-        s => {
-            return Err(value_error(format!(
-                "uv_interpolation {s:?}: use none, corners-only, corners-plus1, corners-plus2, boundaries or linear"
-            )))
-        }
-    };
+    o.scheme = parse(scheme)?;
+    o.boundary = parse(boundary)?;
+    o.crease_method = parse(crease_method)?;
+    o.triangle_subdivision = parse(triangle_subdivision)?;
+    o.uv_interpolation = parse(uv_interpolation)?;
     Ok(())
 }
 
+/// The option names in the order of the Python `Mesh.options` keys.
 fn option_names(m: &Mesh) -> [&'static str; 5] {
     let o = &m.options;
     [
-        match o.scheme {
-            Scheme::Bilinear => "bilinear",
-            Scheme::Loop => "loop",
-            Scheme::Catmark => "catmark",
-        },
-        match o.boundary {
-            BoundaryInterpolation::None => "none",
-            BoundaryInterpolation::EdgeOnly => "edge-only",
-            BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
-        },
-        match o.crease_method {
-            CreaseMethod::Uniform => "uniform",
-            CreaseMethod::Chaikin => "chaikin",
-        },
-        match o.triangle_subdivision {
-            TriangleSubdivision::Catmark => "catmark",
-            TriangleSubdivision::Smooth => "smooth",
-        },
-        match o.fvar_interpolation {
-            FVarLinearInterpolation::None => "none",
-            FVarLinearInterpolation::CornersOnly => "corners-only",
-            FVarLinearInterpolation::CornersPlus1 => "corners-plus1",
-            FVarLinearInterpolation::CornersPlus2 => "corners-plus2",
-            FVarLinearInterpolation::Boundaries => "boundaries",
-            FVarLinearInterpolation::All => "linear",
-        },
+        o.scheme.name(),
+        o.boundary.name(),
+        o.crease_method.name(),
+        o.triangle_subdivision.name(),
+        o.uv_interpolation.name(),
     ]
 }
 
@@ -157,14 +95,14 @@ pub fn validate(py: Python<'_>, mesh: &Mesh) -> PyResult<()> {
 #[pymethods]
 impl PyMesh {
     #[new]
-    #[pyo3(signature = (points, counts, indices, crease_pairs, crease_sharpness, corner_vertices,
-        corner_sharpness, holes, uvs, uv_indices, scheme, boundary, crease_method, triangles,
-        uv_interpolation))]
+    #[pyo3(signature = (positions, counts, indices, crease_pairs, crease_sharpness, corner_vertices,
+        corner_sharpness, holes, uvs, uv_indices, scheme, boundary, crease_method,
+        triangle_subdivision, uv_interpolation))]
     // One argument per keyword of the Python constructor.
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        points: PyReadonlyArray2<'_, f32>,
+        positions: PyReadonlyArray2<'_, f32>,
         counts: PyReadonlyArray1<'_, u32>,
         indices: PyReadonlyArray1<'_, u32>,
         crease_pairs: PyReadonlyArray2<'_, u32>,
@@ -177,10 +115,10 @@ impl PyMesh {
         scheme: &str,
         boundary: &str,
         crease_method: &str,
-        triangles: &str,
+        triangle_subdivision: &str,
         uv_interpolation: &str,
     ) -> PyResult<Self> {
-        let positions = rows::<3, f32>(&points, "points")?;
+        let positions = rows::<3, f32>(&positions, "positions")?;
         let face_counts = vec1(&counts, "face counts")?;
         let face_indices = vec1(&indices, "face indices")?;
         let cp = rows::<2, u32>(&crease_pairs, "creases")?;
@@ -243,7 +181,7 @@ impl PyMesh {
             scheme,
             boundary,
             crease_method,
-            triangles,
+            triangle_subdivision,
             uv_interpolation,
         )?;
         validate(py, &mesh)?;
@@ -278,7 +216,7 @@ impl PyMesh {
         let normals = normals.map(|n| rows::<3, f32>(&n, "normals")).transpose()?;
         if let Some(n) = &normals {
             if n.len() != self.inner.positions.len() {
-                return Err(value_error("one normal per point is needed"));
+                return Err(value_error("one normal per position is needed"));
             }
         }
         let m = self.inner.clone();
@@ -299,7 +237,7 @@ impl PyMesh {
     }
 
     #[getter]
-    fn points(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+    fn positions(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
         out2(py, self.inner.positions.clone())
     }
     #[getter]

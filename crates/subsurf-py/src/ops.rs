@@ -7,21 +7,20 @@ use numpy::{PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use subsurf::limit::PatchOptions;
 use subsurf::prep::PrepPatches;
-use subsurf::surface::{self, Backend, Colors, Method, SurfaceOptions};
+use subsurf::surface::{self, Backend, BackendName, Colors, Method, MethodName, SurfaceOptions};
 use subsurf::tess::{set_edge_rate, EdgeRates, RatePolicy};
 use subsurf::{FaceVarying, Mesh, Refiner, Topology};
 
 use crate::arrays::{out1, out2, out4, rows, vec1};
 use crate::errors::{gpu_error, lib_error, surface_error, value_error};
-use crate::mesh::{validate, PyMesh};
+use crate::mesh::{parse, validate, PyMesh};
 
 /// The backend named `name`; the GPU is opened once per process.
 pub fn backend(py: Python<'_>, name: &str) -> PyResult<&'static dyn Backend> {
     static CPU: surface::Cpu = surface::Cpu;
-    match name {
-        "cpu" => Ok(&CPU),
-        "gpu" => gpu(py),
-        s => Err(value_error(format!("backend {s:?}: use 'cpu' or 'gpu'"))),
+    match parse(name)? {
+        BackendName::Cpu => Ok(&CPU),
+        BackendName::Gpu => gpu(py),
     }
 }
 
@@ -51,6 +50,14 @@ fn gpu(py: Python<'_>) -> PyResult<&'static dyn Backend> {
         py,
         "this build of subsurf has no GPU backend (feature `gpu`)".into(),
     ))
+}
+
+/// Samples per side (`tess`) in 2..=1025.
+pub fn check_tess(tess: usize) -> PyResult<()> {
+    if !(2..=1025).contains(&tess) {
+        return Err(value_error(format!("tess = {tess}: use 2..=1025")));
+    }
+    Ok(())
 }
 
 fn check_level(level: usize) -> PyResult<()> {
@@ -214,7 +221,7 @@ impl PyRefiner {
         });
         validate(py, &probe)?;
         let r = self.refiner.clone();
-        let mode = self.mesh.options.fvar_interpolation;
+        let mode = self.mesh.options.uv_interpolation;
         let last = py
             .detach(move || {
                 let f = r.fvar_refinement(&i, v.len(), mode)?;
@@ -226,13 +233,13 @@ impl PyRefiner {
         Ok((out2(py, last.values)?, out1(py, last.indices)))
     }
 
-    /// The refined mesh (all faces, holes and remaining sharpness tagged) with `points`
-    /// (n_last, 3) as its positions.
-    fn mesh(&self, py: Python<'_>, points: PyReadonlyArray2<'_, f32>) -> PyResult<PyMesh> {
-        let p = rows::<3, f32>(&points, "points")?;
+    /// The refined mesh (all faces, holes and remaining sharpness tagged) with `positions`
+    /// (n_last, 3).
+    fn mesh(&self, py: Python<'_>, positions: PyReadonlyArray2<'_, f32>) -> PyResult<PyMesh> {
+        let p = rows::<3, f32>(&positions, "positions")?;
         if p.len() != self.refiner.last().num_vertices() {
             return Err(value_error(format!(
-                "points: {} rows for {} refined vertices",
+                "positions: {} rows for {} refined vertices",
                 p.len(),
                 self.refiner.last().num_vertices()
             )));
@@ -304,13 +311,15 @@ impl PyPrep {
         out4(py, b, 6, 6, 3)
     }
 
-    /// Watertight tessellation, `n` samples per patch side (float64).
-    fn tessellate(&self, py: Python<'_>, n: usize) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
-        if !(2..=1025).contains(&n) {
-            return Err(value_error(format!("n = {n}: use 2..=1025")));
-        }
+    /// Watertight tessellation, `tess` samples per patch side (float64).
+    fn tessellate(
+        &self,
+        py: Python<'_>,
+        tess: usize,
+    ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
+        check_tess(tess)?;
         let p = self.patches.clone();
-        let t = py.detach(move || p.tessellate(n));
+        let t = py.detach(move || p.tessellate(tess));
         Ok((
             out2(py, t.positions)?,
             out2(py, t.normals)?,
@@ -324,72 +333,72 @@ impl PyPrep {
     }
 }
 
+/// The surface options of `method` with `level` (refine) or `tess` (the others; `None`: the
+/// default of each), as the command line's `--level` and `--tess`.
 fn surface_options(
     method: &str,
-    n: usize,
-    colors: &str,
+    level: Option<usize>,
+    tess: Option<usize>,
+    color_by: &str,
     cage: bool,
     isolation: u32,
 ) -> PyResult<SurfaceOptions> {
-    let method = match method {
-        "refine" => Method::Refine {
-            level: n,
-            limit: false,
-        },
-        "limit" => Method::Limit {
-            samples: n,
+    let name: MethodName = parse(method)?;
+    match (name, level, tess) {
+        (MethodName::Refine, _, Some(_)) => {
+            return Err(value_error(
+                "tess applies to method 'limit', 'prep' or 'prep-bicubic'; use level",
+            ))
+        }
+        (MethodName::Limit | MethodName::Prep | MethodName::PrepBicubic, Some(_), _) => {
+            return Err(value_error(format!(
+                "level applies to method 'refine'; use tess (samples per side) with {method:?}"
+            )))
+        }
+        _ => {}
+    }
+    let tess = tess.unwrap_or(8);
+    let method = match name {
+        MethodName::Refine => {
+            let level = level.unwrap_or(3);
+            check_level(level)?;
+            Method::Refine {
+                level,
+                limit: false,
+            }
+        }
+        MethodName::Limit => Method::Limit {
+            samples: tess,
             options: PatchOptions {
                 isolation_level: isolation,
                 ..Default::default()
             },
         },
-        "prep" => Method::Prep {
-            samples: n,
-            perturbed: true,
+        MethodName::Prep | MethodName::PrepBicubic => Method::Prep {
+            samples: tess,
+            perturbed: name == MethodName::Prep,
         },
-        "prep-bicubic" => Method::Prep {
-            samples: n,
-            perturbed: false,
-        },
-        s => {
-            return Err(value_error(format!(
-                "method {s:?}: use 'refine', 'limit' or 'prep'"
-            )))
-        }
     };
-    match &method {
-        Method::Refine { level, .. } => check_level(*level)?,
-        _ if !(2..=1025).contains(&n) => return Err(value_error(format!("n = {n}: use 2..=1025"))),
-        _ => {}
+    if name != MethodName::Refine {
+        check_tess(tess)?;
     }
     if isolation > subsurf::limit::MAX_ISOLATION_LEVEL {
         return Err(value_error(format!("isolation {isolation}: too large")));
     }
-    let colors = match colors {
-        "none" => Colors::None,
-        "patch-kind" => Colors::PatchKind,
-        "level" => Colors::Level,
-        "sharpness" => Colors::Sharpness,
-        s => {
-            return Err(value_error(format!(
-                "colors {s:?}: use none, patch-kind, level or sharpness"
-            )))
-        }
-    };
     Ok(SurfaceOptions {
         method,
-        colors,
+        colors: parse::<Colors>(color_by)?,
         cage,
     })
 }
 
 /// The adaptive rate policy of `tessellate`'s keywords (at most one), with its origin for
 /// errors; `None` when none is given. `edge_rates` rows are `(v0, v1, rate)`; unlisted edges
-/// take `n − 1` segments, as `--edge-rates` takes `--tess`.
+/// take `tess − 1` segments, as `--edge-rates` takes `--tess`.
 fn rate_policy(
     py: Python<'_>,
     mesh: &Mesh,
-    n: usize,
+    tess: usize,
     tolerance: Option<f32>,
     max_edge_length: Option<f32>,
     edge_rates: Option<Vec<[u64; 3]>>,
@@ -418,37 +427,44 @@ fn rate_policy(
     };
     let py_err = |e| lib_error(py, e, None);
     let t = Topology::new(mesh).map_err(py_err)?;
-    let default = u32::try_from(n.saturating_sub(1)).unwrap_or(u32::MAX).max(1);
+    let default = u32::try_from(tess.saturating_sub(1))
+        .unwrap_or(u32::MAX)
+        .max(1);
     let mut rates = EdgeRates::uniform(&t, default);
     for (k, [v0, v1, r]) in rows.into_iter().enumerate() {
-        set_edge_rate(&mut rates, &t, &format!("edge_rates[{k}]"), [v0, v1], r)
-            .map_err(py_err)?;
+        set_edge_rate(&mut rates, &t, &format!("edge_rates[{k}]"), [v0, v1], r).map_err(py_err)?;
     }
     Ok(Some((RatePolicy::Explicit(rates), "edge_rates".into())))
 }
 
 #[pyfunction]
-#[pyo3(signature = (mesh, method="limit", n=8, backend="cpu", isolation=4, *, tolerance=None, max_edge_length=None, edge_rates=None))]
+#[pyo3(signature = (mesh, method="limit", *, level=None, tess=None, backend="cpu", isolation=4, tolerance=None, max_edge_length=None, edge_rates=None))]
 // One argument per keyword of the Python `tessellate`.
 #[allow(clippy::too_many_arguments)]
 pub fn tessellate(
     py: Python<'_>,
     mesh: &PyMesh,
     method: &str,
-    n: usize,
+    level: Option<usize>,
+    tess: Option<usize>,
     backend: &str,
     isolation: u32,
     tolerance: Option<f32>,
     max_edge_length: Option<f32>,
     edge_rates: Option<PyReadonlyArray2<'_, u64>>,
 ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
-    let mut o = surface_options(method, n, "none", false, isolation)?;
+    let mut o = surface_options(method, level, tess, "none", false, isolation)?;
     let rows = edge_rates
         .map(|a| rows::<3, u64>(&a, "edge_rates"))
         .transpose()?;
-    if let Some((policy, origin)) =
-        rate_policy(py, &mesh.inner, n, tolerance, max_edge_length, rows)?
-    {
+    if let Some((policy, origin)) = rate_policy(
+        py,
+        &mesh.inner,
+        tess.unwrap_or(8),
+        tolerance,
+        max_edge_length,
+        rows,
+    )? {
         let Method::Limit { options, .. } = o.method else {
             return Err(value_error(format!(
                 "{origin}: adaptive rates need method 'limit', not {method:?}"
@@ -470,7 +486,7 @@ pub fn tessellate(
 
 #[cfg(feature = "gpu")]
 #[pyfunction]
-#[pyo3(signature = (mesh, width, height, method, n, view, up, colors, cage, background, path=None))]
+#[pyo3(signature = (mesh, width, height, method, level, tess, view, up, color_by, cage, background, output=None))]
 // One argument per keyword of the Python `render`.
 #[allow(clippy::too_many_arguments)]
 pub fn render(
@@ -479,13 +495,14 @@ pub fn render(
     width: u32,
     height: u32,
     method: &str,
-    n: usize,
+    level: Option<usize>,
+    tess: Option<usize>,
     view: &str,
     up: &str,
-    colors: &str,
+    color_by: &str,
     cage: bool,
-    background: [u8; 4],
-    path: Option<String>,
+    background: &Bound<'_, PyAny>,
+    output: Option<String>,
 ) -> PyResult<Py<PyAny>> {
     use subsurf_render::{RenderOptions, UpAxis, View};
     if !(1..=16384).contains(&width) || !(1..=16384).contains(&height) {
@@ -493,25 +510,16 @@ pub fn render(
             "size {width}x{height}: 1..=16384 each"
         )));
     }
-    let view = match view {
-        "front" => View::Front,
-        "back" => View::Back,
-        "left" => View::Left,
-        "right" => View::Right,
-        "top" => View::Top,
-        "iso" => View::Iso,
-        s => {
-            return Err(value_error(format!(
-                "view {s:?}: front, back, left, right, top or iso"
-            )))
-        }
+    let view: View = parse(view)?;
+    let up: UpAxis = parse(up)?;
+    // A name or RRGGBB (as `--background`), or (r, g, b, a).
+    let background = match background.extract::<String>() {
+        Ok(name) => subsurf_render::parse_background(&name).map_err(value_error)?,
+        Err(_) => background.extract::<[u8; 4]>().map_err(|_| {
+            value_error("background: a name (white, black, transparent), RRGGBB or (r, g, b, a)")
+        })?,
     };
-    let up = match up {
-        "y" => UpAxis::Y,
-        "z" => UpAxis::Z,
-        s => return Err(value_error(format!("up {s:?}: 'y' or 'z'"))),
-    };
-    let o = surface_options(method, n, colors, cage, 4)?;
+    let o = surface_options(method, level, tess, color_by, cage, 4)?;
     let m = mesh.inner.clone();
     let r = py.detach(move || {
         let s = surface::build(&m, &o, &surface::Cpu).map_err(Err)?;
@@ -525,7 +533,7 @@ pub fn render(
         };
         let img = subsurf_render::render(&s.into(), &options).map_err(|e| Ok((None, e)))?;
         // Encoded by the render crate, as the command line writes its PNG files.
-        if let Some(p) = &path {
+        if let Some(p) = &output {
             img.save_png(p).map_err(|e| Ok((Some(p.clone()), e)))?;
         }
         Ok(img)

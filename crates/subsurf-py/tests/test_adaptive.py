@@ -22,7 +22,7 @@ def test_adaptive_policy_matches_cli(cli, tmp_path, name, flag, kw, value):
     src = SHAPES / f"{name}.obj"
     ref = _cli_mesh(cli, tmp_path, src, flag, value)
     p, n, t = subsurf.tessellate(subsurf.read(src), "limit", **{kw: value})
-    assert np.array_equal(ref.points, p)
+    assert np.array_equal(ref.positions, p)
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
     assert np.allclose(np.linalg.norm(n, axis=1), 1, atol=1e-4)
 
@@ -40,13 +40,13 @@ def test_edge_rates_match_cli_and_stay_watertight(cli, tmp_path):
     f = tmp_path / "rates.txt"
     f.write_text("".join(f"{a} {b} {r}\n" for a, b, r in rows))
     ref = _cli_mesh(cli, tmp_path, src, "--tess", 5, "--edge-rates", f)
-    p, _, t = subsurf.tessellate(mesh, "limit", 5, edge_rates=rows)
-    assert np.array_equal(ref.points, p)
+    p, _, t = subsurf.tessellate(mesh, "limit", tess=5, edge_rates=rows)
+    assert np.array_equal(ref.positions, p)
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
     # A closed cube stays closed with any mix of rates.
     assert _open_edges(t) == 0
     # The uniform surface differs: the rates were applied.
-    assert len(subsurf.tessellate(mesh, "limit", 5)[0]) != len(p)
+    assert len(subsurf.tessellate(mesh, "limit", tess=5)[0]) != len(p)
 
 
 def test_bad_adaptive_arguments_are_value_errors():
@@ -61,7 +61,7 @@ def test_bad_adaptive_arguments_are_value_errors():
         (lambda: subsurf.tessellate(mesh, edge_rates=[[0, 1, 3], [0, 1, 0]]), "edge_rates[1]"),
         (lambda: subsurf.tessellate(mesh, edge_rates=[[0, 1, 5000]]), "4096"),
         (lambda: subsurf.tessellate(mesh, edge_rates=[[0, -1, 3]]), "non-negative"),
-        (lambda: subsurf.tessellate(mesh, "refine", 2, tolerance=1e-3), "method 'limit'"),
+        (lambda: subsurf.tessellate(mesh, "refine", level=2, tolerance=1e-3), "method 'limit'"),
     ]:
         with pytest.raises(ValueError) as e:
             call()
@@ -90,7 +90,7 @@ def test_tolerance_chooses_the_isolation_and_refuses_the_unreachable(cli, tmp_pa
     pawn = subsurf.read(src)
     ref = _cli_mesh(cli, tmp_path, src, "--tolerance", 1e-3)
     p, _, t = subsurf.tessellate(pawn, tolerance=1e-3)
-    assert np.array_equal(ref.points, p)
+    assert np.array_equal(ref.positions, p)
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
     with pytest.raises(ValueError) as e:
         subsurf.tessellate(pawn, tolerance=1e-4)

@@ -25,7 +25,7 @@ def test_refine_matches_cli_file(cli, tmp_path, name, limit):
     cli("refine", src, "--level", level, "-o", drawn, *(["--limit"] if limit else []))
     assert subsurf.read(drawn).faces() == py.without_holes().faces()
     # Same float32 positions (OBJ round-trips float32 exactly), faces and corner UVs.
-    assert np.array_equal(back.points, py.points)
+    assert np.array_equal(back.positions, py.positions)
     # All faces, holes and the remaining sharpness tagged as in the CLI's OBJ.
     assert np.array_equal(back.face_counts, py.face_counts)
     assert np.array_equal(back.face_indices, py.face_indices)
@@ -43,9 +43,9 @@ def test_limit_tessellation_matches_cli(cli, tmp_path, name):
     cli("limit", src, "--tess", 5, "-o", out)
     ref = subsurf.read(out)
     p, n, t = subsurf.LimitSurface(subsurf.read(src)).tessellate(5)
-    assert np.array_equal(ref.points, p)
+    assert np.array_equal(ref.positions, p)
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
-    p2, n2, t2 = subsurf.tessellate(subsurf.read(src), "limit", 5)
+    p2, n2, t2 = subsurf.tessellate(subsurf.read(src), "limit", tess=5)
     assert np.array_equal(p2, p) and np.array_equal(n2, n) and np.array_equal(t2, t)
 
 
@@ -65,7 +65,7 @@ def test_prep_tessellation_matches_cli(cli, tmp_path):
     cli("prep", src, "--tess", 5, "--f64", "-o", out)
     ref = subsurf.read(out)
     p, n, t = subsurf.Prep(subsurf.read(src)).tessellate(5)
-    assert np.array_equal(ref.points, p.astype(np.float32))
+    assert np.array_equal(ref.positions, p.astype(np.float32))
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
 
 
@@ -74,9 +74,9 @@ def test_refiner_reuses_tables_bit_for_bit(name):
     mesh = subsurf.read(SHAPES / f"{name}.obj")
     r = subsurf.Refiner(mesh, 3)
     ref = subsurf.refine(mesh, 3)
-    p = r.refine(mesh.points)
-    assert np.array_equal(p, ref.points)
-    assert np.array_equal(r.limit(p), subsurf.refine(mesh, 3, limit=True).points)
+    p = r.refine(mesh.positions)
+    assert np.array_equal(p, ref.positions)
+    assert np.array_equal(r.limit(p), subsurf.refine(mesh, 3, limit=True).positions)
     assert np.array_equal(r.mesh(p).face_indices, ref.face_indices)
     # Any width: each column refines as positions do (linear, column by column).
     rng = np.random.default_rng(1)
@@ -91,8 +91,8 @@ def test_refiner_reuses_tables_bit_for_bit(name):
     assert len(o) == r.num_vertices + 1 and o[-1] == len(i) == len(wt)
     rows = np.repeat(np.arange(r.num_vertices), np.diff(o.astype(np.int64)))
     via = np.zeros((r.num_vertices, 3))
-    np.add.at(via, rows, wt[:, None].astype(np.float64) * mesh.points[i].astype(np.float64))
-    diag = np.linalg.norm(mesh.points.max(0) - mesh.points.min(0))
+    np.add.at(via, rows, wt[:, None].astype(np.float64) * mesh.positions[i].astype(np.float64))
+    diag = np.linalg.norm(mesh.positions.max(0) - mesh.positions.min(0))
     assert np.abs(via - p).max() < 1e-5 * diag
     assert np.allclose(np.bincount(rows, weights=wt, minlength=r.num_vertices), 1.0, atol=1e-5)
 
@@ -116,14 +116,14 @@ def test_refined_mesh_refines_on_as_the_level():
 
     def hole_centroids(m):
         f = m.face_indices.reshape(-1, 4)  # quads after one step
-        return by_position(m.points[f[m.holes]].mean(axis=1))
+        return by_position(m.positions[f[m.holes]].mean(axis=1))
 
     for name in ("catmark_hole_test2", "catmark_cube_creases1", "catmark_chaikin1"):
         mesh = subsurf.read(SHAPES / f"{name}.obj")
         a = subsurf.refine(subsurf.refine(mesh, 1), 2)
         b = subsurf.refine(mesh, 3)
         assert a.num_faces == b.num_faces and len(a.holes) == len(b.holes), name
-        assert np.allclose(by_position(a.points), by_position(b.points), atol=2e-4), name
+        assert np.allclose(by_position(a.positions), by_position(b.positions), atol=2e-4), name
         assert np.allclose(hole_centroids(a), hole_centroids(b), atol=2e-4), name
 
 
@@ -162,7 +162,7 @@ def test_limit_evaluate_agrees_with_tessellation_and_derivatives():
 
 def test_update_after_deformation_equals_new_surface():
     mesh = subsurf.read(SHAPES / "catmark_pole8.obj")
-    moved = mesh.points * np.float32(2.0) + np.float32(1.0)
+    moved = mesh.positions * np.float32(2.0) + np.float32(1.0)
     s = subsurf.LimitSurface(mesh)
     s.update(moved)
     fresh = subsurf.LimitSurface(subsurf.Mesh(moved, (mesh.face_counts, mesh.face_indices)))
@@ -172,11 +172,11 @@ def test_update_after_deformation_equals_new_surface():
 def test_surface_api_methods():
     mesh = subsurf.read(SHAPES / "catmark_cube.obj")
     for method, n in (("refine", 2), ("limit", 5), ("prep", 5), ("prep-bicubic", 5)):
-        p, nn, t = subsurf.tessellate(mesh, method, n)
+        p, nn, t = subsurf.tessellate(mesh, method, **{"level" if method == "refine" else "tess": n})
         assert p.dtype == np.float32 and t.dtype == np.uint32
         assert t.max() < len(p) and len(nn) == len(p)
         assert np.allclose(np.linalg.norm(nn, axis=1), 1, atol=1e-4)
     # refine: the same vertices as refine()
-    p, _, t = subsurf.tessellate(mesh, "refine", 2)
-    assert np.array_equal(p, subsurf.refine(mesh, 2).points)
+    p, _, t = subsurf.tessellate(mesh, "refine", level=2)
+    assert np.array_equal(p, subsurf.refine(mesh, 2).positions)
     assert len(t) == 2 * subsurf.refine(mesh, 2).num_faces

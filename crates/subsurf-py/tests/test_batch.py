@@ -19,7 +19,7 @@ def test_batch_on_two_workers_equals_serial(tmp_path):
     bad.write_text("v 0 0 0\nf 1 2 3\n")
     files = [str(SHAPES / f"{n}.obj") for n in SHAPE_NAMES] + [str(bad)]
     r = subprocess.run([sys.executable, str(REPO / "examples" / "python" / "batch.py"), *files,
-                        "-o", str(tmp_path / "out"), "--op", "refine", "--n", "2", "--workers", "2"],
+                        "-o", str(tmp_path / "out"), "--method", "refine", "--level", "2", "--workers", "2"],
                        capture_output=True, text=True, timeout=240)
     assert r.returncode == 0, r.stderr
     rows = list(csv.DictReader(open(tmp_path / "out" / "summary.csv")))

@@ -36,7 +36,7 @@ def edited(mesh, creases=None, sharpness=None, corners=None, corner_sharpness=No
             cv.append(int(v))
             cs.append(float(x))
     return subsurf.Mesh(
-        mesh.points, (mesh.face_counts, mesh.face_indices),
+        mesh.positions, (mesh.face_counts, mesh.face_indices),
         creases=np.array(pairs, dtype=np.uint32).reshape(-1, 2), crease_sharpness=np.array(s),
         corners=np.array(cv, dtype=np.uint32), corner_sharpness=np.array(cs),
         holes=mesh.holes, **mesh.options)
@@ -80,7 +80,7 @@ def test_car_own_values_update_in_place_and_follow_new_points():
     mesh = subsurf.read(SHAPES / "catmark_car.obj")
     pairs, own = mesh.creases
     surf = subsurf.LimitSurface(mesh)
-    moved = mesh.points * np.float32(1.25) + np.float32(0.5)
+    moved = mesh.positions * np.float32(1.25) + np.float32(0.5)
     surf.update(moved)
     assert surf.set_sharpness(pairs, 3.5) == "rebuilt"
     assert surf.set_sharpness(pairs, own) == "updated"
@@ -134,7 +134,7 @@ def test_bad_edits_name_the_edit_and_change_nothing():
     with pytest.raises(ValueError):
         surf.set_sharpness([pairs[0]], [1.0, 2.0])
     with pytest.raises(ValueError, match="without creases"):
-        surf.set_sharpness(sharpness=2.0)
+        surf.set_sharpness(crease_sharpness=2.0)
     with pytest.raises(ValueError, match="without corners"):
         surf.set_sharpness(corner_sharpness=[2.0])
     same(surf, ref)
@@ -183,7 +183,7 @@ def test_one_sharpness_value_for_every_tag():
     """One value is every tag's, for a Mesh as for set_sharpness (the shared tag reading)."""
     mesh = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
     pairs, _ = mesh.creases
-    one = subsurf.Mesh(mesh.points, (mesh.face_counts, mesh.face_indices), creases=pairs,
+    one = subsurf.Mesh(mesh.positions, (mesh.face_counts, mesh.face_indices), creases=pairs,
                        crease_sharpness=2.5, corners=[0, 1], corner_sharpness=3.0)
     assert np.array_equal(one.creases[1], np.full(len(pairs), 2.5, dtype=np.float32))
     assert np.array_equal(one.corners[1], np.full(2, 3.0, dtype=np.float32))

@@ -113,8 +113,8 @@ def test_generated_bad_inputs_never_panic():
             continue
         made += 1
         for fn in (lambda: subsurf.refine(m, 2), lambda: subsurf.refine(m, 1, limit=True),
-                   lambda: subsurf.tessellate(m, "limit", 3), lambda: subsurf.tessellate(m, "prep", 3),
-                   lambda: subsurf.tessellate(m, "refine", 1), lambda: subsurf.Prep(m).bezier(),
+                   lambda: subsurf.tessellate(m, "limit", tess=3), lambda: subsurf.tessellate(m, "prep", tess=3),
+                   lambda: subsurf.tessellate(m, "refine", level=1), lambda: subsurf.Prep(m).bezier(),
                    lambda: subsurf.LimitSurface(m).tessellate(3), lambda: subsurf.Refiner(m, 1).stencils()):
             _call(fn)
     assert made >= 3  # the valid combinations went through
@@ -136,7 +136,7 @@ def test_bad_arguments_never_panic():
         lambda: s.evaluate([-1], [0.5], [0.5]), lambda: s.tessellate(0), lambda: s.tessellate(10**7),
         lambda: s.update(np.zeros((3, 3))), lambda: s.update(np.full((8, 3), np.nan)),
         lambda: subsurf.LimitSurface(mesh, isolation=99), lambda: subsurf.tessellate(mesh, "nope"),
-        lambda: subsurf.tessellate(mesh, "limit", 1), lambda: subsurf.Prep(subsurf.read(SHAPES / "catmark_tent.obj")),
+        lambda: subsurf.tessellate(mesh, "limit", tess=1), lambda: subsurf.Prep(subsurf.read(SHAPES / "catmark_tent.obj")),
         lambda: subsurf.Mesh(TRI, QUAD, scheme="loop3"), lambda: subsurf.Mesh(TRI, QUAD, boundary=3),
         lambda: subsurf.Mesh(TRI, QUAD, creases=[[0, 3, 1.0]]), lambda: subsurf.Mesh(TRI, QUAD, creases=[[0, 1, np.nan]]),
         lambda: subsurf.Mesh(TRI, QUAD, creases=[[0, 9]], crease_sharpness=[1.0]),

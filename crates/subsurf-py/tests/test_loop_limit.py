@@ -32,10 +32,10 @@ def test_loop_tessellation_matches_cli(cli, tmp_path, name):
     s = subsurf.LimitSurface(subsurf.read(src))
     assert s.domain == "triangle"
     p, n, t = s.tessellate(5)
-    assert np.array_equal(ref.points, p)
+    assert np.array_equal(ref.positions, p)
     assert np.array_equal(ref.face_indices.reshape(-1, 3), t)
     # The surface API builds the same triangles.
-    p2, n2, t2 = subsurf.tessellate(subsurf.read(src), "limit", 5)
+    p2, n2, t2 = subsurf.tessellate(subsurf.read(src), "limit", tess=5)
     assert np.array_equal(p2, p) and np.array_equal(n2, n) and np.array_equal(t2, t)
 
 
@@ -75,7 +75,7 @@ def test_loop_derivatives_are_the_slopes_of_the_points():
 
 def test_loop_update_equals_a_fresh_surface():
     mesh = subsurf.read(SHAPES / "loop_cube_creases1.obj")
-    moved = mesh.points * np.float32(1.5) + np.float32(0.25)
+    moved = mesh.positions * np.float32(1.5) + np.float32(0.25)
     s = subsurf.LimitSurface(mesh)
     s.update(moved)
     edges, sharpness = mesh.creases

@@ -15,12 +15,12 @@ def rss_bytes():
 def test_refine_does_not_leak():
     car = subsurf.read(CAR)
     for _ in range(50):  # allocator warm-up
-        subsurf.refine(car, 1).points
+        subsurf.refine(car, 1).positions
     gc.collect()
     before = rss_bytes()
     for _ in range(2000):
         m = subsurf.refine(car, 1)
-        m.points, m.face_indices
+        m.positions, m.face_indices
     del m
     gc.collect()
     grown = rss_bytes() - before

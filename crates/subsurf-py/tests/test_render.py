@@ -10,7 +10,7 @@ from conftest import SHAPES
 def test_render_shows_the_surface(tmp_path):
     m = subsurf.read(SHAPES / "catmark_cube.obj")
     try:
-        img = subsurf.render(m, size=(64, 48), method="limit", n=5, path=tmp_path / "c.png")
+        img = subsurf.render(m, size=(64, 48), method="limit", tess=5, output=tmp_path / "c.png")
     except subsurf.GpuError as e:
         pytest.skip(f"SKIPPED: no GPU adapter ({e})")
     assert img.shape == (48, 64, 4) and img.dtype == np.uint8
@@ -35,7 +35,7 @@ def test_a_headless_render_prints_no_error_line():
     code = ("import subsurf\n"
             f"m = subsurf.read({str(SHAPES / 'catmark_cube.obj')!r})\n"
             "try:\n"
-            "    subsurf.render(m, size=(32, 24), method='refine', n=1)\n"
+            "    subsurf.render(m, size=(32, 24), method='refine', level=1)\n"
             "except subsurf.GpuError:\n"
             "    print('no adapter')\n")
     r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True,

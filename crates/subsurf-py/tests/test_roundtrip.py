@@ -14,7 +14,7 @@ def test_face_layouts_agree():
     b = subsurf.Mesh(pts, (np.array([4, 3]), np.array([0, 1, 2, 3, 1, 4, 2])))
     c = subsurf.Mesh(pts.astype(np.float32), np.array([[0, 1, 2, 3]]))
     assert np.array_equal(a.face_counts, b.face_counts) and np.array_equal(a.face_indices, b.face_indices)
-    assert a.points.dtype == np.float32 and np.array_equal(a.points, pts.astype(np.float32))
+    assert a.positions.dtype == np.float32 and np.array_equal(a.positions, pts.astype(np.float32))
     assert c.num_faces == 1 and c.num_vertices == 5
     assert a.faces() == [[0, 1, 2, 3], [1, 4, 2]]
 
@@ -22,11 +22,11 @@ def test_face_layouts_agree():
 def test_crease_forms_agree():
     m = subsurf.read(SHAPES / "catmark_cube_creases1.obj")
     pairs, sharp = m.creases
-    a = subsurf.Mesh(m.points, (m.face_counts, m.face_indices), creases=pairs, crease_sharpness=sharp)
-    b = subsurf.Mesh(m.points, (m.face_counts, m.face_indices),
+    a = subsurf.Mesh(m.positions, (m.face_counts, m.face_indices), creases=pairs, crease_sharpness=sharp)
+    b = subsurf.Mesh(m.positions, (m.face_counts, m.face_indices),
                      creases=np.column_stack([pairs, sharp.astype(np.float64)]))
-    assert np.array_equal(subsurf.refine(a, 2).points, subsurf.refine(m, 2).points)
-    assert np.array_equal(subsurf.refine(b, 2).points, subsurf.refine(m, 2).points)
+    assert np.array_equal(subsurf.refine(a, 2).positions, subsurf.refine(m, 2).positions)
+    assert np.array_equal(subsurf.refine(b, 2).positions, subsurf.refine(m, 2).positions)
 
 
 @pytest.mark.parametrize("ext", ["obj", "ply", "usda"])
@@ -38,7 +38,7 @@ def test_file_round_trip(tmp_path, ext, name):
     # draw them closed), every vertex kept.
     m.write(p)
     back = subsurf.read(p)
-    assert np.array_equal(back.points, m.points)
+    assert np.array_equal(back.positions, m.positions)
     holes = set(m.holes.tolist())
     assert back.faces() == [f for k, f in enumerate(m.faces()) if k not in holes]
     assert len(back.holes) == 0
@@ -54,7 +54,7 @@ def test_file_round_trip(tmp_path, ext, name):
     assert np.array_equal(back.face_indices, m.face_indices)
     assert np.array_equal(back.creases[1], m.creases[1])
     assert np.array_equal(back.holes, m.holes)
-    assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+    assert np.array_equal(subsurf.refine(back, 2).positions, subsurf.refine(m, 2).positions)
 
 
 def test_trimesh_leaves_holes_out():
@@ -82,23 +82,23 @@ def test_trimesh_round_trip():
     t = r.to_trimesh()
     assert isinstance(t, trimesh.Trimesh)
     assert len(t.faces) == r.num_faces * 2  # quads split in two
-    assert np.allclose(t.vertices, r.points)
+    assert np.allclose(t.vertices, r.positions)
     back = subsurf.Mesh.from_trimesh(t)
-    assert np.array_equal(back.points, r.points)
+    assert np.array_equal(back.positions, r.positions)
     # A closed surface stays closed; the subdivided box shrinks inside the box.
     assert t.is_watertight and np.all(np.abs(t.vertices) <= 0.5 + 1e-6)
 
 
 def test_outputs_own_their_buffers_and_inputs_are_not_copied():
     m = subsurf.read(SHAPES / "catmark_cube.obj")
-    p = subsurf.refine(m, 2).points
+    p = subsurf.refine(m, 2).positions
     assert p.flags.c_contiguous and p.flags.writeable
     # The array views the Rust-allocated buffer (the numpy crate's owner object as base),
     # not a numpy copy of it.
     assert p.base is not None and not isinstance(p.base, np.ndarray)
     assert type(p.base).__name__ == "PySliceContainer"
     # Inputs already float32 and C-contiguous are passed through without a copy.
-    x = np.ascontiguousarray(m.points)
+    x = np.ascontiguousarray(m.positions)
     assert np.asarray(x, dtype=np.float32) is x
 
 
@@ -112,12 +112,12 @@ def test_usd_round_trip_and_errors(tmp_path):
     p = tmp_path / "cube.usda"
     m.write(p)
     back = subsurf.read(p)
-    assert np.array_equal(back.points, m.points)
+    assert np.array_equal(back.positions, m.positions)
     assert np.array_equal(back.face_indices, m.face_indices)
-    assert np.array_equal(subsurf.refine(back, 2).points, subsurf.refine(m, 2).points)
+    assert np.array_equal(subsurf.refine(back, 2).positions, subsurf.refine(m, 2).positions)
     stage = Usd.Stage.Open(str(p))
     mesh = [UsdGeom.Mesh(x) for x in stage.Traverse() if x.IsA(UsdGeom.Mesh)][0]
-    assert np.allclose(np.array(mesh.GetPointsAttr().Get()), m.points)
+    assert np.allclose(np.array(mesh.GetPointsAttr().Get()), m.positions)
     text = p.read_text().replace("faceVertexIndices = [0,", "faceVertexIndices = [99,", 1)
     text = text.replace("faceVertexIndices = [0, ", "faceVertexIndices = [99, ", 1)
     bad = tmp_path / "bad.usda"

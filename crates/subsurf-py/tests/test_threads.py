@@ -45,17 +45,17 @@ def test_shared_objects_across_threads_give_identical_results():
     car = subsurf.read(CAR)
     r = subsurf.Refiner(car, 2)
     s = subsurf.LimitSurface(car)
-    ref_p = r.refine(car.points)
+    ref_p = r.refine(car.positions)
     ref_t = s.tessellate(3)[0]
     rng = np.random.default_rng(0)
-    frames = [car.points + rng.normal(0, 0.01, car.points.shape).astype(np.float32) for _ in range(8)]
+    frames = [car.positions + rng.normal(0, 0.01, car.positions.shape).astype(np.float32) for _ in range(8)]
     serial = [r.refine(f) for f in frames]
 
     def job(k):
         out = r.refine(frames[k % 8])
         assert np.array_equal(out, serial[k % 8])
         assert np.array_equal(s.tessellate(3)[0], ref_t)
-        assert np.array_equal(subsurf.refine(car, 2).points, ref_p)
+        assert np.array_equal(subsurf.refine(car, 2).positions, ref_p)
         return k
 
     with ThreadPoolExecutor(4) as ex:

@@ -160,6 +160,58 @@ pub enum Fit {
     Tight,
 }
 
+// One name per value, for every front end (`--view`, `view=`; `docs/vocabulary.md`).
+subsurf::option_value!(View, "view", {
+    Front => "front",
+    Back => "back",
+    Left => "left",
+    Right => "right",
+    Top => "top",
+    Iso => "iso",
+});
+
+subsurf::option_value!(UpAxis, "up", {
+    Y => "y",
+    Z => "z",
+});
+
+subsurf::option_value!(Fit, "fit", {
+    Tight => "tight",
+    Sphere => "sphere",
+});
+
+/// The named backgrounds, sRGB + alpha.
+pub const BACKGROUNDS: [(&str, [u8; 4]); 3] = [
+    ("white", [255, 255, 255, 255]),
+    ("black", [0, 0, 0, 255]),
+    ("transparent", [255, 255, 255, 0]),
+];
+
+/// A background: a name of [`BACKGROUNDS`] (any case) or `RRGGBB` (an optional `#` first),
+/// as `--background` and `background=` take it.
+pub fn parse_background(s: &str) -> Result<[u8; 4], String> {
+    if let Some((_, c)) = BACKGROUNDS
+        .iter()
+        .find(|(name, _)| name.eq_ignore_ascii_case(s))
+    {
+        return Ok(*c);
+    }
+    // The older spelling of transparent, still read.
+    if s.eq_ignore_ascii_case("none") {
+        return Ok(BACKGROUNDS[2].1);
+    }
+    let hex = s.strip_prefix('#').unwrap_or(s);
+    if hex.len() != 6 || !hex.chars().all(|c| c.is_ascii_hexdigit()) {
+        let names: Vec<&str> = BACKGROUNDS.iter().map(|(n, _)| *n).collect();
+        return Err(format!(
+            "background {s:?}: use {} or RRGGBB",
+            names.join(", ")
+        ));
+    }
+    let byte = |i: usize| u8::from_str_radix(&hex[i..i + 2], 16).map_err(|e| e.to_string());
+    Ok([byte(0)?, byte(2)?, byte(4)?, 255])
+}
+
 /// How to render.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RenderOptions {
@@ -262,4 +314,38 @@ pub fn render_with(
         .ok_or_else(|| RenderError::InvalidMesh("nothing to draw".into()))?;
     let vertices = prepare::surface_vertices(mesh, options);
     gpu_pass::draw(gpu, &vertices, &mesh.lines, &camera, options)
+}
+
+#[cfg(test)]
+mod vocabulary_tests {
+    use super::*;
+    use subsurf::options::OptionValue;
+
+    fn round_trip<T: OptionValue + std::fmt::Display + std::str::FromStr>()
+    where
+        T::Err: std::fmt::Display + std::fmt::Debug,
+    {
+        for &v in T::ALL {
+            let back = v.to_string().parse::<T>().ok();
+            assert_eq!(back, Some(v));
+        }
+        let e = "nope".parse::<T>().expect_err("refused").to_string();
+        assert!(T::names().all(|n| e.contains(n)), "{e}");
+    }
+
+    #[test]
+    fn options_round_trip() {
+        round_trip::<View>();
+        round_trip::<UpAxis>();
+        round_trip::<Fit>();
+    }
+
+    #[test]
+    fn backgrounds() {
+        assert_eq!(parse_background("White"), Ok([255, 255, 255, 255]));
+        assert_eq!(parse_background("#ff8000"), Ok([255, 128, 0, 255]));
+        assert!(parse_background("grey")
+            .unwrap_err()
+            .contains("transparent"));
+    }
 }

@@ -195,7 +195,7 @@ fn facevarying_boundary_tag_follows_opensubdiv() {
     // catmark_cubes_infsharp carries `t facevaryinginterpolateboundary 1/0/0 1`.
     let mesh = obj::read_file(common::shape_path("catmark_cubes_infsharp")).unwrap();
     assert_eq!(
-        mesh.options.fvar_interpolation,
+        mesh.options.uv_interpolation,
         FVarLinearInterpolation::CornersOnly
     );
     let expected = [
@@ -208,7 +208,7 @@ fn facevarying_boundary_tag_follows_opensubdiv() {
     ];
     for (k, want) in expected.iter().enumerate() {
         let text = format!("v 0 0 0\nt facevaryinginterpolateboundary 1/0/0 {k}\n");
-        assert_eq!(obj::read(&text).unwrap().options.fvar_interpolation, *want);
+        assert_eq!(obj::read(&text).unwrap().options.uv_interpolation, *want);
     }
     let m = obj::read("t facevaryingpropagatecorners 1/0/0 1\n").unwrap();
     assert!(m.options.fvar_propagate_corners);
@@ -447,7 +447,12 @@ fn malformed_tag() {
     assert_parse_error(
         &format!("{SQUARE}t creasemethod 0/0/1 wavy\n"),
         5,
-        "unknown method",
+        "unknown value 'wavy' (expected normal, uniform, chaikin)",
+    );
+    assert_parse_error(
+        &format!("{SQUARE}t smoothtriangles 0/0/1 wavy\n"),
+        5,
+        "(expected catmark, smooth)",
     );
     assert_parse_error(&format!("{SQUARE}t sharpen 1/0/0 1\n"), 5, "unknown tag");
     assert_parse_error(

@@ -122,7 +122,7 @@ fn option_names(m: &Mesh, subdivide: bool) -> [&'static str; 4] {
             BoundaryInterpolation::EdgeOnly => "edgeOnly",
             BoundaryInterpolation::EdgeAndCorner => "edgeAndCorner",
         },
-        match o.fvar_interpolation {
+        match o.uv_interpolation {
             FVarLinearInterpolation::None => "none",
             FVarLinearInterpolation::CornersOnly => "cornersOnly",
             FVarLinearInterpolation::CornersPlus1 => "cornersPlus1",
@@ -285,11 +285,7 @@ fn refine(mesh: &Mesh, level: usize) -> Mesh {
     let mut out = r.to_tagged_mesh(level, positions).unwrap();
     if let Some(fv) = &mesh.uvs {
         let fvar = r
-            .fvar_refinement(
-                &fv.indices,
-                fv.values.len(),
-                mesh.options.fvar_interpolation,
-            )
+            .fvar_refinement(&fv.indices, fv.values.len(), mesh.options.uv_interpolation)
             .unwrap();
         out.uvs = fvar.refine(&fv.values).unwrap().pop();
     }

@@ -8,6 +8,8 @@ state atomically) and safe to share between threads. Floating-point work is done
 
 from __future__ import annotations
 
+import functools as _functools
+import inspect as _inspect
 import typing as _typing
 
 import numpy as _np
@@ -27,6 +29,37 @@ __all__ = [
 __version__ = "0.1.0"
 
 _U32_MAX = 2**32 - 1
+
+# Keywords renamed for one vocabulary (docs/vocabulary.md): named in the error an old
+# spelling raises, never accepted silently.
+_RENAMED = {
+    "n": "tess (samples per side) or level (method 'refine')",
+    "points": "positions",
+    "triangles": "triangle_subdivision",
+    "colors": "color_by",
+    "sharpness": "crease_sharpness",
+    "path": "output",
+}
+
+
+def _keywords(f: Any) -> Any:
+    """``f`` refusing an unknown keyword with a ``TypeError`` that names it, the new name of a
+    renamed one and the accepted keywords (``inspect.signature`` still shows ``f``'s)."""
+    params = _inspect.signature(f).parameters.values()
+    accepted = tuple(p.name for p in params if p.name != "self"
+                     and p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY))
+    name = f.__qualname__.replace(".__init__", "")
+
+    @_functools.wraps(f)
+    def checked(*args: Any, **kwargs: Any) -> Any:
+        for k in kwargs:
+            if k not in accepted:
+                renamed = f" (renamed: use {_RENAMED[k]})" if k in _RENAMED else ""
+                raise TypeError(f"{name}() got an unknown keyword argument {k!r}{renamed}; "
+                                f"accepted: {', '.join(accepted)}")
+        return f(*args, **kwargs)
+
+    return checked
 
 
 def _floats(a: Any, cols: int, what: str) -> _np.ndarray:
@@ -128,7 +161,7 @@ class Mesh:
 
     Parameters
     ----------
-    points : (n, 3) float array (float32 or float64; computed in float32)
+    positions : (n, 3) float array of vertex positions (float32 or float64; computed in float32)
     faces : (m, k) integer array, list of index lists, or ``(counts, indices)`` as USD stores them
     creases : (c, 2) vertex pairs with ``crease_sharpness`` (c,) or one value for all, or one
         (c, 3) array; sharpness 10 or more is infinitely sharp
@@ -138,20 +171,24 @@ class Mesh:
     scheme : "catmark" | "bilinear" | "loop" (Loop: triangles only)
     boundary : "none" | "edge-only" | "edge-and-corner"
     crease_method : "uniform" | "chaikin"
-    triangles : "catmark" | "smooth"
+    triangle_subdivision : "catmark" | "smooth" (the Catmull-Clark triangle rule)
     uv_interpolation : "none" | "corners-only" | "corners-plus1" | "corners-plus2" | "boundaries" | "linear"
+
+    The names are those of the command line (``--scheme``, ``--boundary``, ...); see
+    ``docs/vocabulary.md``. An unknown value raises ``ValueError`` listing the accepted ones.
 
     Raises ``MeshError`` (with ``.face``, ``.corner``, ``.vertex``) on bad content.
     """
 
     __slots__ = ("_m",)
 
-    def __init__(self, points: Any, faces: Any, *, creases: Any = None, crease_sharpness: Any = None,
+    @_keywords
+    def __init__(self, positions: Any, faces: Any, *, creases: Any = None, crease_sharpness: Any = None,
                  corners: Any = None, corner_sharpness: Any = None, holes: Any = None,
                  uvs: Any = None, uv_indices: Any = None, scheme: str = "catmark",
                  boundary: str = "edge-only", crease_method: str = "uniform",
-                 triangles: str = "catmark", uv_interpolation: str = "linear") -> None:
-        p = _floats(points, 3, "points")
+                 triangle_subdivision: str = "catmark", uv_interpolation: str = "linear") -> None:
+        p = _floats(positions, 3, "positions")
         counts, idx = _faces(faces)
         cp, cs = _tags(creases, crease_sharpness, 2, "creases")
         cv, csh = _tags(corners, corner_sharpness, 1, "corners")
@@ -159,11 +196,12 @@ class Mesh:
         uv = None if uvs is None else _floats(uvs, 2, "uvs")
         ui = None if uv_indices is None else _indices(uv_indices, "uv_indices")
         for name, v in (("scheme", scheme), ("boundary", boundary), ("crease_method", crease_method),
-                        ("triangles", triangles), ("uv_interpolation", uv_interpolation)):
+                        ("triangle_subdivision", triangle_subdivision),
+                        ("uv_interpolation", uv_interpolation)):
             if not isinstance(v, str):
                 raise ValueError(f"{name}: expected a string, got {type(v).__name__}")
         self._m = _subsurf._Mesh(p, counts, idx, cp.reshape(-1, 2), cs, cv.reshape(-1), csh, h, uv, ui,
-                                 scheme, boundary, crease_method, triangles, uv_interpolation)
+                                 scheme, boundary, crease_method, triangle_subdivision, uv_interpolation)
 
     @classmethod
     def _wrap(cls, m: Any) -> "Mesh":
@@ -171,7 +209,13 @@ class Mesh:
         obj._m = m
         return obj
 
-    points = property(lambda self: self._m.points, doc="(n, 3) float32 vertex positions")
+    positions = property(lambda self: self._m.positions, doc="(n, 3) float32 vertex positions")
+
+    @property
+    def points(self) -> Any:
+        """Renamed ``positions`` (docs/vocabulary.md)."""
+        raise AttributeError("Mesh.points was renamed Mesh.positions (docs/vocabulary.md)")
+
     face_counts = property(lambda self: self._m.face_counts, doc="(m,) uint32 corners per face")
     face_indices = property(lambda self: self._m.face_indices, doc="uint32 vertex of every face corner")
     uvs = property(lambda self: self._m.uvs, doc="(u, 2) float32 UVs or None")
@@ -185,7 +229,7 @@ class Mesh:
     @property
     def options(self) -> dict:
         """Scheme options as the constructor's keyword arguments."""
-        keys = ("scheme", "boundary", "crease_method", "triangles", "uv_interpolation")
+        keys = ("scheme", "boundary", "crease_method", "triangle_subdivision", "uv_interpolation")
         return dict(zip(keys, self._m.options))
 
     def faces(self) -> list:
@@ -197,6 +241,7 @@ class Mesh:
             s += c
         return out
 
+    @_keywords
     def write(self, path: Union[str, "os.PathLike[str]"], normals: Any = None, *,
               keep_holes: bool = False) -> None:
         """Writes the mesh: .obj (with OpenSubdiv tags), .ply, .glb or USD, by extension.
@@ -219,8 +264,9 @@ class Mesh:
         return _np.array(tris, dtype=_np.uint32).reshape(-1, 3)
 
     @classmethod
-    def from_trimesh(cls, t: Any, **kwargs: Any) -> "Mesh":
-        """A mesh from a ``trimesh.Trimesh`` (vertices, faces, and UVs when it has them)."""
+    def from_trimesh(cls, t: Any, /, **kwargs: Any) -> "Mesh":
+        """A mesh from a ``trimesh.Trimesh`` (vertices, faces, and UVs when it has them);
+        ``kwargs`` are the keywords of ``Mesh``."""
         uv = getattr(getattr(t, "visual", None), "uv", None)
         if uv is not None and len(uv) == len(t.vertices):
             kwargs.setdefault("uvs", uv)
@@ -231,7 +277,7 @@ class Mesh:
         merged)."""
         import trimesh
 
-        return trimesh.Trimesh(vertices=self.points.astype(_np.float64),
+        return trimesh.Trimesh(vertices=self.positions.astype(_np.float64),
                                faces=self.without_holes().triangles(),
                                process=False, **kwargs)
 
@@ -239,6 +285,7 @@ class Mesh:
         return f"subsurf.Mesh({self.num_vertices} vertices, {self.num_faces} faces)"
 
 
+@_keywords
 def read(path: Union[str, "os.PathLike[str]"]) -> Mesh:
     """Reads a mesh file by extension: .obj (v, vt, f, OpenSubdiv's ``t`` tags), .ply (ASCII
     or binary), .glb / .gltf, or a USD stage (.usda, .usdc, .usd, .usdz; its one mesh prim).
@@ -261,6 +308,7 @@ def _int(v: Any, what: str, lo: int = 0) -> int:
     return v
 
 
+@_keywords
 def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu") -> Mesh:
     """Uniform refinement ``level`` times (vertex order as OpenSubdiv: children of vertices,
     face points, edge points). ``limit=True`` moves the last level and its UVs to the limit.
@@ -282,12 +330,13 @@ class Refiner:
     ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32.
     ``limit(values)``: (n_last, d) last-level data -> its limit.
     ``refine_uvs(uvs, uv_indices=None)``: -> (values, per-corner indices) of the last level.
-    ``mesh(points)``: the refined ``Mesh`` with these positions.
+    ``mesh(positions)``: the refined ``Mesh`` with these positions.
     ``stencils()``: ``(offsets, indices, weights)`` CSR rows, base -> last level.
     """
 
     __slots__ = ("_r", "_mesh", "level")
 
+    @_keywords
     def __init__(self, mesh: Mesh, level: int) -> None:
         self._mesh = mesh
         self.level = _int(level, "level")
@@ -298,27 +347,31 @@ class Refiner:
         """Vertices of the last level."""
         return self._r.num_vertices
 
+    @_keywords
     def refine(self, values: Any) -> _np.ndarray:
         """(n_base, d) float data -> (n_last, d) float32."""
         v = _np.asarray(values)
         one = v.ndim == 1
         return self._r.refine(_floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values"))
 
+    @_keywords
     def limit(self, values: Any) -> _np.ndarray:
         """(n_last, d) last-level data -> limit values (n_last, d) float32."""
         v = _np.asarray(values)
         return self._r.limit(_floats(v, v.shape[1] if v.ndim == 2 else 1, "values"))
 
+    @_keywords
     def refine_uvs(self, uvs: Any, uv_indices: Any = None) -> Tuple[_np.ndarray, _np.ndarray]:
         """Face-varying (u, 2) UVs with one index per base face corner (default the face
         indices) -> the last level's (values, indices), in the mesh's interpolation mode."""
         idx = self._mesh.face_indices if uv_indices is None else _indices(uv_indices, "uv_indices")
         return self._r.refine_uvs(_floats(uvs, 2, "uvs"), idx)
 
-    def mesh(self, points: Any) -> Mesh:
+    @_keywords
+    def mesh(self, positions: Any) -> Mesh:
         """The refined mesh (every face, holes and remaining sharpness tagged, as ``refine``)
-        with ``points`` (n_last, 3) as positions."""
-        return Mesh._wrap(self._r.mesh(_floats(points, 3, "points")))
+        with ``positions`` (n_last, 3)."""
+        return Mesh._wrap(self._r.mesh(_floats(positions, 3, "positions")))
 
     def stencils(self) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """(offsets (n_last + 1,) uint32, indices uint32, weights float32): row i of the last
@@ -341,10 +394,10 @@ class LimitSurface:
     triangles, parameters ``u, v >= 0, u + v <= 1``, evaluated in float64 (``domain`` says
     which: ``"square"`` or ``"triangle"``).
 
-    ``evaluate(faces, u, v)`` -> (points, du, dv), each (k, 3), NaN at holes.
-    ``tessellate(n)`` -> (points, normals, triangles), ``n`` samples per face side.
-    ``update(points)``: new control points (same count), e.g. after a deformation.
-    ``set_sharpness(creases, sharpness, corners=, corner_sharpness=)``: live crease edits
+    ``evaluate(faces, u, v)`` -> (positions, du, dv), each (k, 3), NaN at holes.
+    ``tessellate(tess)`` -> (positions, normals, triangles), ``tess`` samples per face side.
+    ``update(positions)``: new control points (same count), e.g. after a deformation.
+    ``set_sharpness(creases, crease_sharpness, corners=, corner_sharpness=)``: live crease edits
     (Catmull-Clark and bilinear meshes). With ``editable=True`` the patch table keeps its
     refinement levels from the start (about 3x its memory), so that the first edit that keeps
     the isolation structure is made in place as the later ones are; otherwise the first edit
@@ -353,6 +406,7 @@ class LimitSurface:
 
     __slots__ = ("_s",)
 
+    @_keywords
     def __init__(self, mesh: Mesh, isolation: int = 4, editable: bool = False) -> None:
         if not isinstance(editable, (bool, _np.bool_)):
             raise TypeError(f"editable: expected a bool, got {type(editable).__name__}")
@@ -369,26 +423,31 @@ class LimitSurface:
         """``"square"`` (ptex faces, [0, 1]^2) or ``"triangle"`` (Loop, u + v <= 1)."""
         return self._s.domain
 
+    @_keywords
     def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
-        """Points and first derivatives at (face, u, v), vectorized."""
+        """Positions and first derivatives at (face, u, v), vectorized."""
         f = _indices(faces, "faces")
         uu = _np.ascontiguousarray(_np.asarray(u, dtype=_np.float64).reshape(-1))
         vv = _np.ascontiguousarray(_np.asarray(v, dtype=_np.float64).reshape(-1))
         return self._s.evaluate(f, uu, vv)
 
-    def tessellate(self, n: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
-        """Watertight (points (p, 3) float32, unit normals (p, 3), triangles (t, 3) uint32)."""
-        return self._s.tessellate(_int(n, "n"))
+    @_keywords
+    def tessellate(self, tess: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
+        """Watertight (positions (p, 3) float32, unit normals (p, 3), triangles (t, 3) uint32),
+        ``tess`` samples per side of every ptex face (Loop: of every base triangle)."""
+        return self._s.tessellate(_int(tess, "tess"))
 
-    def update(self, points: Any) -> None:
+    @_keywords
+    def update(self, positions: Any) -> None:
         """Replaces the control points (the patch table is kept)."""
-        self._s.update(_floats(points, 3, "points"))
+        self._s.update(_floats(positions, 3, "positions"))
 
-    def set_sharpness(self, creases: Any = None, sharpness: Any = None, *, corners: Any = None,
-                      corner_sharpness: Any = None) -> str:
+    @_keywords
+    def set_sharpness(self, creases: Any = None, crease_sharpness: Any = None, *,
+                      corners: Any = None, corner_sharpness: Any = None) -> str:
         """New crease sharpness for base edges and corner sharpness for base vertices, as
-        ``Mesh`` takes them (``creases``: (c, 2) vertex pairs with ``sharpness`` (c,) or one
-        value for all, or one (c, 3) array; ``corners``: (c,) vertices with
+        ``Mesh`` takes them (``creases``: (c, 2) vertex pairs with ``crease_sharpness`` (c,) or
+        one value for all, or one (c, 3) array; ``corners``: (c,) vertices with
         ``corner_sharpness`` ((c,) or one value), or one (c, 2) array; 0 smooth, 10 or more
         infinitely sharp), later entries of the same element winning. The patch table is updated in place where
         its isolation structure is kept and rebuilt otherwise (from the first isolation level
@@ -401,11 +460,11 @@ class LimitSurface:
         index: creases first, then corners) and the surface is left as it was. A Loop
         surface raises ``UnsupportedError``.
         """
-        if creases is None and sharpness is not None:
-            raise ValueError("sharpness without creases")
+        if creases is None and crease_sharpness is not None:
+            raise ValueError("crease_sharpness without creases")
         if corners is None and corner_sharpness is not None:
             raise ValueError("corner_sharpness without corners")
-        cp, cs = _tags(creases, sharpness, 2, "creases")
+        cp, cs = _tags(creases, crease_sharpness, 2, "creases")
         cv, csh = _tags(corners, corner_sharpness, 1, "corners")
         return self._s.set_sharpness(cp.reshape(-1, 2), cs, cv.reshape(-1), csh)
 
@@ -415,11 +474,13 @@ class Prep:
     one bi-3 patch per quad plus a bi-5 perturbation near non-4-valent vertices (G1).
 
     ``bezier()`` -> (faces, 6, 6, 3) float64 Bezier control points.
-    ``tessellate(n)`` -> (points, normals, triangles) float64, ``n`` samples per patch side.
+    ``tessellate(tess)`` -> (positions, normals, triangles) float64, ``tess`` samples per
+    patch side.
     """
 
     __slots__ = ("_p",)
 
+    @_keywords
     def __init__(self, mesh: Mesh) -> None:
         self._p = _subsurf._Prep(_mesh(mesh))
 
@@ -432,30 +493,38 @@ class Prep:
         """(faces, 6, 6, 3) float64 bi-5 Bezier control points."""
         return self._p.bezier()
 
-    def tessellate(self, n: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
-        """Watertight (points, normals, triangles), bit-identical along shared edges."""
-        return self._p.tessellate(_int(n, "n"))
+    @_keywords
+    def tessellate(self, tess: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
+        """Watertight (positions, normals, triangles), ``tess`` samples per patch side,
+        bit-identical along shared edges."""
+        return self._p.tessellate(_int(tess, "tess"))
 
 
-def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cpu",
-               isolation: int = 4, *, tolerance: Optional[float] = None,
-               max_edge_length: Optional[float] = None,
+@_keywords
+def tessellate(mesh: Mesh, method: str = "limit", *, level: Optional[int] = None,
+               tess: Optional[int] = None, backend: str = "cpu", isolation: int = 4,
+               tolerance: Optional[float] = None, max_edge_length: Optional[float] = None,
                edge_rates: Any = None) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
-    """The surface API: ``(points (p, 3) float32, unit normals (p, 3) float32, triangles
+    """The surface API: ``(positions (p, 3) float32, unit normals (p, 3) float32, triangles
     (t, 3) uint32)``.
 
-    method : "refine" (``n`` = level, fan-triangulated, Newell normals), "limit" (``n``
-        samples per ptex-face side), "prep" (``n`` samples per patch side; one Catmull-Clark
-        step first for non-quad meshes) or "prep-bicubic" (without the perturbation)
-    n : level (refine) or samples per side (limit, prep), an integer
+    method : "refine" (uniform refinement to ``level``, fan-triangulated, Newell normals),
+        "limit" (``tess`` samples per ptex-face side), "prep" (``tess`` samples per patch
+        side; one Catmull-Clark step first for non-quad meshes) or "prep-bicubic" (without
+        the perturbation)
+    level : refinement level (method "refine", default 3)
+    tess : samples per side (methods "limit", "prep", "prep-bicubic", default 8)
     backend : "cpu" or "gpu"
     isolation : levels of feature-adaptive isolation of the limit patches (0..=10, default 4)
+
+    As ``subsurf render --method M --level L / --tess N``: ``level`` with another method, or
+    ``tess`` with "refine", raises ``ValueError``.
 
     Adaptive per-edge rates (method "limit", Catmull-Clark and bilinear meshes; at most one,
     watertight with any mix of rates): ``tolerance`` (chordal error as a fraction of the
     bounding-box diagonal), ``max_edge_length`` (world units) or ``edge_rates`` ((k, 3)
     integers ``v0 v1 rate``: the base edge joining v0 and v1 gets ``rate`` segments, 1..=4096;
-    unlisted edges get ``n - 1``), as ``subsurf limit --tolerance / --max-edge-length /
+    unlisted edges get ``tess - 1``), as ``subsurf limit --tolerance / --max-edge-length /
     --edge-rates``.
     """
     rates = None
@@ -464,36 +533,45 @@ def tessellate(mesh: Mesh, method: str = "limit", n: int = 8, backend: str = "cp
         if (rates < 0).any():
             raise ValueError("edge_rates: vertex indices and rates must be non-negative")
         rates = rates.astype(_np.uint64)
-    return _subsurf.tessellate(_mesh(mesh), method, _int(n, "n"), backend, _int(isolation, "isolation"),
+    return _subsurf.tessellate(_mesh(mesh), method,
+                               level=None if level is None else _int(level, "level"),
+                               tess=None if tess is None else _int(tess, "tess"),
+                               backend=backend, isolation=_int(isolation, "isolation"),
                                tolerance=None if tolerance is None else float(tolerance),
                                max_edge_length=None if max_edge_length is None else float(max_edge_length),
                                edge_rates=rates)
 
 
-_BACKGROUNDS = {"white": (255, 255, 255, 255), "black": (0, 0, 0, 255), "transparent": (255, 255, 255, 0)}
-
-
-def render(mesh: Mesh, size: Tuple[int, int] = (800, 600), method: str = "limit", n: Optional[int] = None,
-           view: str = "iso", up: str = "y", colors: str = "none", cage: bool = False,
-           background: Union[str, Sequence[int]] = "white", path: Optional[str] = None) -> _np.ndarray:
+@_keywords
+def render(mesh: Mesh, size: Tuple[int, int] = (800, 600), method: str = "limit", *,
+           level: Optional[int] = None, tess: Optional[int] = None, view: str = "iso",
+           up: str = "y", color_by: str = "none", cage: bool = False,
+           background: Union[str, Sequence[int]] = "white",
+           output: Optional[Union[str, "os.PathLike[str]"]] = None) -> _np.ndarray:
     """A headless render (wgpu; lavapipe without a GPU): ``(height, width, 4)`` uint8 RGBA.
 
     size : (width, height) in pixels
-    method : "refine" | "limit" | "prep" | "prep-bicubic"; ``n`` = level (refine, default 3)
-        or samples per side (default 8)
+    method : "refine" | "limit" | "prep" | "prep-bicubic"; ``level`` (refine, default 3) or
+        ``tess`` (samples per side of the others, default 8), as ``tessellate``
     view : "front" | "back" | "left" | "right" | "top" | "iso"; up : "y" | "z"
-    colors : "none" | "patch-kind" | "level" | "sharpness"
-    cage : draw the base mesh's edges; background : name or (r, g, b, a)
-    path : also write a PNG there
+    color_by : "none" | "patch-kind" | "level" | "sharpness"
+    cage : draw the base mesh's edges; background : "white", "black", "transparent",
+        "RRGGBB" or (r, g, b, a)
+    output : also write a PNG there
+
+    The keywords are those of ``subsurf render`` (``--level``, ``--tess``, ``--color-by``,
+    ``-o/--output``, ...); see ``docs/vocabulary.md``.
     """
-    if n is None:
-        n = 3 if method == "refine" else 8
-    bg = _BACKGROUNDS.get(background) if isinstance(background, str) else tuple(int(x) for x in background)
-    if bg is None or len(bg) != 4:
-        raise ValueError(f"background {background!r}: white, black, transparent or (r, g, b, a)")
+    if not isinstance(background, str):
+        background = tuple(int(x) for x in background)
+        if len(background) != 4:
+            raise ValueError(f"background {background!r}: a name, RRGGBB or (r, g, b, a)")
     w, h = (_int(size[0], "width", 1), _int(size[1], "height", 1))
-    return _subsurf.render(_mesh(mesh), w, h, method, _int(n, "n"), view, up, colors, bool(cage), bg,
-                           None if path is None else str(path))
+    return _subsurf.render(_mesh(mesh), w, h, method,
+                           None if level is None else _int(level, "level"),
+                           None if tess is None else _int(tess, "tess"),
+                           view, up, color_by, bool(cage), background,
+                           None if output is None else str(output))
 
 
 del annotations  # the future import's name, not part of the package

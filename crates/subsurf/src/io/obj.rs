@@ -16,14 +16,14 @@
 //! that reading the output gives back the same [`Mesh`] (floats use Rust's shortest
 //! round-trip formatting). [`write_with_normals`] adds one `vn` per vertex.
 
-use super::obj_tags::{parse_tag, Tags};
+use super::obj_tags::{
+    boundary_tag, crease_method_tag, parse_tag, triangle_subdivision_tag, uv_interpolation_tag,
+    Tags,
+};
 use super::parse_error;
 use crate::error::{Error, Result};
 use crate::mesh::{FaceVarying, Mesh};
-use crate::options::{
-    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
-    TriangleSubdivision,
-};
+use crate::options::{OptionValue, Options, Scheme};
 use std::io::Write;
 use std::path::Path;
 
@@ -36,15 +36,8 @@ pub fn scheme_from_name(file_stem: &str) -> Option<Scheme> {
                 .strip_prefix(p)
                 .is_some_and(|rest| rest.starts_with('_'))
     };
-    if has_prefix("catmark") {
-        Some(Scheme::Catmark)
-    } else if has_prefix("bilinear") {
-        Some(Scheme::Bilinear)
-    } else if has_prefix("loop") {
-        Some(Scheme::Loop)
-    } else {
-        None
-    }
+    // The prefixes are the schemes' own names.
+    Scheme::find(|s| has_prefix(s.name()))
 }
 
 /// Reads an OBJ file; the scheme comes from the file name ([`scheme_from_name`]), Catmull-Clark
@@ -471,36 +464,22 @@ fn write_tags(mesh: &Mesh, w: &mut impl Write) -> Result<()> {
     let o = &mesh.options;
     let d = Options::default();
     if o.boundary != d.boundary {
-        let k = match o.boundary {
-            BoundaryInterpolation::None => 0,
-            BoundaryInterpolation::EdgeAndCorner => 1,
-            BoundaryInterpolation::EdgeOnly => 2,
-        };
-        writeln!(w, "t interpolateboundary 1/0/0 {k}")?;
+        writeln!(
+            w,
+            "t interpolateboundary 1/0/0 {}",
+            boundary_tag(o.boundary)
+        )?;
     }
     if o.crease_method != d.crease_method {
-        let s = match o.crease_method {
-            CreaseMethod::Uniform => "normal",
-            CreaseMethod::Chaikin => "chaikin",
-        };
+        let s = crease_method_tag(o.crease_method);
         writeln!(w, "t creasemethod 0/0/1 {s}")?;
     }
     if o.triangle_subdivision != d.triangle_subdivision {
-        let s = match o.triangle_subdivision {
-            TriangleSubdivision::Catmark => "catmark",
-            TriangleSubdivision::Smooth => "smooth",
-        };
+        let s = triangle_subdivision_tag(o.triangle_subdivision);
         writeln!(w, "t smoothtriangles 0/0/1 {s}")?;
     }
-    if o.fvar_interpolation != d.fvar_interpolation {
-        let k = match o.fvar_interpolation {
-            FVarLinearInterpolation::None => 0,
-            FVarLinearInterpolation::CornersOnly => 1,
-            FVarLinearInterpolation::CornersPlus1 => 2,
-            FVarLinearInterpolation::CornersPlus2 => 3,
-            FVarLinearInterpolation::Boundaries => 4,
-            FVarLinearInterpolation::All => 5,
-        };
+    if o.uv_interpolation != d.uv_interpolation {
+        let k = uv_interpolation_tag(o.uv_interpolation);
         writeln!(w, "t facevaryinginterpolateboundary 1/0/0 {k}")?;
     }
     if o.fvar_propagate_corners != d.fvar_propagate_corners {

@@ -23,7 +23,8 @@ use super::parse_error;
 use crate::error::Result;
 use crate::mesh::{Corner, Crease};
 use crate::options::{
-    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, TriangleSubdivision,
+    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, OptionValue, Options,
+    TriangleSubdivision,
 };
 
 /// Tags collected while reading, with the line of each element tag for range checks once
@@ -152,26 +153,13 @@ pub(super) fn parse_tag(line: usize, tokens: &[&str], tags: &mut Tags) -> Result
             if arity != (1, 0, 0) {
                 return Err(bad_arity("1/0/0"));
             }
-            tags.options.boundary = match args.ints[0] {
-                0 => BoundaryInterpolation::None,
-                1 => BoundaryInterpolation::EdgeAndCorner,
-                2 => BoundaryInterpolation::EdgeOnly,
-                k => return Err(bad_value(line, args.name, k, "0, 1 or 2")),
-            };
+            tags.options.boundary = int_tag(line, &args, boundary_tag)?;
         }
         "facevaryinginterpolateboundary" => {
             if arity != (1, 0, 0) {
                 return Err(bad_arity("1/0/0"));
             }
-            tags.options.fvar_interpolation = match args.ints[0] {
-                0 => FVarLinearInterpolation::None,
-                1 => FVarLinearInterpolation::CornersOnly,
-                2 => FVarLinearInterpolation::CornersPlus1,
-                3 => FVarLinearInterpolation::CornersPlus2,
-                4 => FVarLinearInterpolation::Boundaries,
-                5 => FVarLinearInterpolation::All,
-                k => return Err(bad_value(line, args.name, k, "0 to 5")),
-            };
+            tags.options.uv_interpolation = int_tag(line, &args, uv_interpolation_tag)?;
         }
         "facevaryingpropagatecorners" => {
             if arity != (1, 0, 0) {
@@ -180,40 +168,28 @@ pub(super) fn parse_tag(line: usize, tokens: &[&str], tags: &mut Tags) -> Result
             tags.options.fvar_propagate_corners = match args.ints[0] {
                 0 => false,
                 1 => true,
-                k => return Err(bad_value(line, args.name, k, "0 or 1")),
+                k => {
+                    return Err(parse_error(
+                        line,
+                        format!(
+                            "tag '{}': value {k} is not valid (expected 0, 1)",
+                            args.name
+                        ),
+                    ))
+                }
             };
         }
         "creasemethod" => {
             if arity != (0, 0, 1) {
                 return Err(bad_arity("0/0/1"));
             }
-            tags.options.crease_method = match args.strings[0] {
-                "normal" | "uniform" => CreaseMethod::Uniform,
-                "chaikin" => CreaseMethod::Chaikin,
-                s => {
-                    return Err(parse_error(
-                        line,
-                        format!("tag 'creasemethod': unknown method '{s}' (expected normal, uniform or chaikin)"),
-                    ))
-                }
-            };
+            tags.options.crease_method = string_tag(line, &args, crease_method_tag)?;
         }
         "smoothtriangles" => {
             if arity != (0, 0, 1) {
                 return Err(bad_arity("0/0/1"));
             }
-            tags.options.triangle_subdivision = match args.strings[0] {
-                "catmark" => TriangleSubdivision::Catmark,
-                "smooth" => TriangleSubdivision::Smooth,
-                s => {
-                    return Err(parse_error(
-                        line,
-                        format!(
-                        "tag 'smoothtriangles': unknown rule '{s}' (expected catmark or smooth)"
-                    ),
-                    ))
-                }
-            };
+            tags.options.triangle_subdivision = string_tag(line, &args, triangle_subdivision_tag)?;
         }
         // Hierarchical edits: OpenSubdiv 3 dropped them; the arity was checked above.
         "vertexedit" | "edgeedit" | "faceedit" => {}
@@ -224,11 +200,90 @@ pub(super) fn parse_tag(line: usize, tokens: &[&str], tags: &mut Tags) -> Result
     Ok(())
 }
 
-fn bad_value(line: usize, name: &str, value: i64, expected: &str) -> crate::Error {
-    parse_error(
-        line,
-        format!("tag '{name}': value {value} is not valid (expected {expected})"),
-    )
+/// The `interpolateboundary` integer of each boundary rule (OpenSubdiv's `Sdc::Options`
+/// order, which is not the enum's).
+pub(super) fn boundary_tag(b: BoundaryInterpolation) -> i64 {
+    match b {
+        BoundaryInterpolation::None => 0,
+        BoundaryInterpolation::EdgeAndCorner => 1,
+        BoundaryInterpolation::EdgeOnly => 2,
+    }
+}
+
+/// The `facevaryinginterpolateboundary` integer of each UV interpolation rule.
+pub(super) fn uv_interpolation_tag(f: FVarLinearInterpolation) -> i64 {
+    match f {
+        FVarLinearInterpolation::None => 0,
+        FVarLinearInterpolation::CornersOnly => 1,
+        FVarLinearInterpolation::CornersPlus1 => 2,
+        FVarLinearInterpolation::CornersPlus2 => 3,
+        FVarLinearInterpolation::Boundaries => 4,
+        FVarLinearInterpolation::All => 5,
+    }
+}
+
+/// The `creasemethod` string of each crease method (RenderMan's `normal` for uniform); the
+/// reader also takes the option's own name ([`OptionValue::name`]).
+pub(super) fn crease_method_tag(c: CreaseMethod) -> &'static str {
+    match c {
+        CreaseMethod::Uniform => "normal",
+        CreaseMethod::Chaikin => "chaikin",
+    }
+}
+
+/// The `smoothtriangles` string of each triangle rule.
+pub(super) fn triangle_subdivision_tag(t: TriangleSubdivision) -> &'static str {
+    match t {
+        TriangleSubdivision::Catmark => "catmark",
+        TriangleSubdivision::Smooth => "smooth",
+    }
+}
+
+/// The value of an integer option tag (`1/0/0`, arity checked), through the tag table `tag`.
+fn int_tag<T: OptionValue>(line: usize, args: &TagArgs, tag: fn(T) -> i64) -> Result<T> {
+    let k = args.ints[0];
+    T::find(|v| tag(v) == k).ok_or_else(|| {
+        let mut accepted: Vec<i64> = T::ALL.iter().map(|&v| tag(v)).collect();
+        accepted.sort_unstable();
+        let accepted: Vec<String> = accepted.iter().map(i64::to_string).collect();
+        parse_error(
+            line,
+            format!(
+                "tag '{}': value {k} is not valid (expected {})",
+                args.name,
+                accepted.join(", ")
+            ),
+        )
+    })
+}
+
+/// The value of a string option tag (`0/0/1`, arity checked): its tag token or its name.
+fn string_tag<T: OptionValue>(
+    line: usize,
+    args: &TagArgs,
+    tag: fn(T) -> &'static str,
+) -> Result<T> {
+    let s = args.strings[0];
+    T::find(|v| tag(v) == s)
+        .or_else(|| T::from_name(s).ok())
+        .ok_or_else(|| {
+            let mut accepted: Vec<&str> = Vec::new();
+            for &v in T::ALL {
+                for t in [tag(v), v.name()] {
+                    if !accepted.contains(&t) {
+                        accepted.push(t);
+                    }
+                }
+            }
+            parse_error(
+                line,
+                format!(
+                    "tag '{}': unknown value '{s}' (expected {})",
+                    args.name,
+                    accepted.join(", ")
+                ),
+            )
+        })
 }
 
 /// Converts tag integers to vertex indices.

@@ -127,6 +127,67 @@ impl Colors {
     }
 }
 
+crate::option_value!(Colors, "color_by", {
+    None => "none",
+    PatchKind => "patch-kind",
+    Level => "level",
+    Sharpness => "sharpness",
+});
+
+/// The name of a [`Method`], as the front ends spell it (`--method`, `method=`): `refine`
+/// takes a level, the others samples per side (`--tess`); `prep-bicubic` is the p-rep
+/// without its bi-5 perturbations; `limit` with per-edge rates is [`Method::Adaptive`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MethodName {
+    /// [`Method::Refine`].
+    Refine,
+    /// [`Method::Limit`] (or [`Method::Adaptive`] with rates).
+    Limit,
+    /// [`Method::Prep`] with the perturbations.
+    Prep,
+    /// [`Method::Prep`] without the perturbations.
+    PrepBicubic,
+}
+
+crate::option_value!(MethodName, "method", {
+    Refine => "refine",
+    Limit => "limit",
+    Prep => "prep",
+    PrepBicubic => "prep-bicubic",
+});
+
+impl Method {
+    /// The method's name.
+    pub fn name(&self) -> MethodName {
+        match self {
+            Method::Refine { .. } => MethodName::Refine,
+            Method::Limit { .. } | Method::Adaptive { .. } => MethodName::Limit,
+            Method::Prep {
+                perturbed: true, ..
+            } => MethodName::Prep,
+            Method::Prep {
+                perturbed: false, ..
+            } => MethodName::PrepBicubic,
+        }
+    }
+}
+
+/// Where a front end runs the numeric work (`--backend`, `backend=`): [`Cpu`], or the GPU
+/// (`subsurf_gpu::GpuBackend`, which this crate does not know).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub enum BackendName {
+    /// Multithreaded CPU.
+    #[default]
+    Cpu,
+    /// wgpu compute kernels.
+    Gpu,
+}
+
+crate::option_value!(BackendName, "backend", {
+    Cpu => "cpu",
+    Gpu => "gpu",
+});
+
 /// What to build.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceOptions {
@@ -305,7 +366,7 @@ mod tests {
         // the refined positions.
         let mut mesh = crate::shapes::grid(2, 2);
         mesh.options.scheme = crate::Scheme::Bilinear;
-        mesh.options.fvar_interpolation = crate::FVarLinearInterpolation::All;
+        mesh.options.uv_interpolation = crate::FVarLinearInterpolation::All;
         let (lo, hi) = mesh.bounding_box().unwrap();
         let values: Vec<[f32; 2]> = mesh
             .positions

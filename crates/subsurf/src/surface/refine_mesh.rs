@@ -47,7 +47,7 @@ pub fn refine_mesh(
     let positions = backend.refine(&refiner, &mesh.positions, limit)?;
     let mut out = refiner.to_tagged_mesh(level, positions)?;
     if let Some(fv) = &mesh.uvs {
-        let mode = uv_mode.unwrap_or(mesh.options.fvar_interpolation);
+        let mode = uv_mode.unwrap_or(mesh.options.uv_interpolation);
         let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
         let last = backend.refine_uvs(&refiner, &fvar, &fv.values, limit)?;
         if last.indices.len() != out.face_indices.len() {
@@ -58,7 +58,7 @@ pub fn refine_mesh(
             ))
             .into());
         }
-        out.options.fvar_interpolation = mode;
+        out.options.uv_interpolation = mode;
         out.uvs = Some(last);
     }
     Ok(out)

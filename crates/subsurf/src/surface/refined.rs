@@ -69,11 +69,8 @@ pub fn corner_uvs(
     let Some(fv) = &mesh.uvs else {
         return Ok(None);
     };
-    let fvar = refiner.fvar_refinement(
-        &fv.indices,
-        fv.values.len(),
-        mesh.options.fvar_interpolation,
-    )?;
+    let fvar =
+        refiner.fvar_refinement(&fv.indices, fv.values.len(), mesh.options.uv_interpolation)?;
     let mut last = fvar
         .refine(&fv.values)?
         .pop()

@@ -8,10 +8,14 @@
 //! face-varying corners with it.
 
 use super::attrs::PrimReader;
+use super::mesh_write::{
+    boundary_token, scheme_token, triangle_subdivision_token, uv_interpolation_token,
+};
 use crate::error::Result;
 use crate::mesh::{Corner, Crease, FaceVarying, Mesh};
 use crate::options::{
-    BoundaryInterpolation, FVarLinearInterpolation, Options, Scheme, TriangleSubdivision,
+    BoundaryInterpolation, FVarLinearInterpolation, OptionValue, Options, Scheme,
+    TriangleSubdivision,
 };
 
 /// A mesh prim as read: the cage, and whether it is to be subdivided at all
@@ -87,39 +91,50 @@ fn bad_token(r: &PrimReader, attr: &str, value: &str) -> crate::Error {
     r.error(attr, format!("unknown value \"{value}\""))
 }
 
+/// The value whose USD token (`table`, from `mesh_write`) is `t`.
+fn token<T: OptionValue>(
+    r: &PrimReader,
+    attr: &str,
+    t: &str,
+    table: fn(T) -> &'static str,
+) -> Result<T> {
+    T::find(|v| table(v) == t).ok_or_else(|| {
+        let accepted: Vec<&str> = T::ALL.iter().map(|&v| table(v)).collect();
+        r.error(
+            attr,
+            format!("unknown value \"{t}\" (expected {})", accepted.join(", ")),
+        )
+    })
+}
+
 /// The subdivision options, with USD's defaults, and whether the mesh subdivides.
 fn read_options(r: &PrimReader) -> Result<(Options, bool)> {
     let mut o = Options::default();
     let mut subdivide = true;
     o.scheme = match r.token("subdivisionScheme")?.as_deref() {
-        None | Some("catmullClark") => Scheme::Catmark,
-        Some("loop") => Scheme::Loop,
-        Some("bilinear") => Scheme::Bilinear,
+        None => Scheme::Catmark,
         Some("none") => {
             subdivide = false;
             Scheme::Bilinear
         }
-        Some(other) => return Err(bad_token(r, "subdivisionScheme", other)),
+        Some(t) => token(r, "subdivisionScheme", t, scheme_token)?,
     };
     o.boundary = match r.token("interpolateBoundary")?.as_deref() {
-        None | Some("edgeAndCorner") => BoundaryInterpolation::EdgeAndCorner,
-        Some("edgeOnly") => BoundaryInterpolation::EdgeOnly,
-        Some("none") => BoundaryInterpolation::None,
-        Some(other) => return Err(bad_token(r, "interpolateBoundary", other)),
+        None => BoundaryInterpolation::EdgeAndCorner,
+        Some(t) => token(r, "interpolateBoundary", t, boundary_token)?,
     };
-    o.fvar_interpolation = match r.token("faceVaryingLinearInterpolation")?.as_deref() {
-        None | Some("cornersPlus1") => FVarLinearInterpolation::CornersPlus1,
-        Some("none") => FVarLinearInterpolation::None,
-        Some("cornersOnly") => FVarLinearInterpolation::CornersOnly,
-        Some("cornersPlus2") => FVarLinearInterpolation::CornersPlus2,
-        Some("boundaries") => FVarLinearInterpolation::Boundaries,
-        Some("all") => FVarLinearInterpolation::All,
-        Some(other) => return Err(bad_token(r, "faceVaryingLinearInterpolation", other)),
+    o.uv_interpolation = match r.token("faceVaryingLinearInterpolation")?.as_deref() {
+        None => FVarLinearInterpolation::CornersPlus1,
+        Some(t) => token(
+            r,
+            "faceVaryingLinearInterpolation",
+            t,
+            uv_interpolation_token,
+        )?,
     };
     o.triangle_subdivision = match r.token("triangleSubdivisionRule")?.as_deref() {
-        None | Some("catmullClark") => TriangleSubdivision::Catmark,
-        Some("smooth") => TriangleSubdivision::Smooth,
-        Some(other) => return Err(bad_token(r, "triangleSubdivisionRule", other)),
+        None => TriangleSubdivision::Catmark,
+        Some(t) => token(r, "triangleSubdivisionRule", t, triangle_subdivision_token)?,
     };
     Ok((o, subdivide))
 }

@@ -11,6 +11,45 @@ use crate::options::{BoundaryInterpolation, FVarLinearInterpolation, Scheme, Tri
 use openusd::gf;
 use openusd::sdf::{self, schema::ChildrenKey, schema::FieldKey, SpecType, Value, Variability};
 
+/// USD's `subdivisionScheme` token of each scheme (`none`, a polygon mesh, is no scheme).
+/// These four functions are USD's one token table; `mesh_read` inverts them.
+pub(super) fn scheme_token(s: Scheme) -> &'static str {
+    match s {
+        Scheme::Catmark => "catmullClark",
+        Scheme::Bilinear => "bilinear",
+        Scheme::Loop => "loop",
+    }
+}
+
+/// USD's `interpolateBoundary` token of each boundary rule.
+pub(super) fn boundary_token(b: BoundaryInterpolation) -> &'static str {
+    match b {
+        BoundaryInterpolation::None => "none",
+        BoundaryInterpolation::EdgeOnly => "edgeOnly",
+        BoundaryInterpolation::EdgeAndCorner => "edgeAndCorner",
+    }
+}
+
+/// USD's `faceVaryingLinearInterpolation` token of each UV interpolation rule.
+pub(super) fn uv_interpolation_token(f: FVarLinearInterpolation) -> &'static str {
+    match f {
+        FVarLinearInterpolation::None => "none",
+        FVarLinearInterpolation::CornersOnly => "cornersOnly",
+        FVarLinearInterpolation::CornersPlus1 => "cornersPlus1",
+        FVarLinearInterpolation::CornersPlus2 => "cornersPlus2",
+        FVarLinearInterpolation::Boundaries => "boundaries",
+        FVarLinearInterpolation::All => "all",
+    }
+}
+
+/// USD's `triangleSubdivisionRule` token of each triangle rule.
+pub(super) fn triangle_subdivision_token(t: TriangleSubdivision) -> &'static str {
+    match t {
+        TriangleSubdivision::Catmark => "catmullClark",
+        TriangleSubdivision::Smooth => "smooth",
+    }
+}
+
 /// Attributes of a mesh prim that describe its points, faces or tags: all replaced.
 const REPLACED: &[&str] = &[
     "points",
@@ -183,20 +222,11 @@ pub(super) fn write_mesh(data: &mut sdf::Data, prim: &sdf::Path, mesh: &Mesh, re
         );
     }
     let o = &mesh.options;
-    let fvar = match o.fvar_interpolation {
-        FVarLinearInterpolation::None => "none",
-        FVarLinearInterpolation::CornersOnly => "cornersOnly",
-        FVarLinearInterpolation::CornersPlus1 => "cornersPlus1",
-        FVarLinearInterpolation::CornersPlus2 => "cornersPlus2",
-        FVarLinearInterpolation::Boundaries => "boundaries",
-        FVarLinearInterpolation::All => "all",
-    };
+    let fvar = uv_interpolation_token(o.uv_interpolation);
     // A refined mesh is a polygon mesh; a cage states its scheme.
     let scheme = match o.scheme {
         _ if refined => "none",
-        Scheme::Catmark => "catmullClark",
-        Scheme::Bilinear => "bilinear",
-        Scheme::Loop => "loop",
+        s => scheme_token(s),
     };
     set(
         data,
@@ -208,11 +238,7 @@ pub(super) fn write_mesh(data: &mut sdf::Data, prim: &sdf::Path, mesh: &Mesh, re
         &[],
     );
     if !refined {
-        let boundary = match o.boundary {
-            BoundaryInterpolation::None => "none",
-            BoundaryInterpolation::EdgeOnly => "edgeOnly",
-            BoundaryInterpolation::EdgeAndCorner => "edgeAndCorner",
-        };
+        let boundary = boundary_token(o.boundary);
         set(
             data,
             prim,
@@ -222,10 +248,7 @@ pub(super) fn write_mesh(data: &mut sdf::Data, prim: &sdf::Path, mesh: &Mesh, re
             token(boundary),
             &[],
         );
-        let tri = match o.triangle_subdivision {
-            TriangleSubdivision::Catmark => "catmullClark",
-            TriangleSubdivision::Smooth => "smooth",
-        };
+        let tri = triangle_subdivision_token(o.triangle_subdivision);
         set(
             data,
             prim,

@@ -1,4 +1,4 @@
-//! `subsurf refine --uv-interp`: the UVs written equal the library's face-varying refinement
+//! `subsurf refine --uv-interpolation`: the UVs written equal the library's face-varying refinement
 //! in that mode, and the smooth and linear modes differ.
 
 use std::path::PathBuf;
@@ -15,7 +15,7 @@ fn refine_with(mode: &str, out: &PathBuf) -> subsurf::Mesh {
     let status = Command::new(env!("CARGO_BIN_EXE_subsurf"))
         .arg("refine")
         .arg(shape("catmark_fvar_bound1.obj"))
-        .args(["-l", "2", "--uv-interp", mode, "-o"])
+        .args(["-l", "2", "--uv-interpolation", mode, "-o"])
         .arg(out)
         .status()
         .unwrap();
@@ -70,7 +70,14 @@ fn refine_limit_writes_limit_uvs() {
     let status = Command::new(env!("CARGO_BIN_EXE_subsurf"))
         .arg("refine")
         .arg(shape("catmark_fvar_bound1.obj"))
-        .args(["-l", "2", "--uv-interp", "corners-only", "--limit", "-o"])
+        .args([
+            "-l",
+            "2",
+            "--uv-interpolation",
+            "corners-only",
+            "--limit",
+            "-o",
+        ])
         .arg(&out)
         .status()
         .unwrap();
