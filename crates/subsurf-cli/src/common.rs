@@ -5,7 +5,7 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::sync::OnceLock;
 use subsurf::io::Format;
-use subsurf::options::OptionValue;
+use subsurf::OptionValue;
 use subsurf::{BoundaryInterpolation, CreaseMethod, Mesh, Scheme, TriangleSubdivision};
 
 /// The parser of an option flag: the option's names ([`OptionValue`], one per value, as in

@@ -7,7 +7,7 @@ mod common;
 
 use common::{bin, repo, run_ok, tmp};
 use std::collections::{BTreeMap, BTreeSet};
-use subsurf::options::OptionValue;
+use subsurf::OptionValue;
 
 const COMMANDS: [&str; 9] = [
     "info", "refine", "bench", "render", "compare", "prep", "gpu-info", "limit", "eval",

@@ -281,7 +281,7 @@ impl GpuLimit {
         let points = VertexBuffer::zeroed(ctx, num_points, 3)?;
         let lp = &table.local_points();
         let local = if lp.num_rows() > 0 {
-            let t = StencilTable::new(&lp.offsets(), &lp.indices(), &lp.weights())?;
+            let t = StencilTable::new(lp.offsets(), lp.indices(), lp.weights())?;
             // Relative rows, as `PatchTable::points` (long rows at high-valence vertices).
             let kernel = StencilKernel::with_limits(
                 ctx,

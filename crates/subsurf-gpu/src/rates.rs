@@ -82,7 +82,7 @@ impl GpuRates {
     ) -> Result<Self> {
         // The table's own layout (formed once per table, shared with the CPU path).
         let curves = Arc::clone(table.rate_curves());
-        let samples = limit.samples(ctx, &curves.queries(), false)?;
+        let samples = limit.samples(ctx, curves.queries(), false)?;
         let n = curves.num_curves();
         let measures = storage_buffer_init(ctx, "rate measures", &vec![0u8; 4 * n.max(1)])?;
         let pipeline = auto_pipeline(ctx, "rate_measure", shaders::RATE_MEASURE, "main")?;
@@ -202,7 +202,7 @@ impl GpuRates {
         diagonal: f32,
         origin: &str,
     ) -> Result<EdgeRates> {
-        policy.validate(&table.base(), origin)?;
+        policy.validate(table.base(), origin)?;
         let measures: Vec<f64> = match policy.measure() {
             Some(m) => self
                 .measure(ctx, limit, &m)?

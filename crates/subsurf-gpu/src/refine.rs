@@ -154,7 +154,7 @@ impl GpuRefiner {
             }
             for (table, first_row) in level_dispatches(s) {
                 bytes += table.size_bytes() as u64;
-                let t = StencilTable::new(&table.offsets(), &table.indices(), &table.weights())?;
+                let t = StencilTable::new(table.offsets(), table.indices(), table.weights())?;
                 if t.min_source_vertices() > s.num_rows() {
                     return Err(GpuError::InvalidStencil(format!(
                         "level {} table references input {} beyond the child vertices",

@@ -130,15 +130,15 @@ impl Backend for GpuBackend {
             return Ok(policy.rates(surface, origin)?);
         }
         let table = &surface.table();
-        policy.validate(&table.base(), origin)?;
+        policy.validate(table.base(), origin)?;
         let ctx = &self.ctx;
         let gpu = GpuLimit::new(ctx, table).map_err(gpu_err("uploading the patch table"))?;
         // The surface's points are already refined: uploaded, not refined again.
-        gpu.set_points(ctx, &surface.points())
+        gpu.set_points(ctx, surface.points())
             .map_err(gpu_err("uploading the points"))?;
         let rates =
             GpuRates::new(ctx, &gpu, table).map_err(gpu_err("uploading the rate curves"))?;
-        let diagonal = subsurf::mesh::bbox_diagonal(&surface.points());
+        let diagonal = subsurf::mesh::bbox_diagonal(surface.points());
         match rates.rates(ctx, &gpu, table, policy, diagonal, origin) {
             Ok(r) => Ok(r),
             Err(GpuError::Library(e)) => Err(e.into()),

@@ -61,7 +61,7 @@ impl GpuUvRefiner {
                     s.num_rows()
                 )));
             }
-            let t = StencilTable::new(&s.offsets(), &s.indices(), &s.weights())?;
+            let t = StencilTable::new(s.offsets(), s.indices(), s.weights())?;
             kernels.push(StencilKernel::with_limits(ctx, &t, limits)?);
         }
         let last_indices = fvar

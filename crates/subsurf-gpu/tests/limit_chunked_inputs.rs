@@ -40,7 +40,7 @@ fn compacted_chunks_reproduce_the_whole_tables_bit_for_bit() {
         let words = pack_queries(&q);
         let chunks = plan(
             &t,
-            &table.cv_offsets(),
+            table.cv_offsets(),
             points.len(),
             &words,
             stride,
@@ -113,7 +113,7 @@ fn a_block_too_big_for_one_binding_is_a_typed_error() {
     let q = pack_queries(&queries(&table, 3));
     let r = plan(
         &LimitTables::new(&table),
-        &table.cv_offsets(),
+        table.cv_offsets(),
         table.points(&mesh.positions).len(),
         &q,
         6,

@@ -140,7 +140,7 @@ fn twin_matches_the_library_on_every_catmark_shape() {
         let (mesh, table) = load(file.trim_end_matches(".obj"), 2);
         let surface = LimitSurface::new(table.clone(), &mesh.positions);
         let want = surface.tessellate(5).unwrap();
-        let got = tessellate_cpu(&table, &surface.points(), 5).unwrap();
+        let got = tessellate_cpu(&table, surface.points(), 5).unwrap();
         // Tessellation's PartialEq compares f32 values: NaN-free by the same comparison.
         assert!(
             got == want,

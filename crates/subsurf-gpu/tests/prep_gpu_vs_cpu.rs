@@ -115,7 +115,7 @@ fn assert_same_bits(what: &str, got: &Tessellation<f32>, want: &Tessellation<f32
 fn twins_reproduce_the_cpu_construction() {
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let whole = PrepChunks::new(&p.topology(), u64::MAX).unwrap();
+        let whole = PrepChunks::new(p.topology(), u64::MAX).unwrap();
         assert_eq!(
             whole.chunks.len(),
             1,
@@ -248,7 +248,7 @@ fn twin_chunks_compose() {
     use subsurf_gpu::cpu::prep_eval_grid::{grid_params, prep_eval_grid_invocation, EvalInputs};
     let (_, mesh) = meshes().swap_remove(3);
     let p = PrepPatches::<f32>::build(&mesh).unwrap();
-    let tables = PrepTables::new(&p.topology()).unwrap();
+    let tables = PrepTables::new(p.topology()).unwrap();
     let (vd, pd) = tables.run_passes_cpu(&mesh.positions);
     let n = 5;
     let params = grid_params(n);
@@ -259,7 +259,7 @@ fn twin_chunks_compose() {
         vertex_data: &vd,
         patch_data: &pd,
     };
-    let total = PrepChunks::new(&p.topology(), u64::MAX)
+    let total = PrepChunks::new(p.topology(), u64::MAX)
         .unwrap()
         .grid_vertices(n) as u32;
     let mut whole = vec![0.0f32; 6 * total as usize];
@@ -292,7 +292,7 @@ fn gpu_coefficients_match_cpu() {
     };
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let mut gpu = GpuPrep::new(&ctx, &p.topology()).unwrap();
+        let mut gpu = GpuPrep::new(&ctx, p.topology()).unwrap();
         gpu.update(&ctx, &mesh.positions).unwrap();
         let (vd, pd) = gpu.download_coefficients(&ctx).unwrap();
         let (want_vd, want_pd) = cpu_flat(&p);
@@ -311,7 +311,7 @@ fn gpu_tessellation_is_watertight_and_matches_cpu() {
     };
     for (name, mesh) in meshes() {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let mut gpu = GpuPrep::new(&ctx, &p.topology()).unwrap();
+        let mut gpu = GpuPrep::new(&ctx, p.topology()).unwrap();
         gpu.update(&ctx, &mesh.positions).unwrap();
         let diag = bbox_diagonal(&mesh.positions);
         for n in [2, 3, 5, 9] {
@@ -371,8 +371,8 @@ fn chunked_passes_match_cpu() {
     // The refined torus, and a mesh with vertices used by no face.
     for (name, mesh) in meshes_and_a_refined_torus().split_off(4) {
         let p = PrepPatches::<f32>::build(&mesh).unwrap();
-        let mut gpu = GpuPrep::with_limits(&ctx, &p.topology(), limits).unwrap();
-        let mut whole = GpuPrep::new(&ctx, &p.topology()).unwrap();
+        let mut gpu = GpuPrep::with_limits(&ctx, p.topology(), limits).unwrap();
+        let mut whole = GpuPrep::new(&ctx, p.topology()).unwrap();
         assert!(gpu.chunks().chunks.len() > 2 && whole.chunks().chunks.len() == 1);
         gpu.update(&ctx, &mesh.positions).unwrap();
         whole.update(&ctx, &mesh.positions).unwrap();

@@ -156,7 +156,7 @@ fn check_shape(ctx: &GpuContext, name: &str, isolation: u32) {
     let rates = GpuRates::new(ctx, &limit, &table).unwrap();
     let curves = rates.curves();
     assert_eq!(curves.queries().len(), curves.num_curves() * CURVE_POINTS);
-    let diagonal = subsurf::mesh::bbox_diagonal(&surface.points());
+    let diagonal = subsurf::mesh::bbox_diagonal(surface.points());
     assert_eq!(diagonal, subsurf::mesh::bbox_diagonal(&mesh.positions));
     for (what, policy) in policies(&mesh.positions) {
         let m = policy.measure().unwrap();
@@ -282,11 +282,11 @@ fn chunked_measures_equal_one_dispatch() {
     // Points refined on the CPU uploaded as they are (what `GpuBackend::adaptive_rates`
     // does): read back bit for bit; a point array of another length is refused.
     let set = GpuLimit::new(&ctx, &table).unwrap();
-    set.set_points(&ctx, &surface.points()).unwrap();
+    set.set_points(&ctx, surface.points()).unwrap();
     assert_eq!(set.download_points(&ctx).unwrap(), surface.points());
     assert!(set.set_points(&ctx, &surface.points()[1..]).is_err());
     let diagonal = subsurf::mesh::bbox_diagonal(&mesh.positions);
-    let mut explicit = EdgeRates::uniform(&table.base(), 3);
+    let mut explicit = EdgeRates::uniform(table.base(), 3);
     explicit.edges[7] = 11;
     for policy in [RatePolicy::Uniform(5), RatePolicy::Explicit(explicit)] {
         let got = whole

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
-use subsurf::options::OptionValue;
+use subsurf::OptionValue;
 use subsurf::{Corner, Crease, FaceVarying, Mesh, Topology};
 
 use crate::arrays::{out1, out2, rows, vec1};

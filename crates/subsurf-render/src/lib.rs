@@ -319,7 +319,7 @@ pub fn render_with(
 #[cfg(test)]
 mod vocabulary_tests {
     use super::*;
-    use subsurf::options::OptionValue;
+    use subsurf::OptionValue;
 
     fn round_trip<T: OptionValue + std::fmt::Display + std::str::FromStr>()
     where

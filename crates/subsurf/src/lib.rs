@@ -114,8 +114,8 @@ pub use error::{Error, MeshError, QueryError, Result, TessError};
 pub use mesh::{Corner, Crease, FaceVarying, Mesh};
 #[doc(inline)]
 pub use options::{
-    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, Options, Scheme,
-    TriangleSubdivision,
+    BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, OptionValue, Options,
+    ParseOptionError, Scheme, TriangleSubdivision,
 };
 #[doc(inline)]
 pub use real::Real;

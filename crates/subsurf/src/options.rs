@@ -153,7 +153,7 @@ impl std::error::Error for ParseOptionError {}
 #[macro_export]
 macro_rules! option_value {
     ($ty:ty, $option:literal, { $($variant:ident => $name:literal),+ $(,)? }) => {
-        impl $crate::options::OptionValue for $ty {
+        impl $crate::OptionValue for $ty {
             const OPTION: &'static str = $option;
             const ALL: &'static [Self] = &[$(<$ty>::$variant),+];
             fn name(self) -> &'static str {
@@ -164,13 +164,13 @@ macro_rules! option_value {
         }
         impl ::std::fmt::Display for $ty {
             fn fmt(&self, f: &mut ::std::fmt::Formatter<'_>) -> ::std::fmt::Result {
-                f.write_str($crate::options::OptionValue::name(*self))
+                f.write_str($crate::OptionValue::name(*self))
             }
         }
         impl ::std::str::FromStr for $ty {
-            type Err = $crate::options::ParseOptionError;
+            type Err = $crate::ParseOptionError;
             fn from_str(s: &str) -> ::std::result::Result<Self, Self::Err> {
-                <$ty as $crate::options::OptionValue>::from_name(s)
+                <$ty as $crate::OptionValue>::from_name(s)
             }
         }
     };

@@ -58,7 +58,7 @@ fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
     assert_eq!(a.cvs(), b.cvs(), "{what}");
     assert_eq!(a.params(), b.params(), "{what}");
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&a.sharpness()), bits(&b.sharpness()), "{what}");
+    assert_eq!(bits(a.sharpness()), bits(b.sharpness()), "{what}");
     assert_eq!(a.ptex_offsets(), b.ptex_offsets(), "{what}");
     assert_eq!(a.patch_map(), b.patch_map(), "{what}");
     assert_eq!(a.level_offsets(), b.level_offsets(), "{what}");
@@ -66,15 +66,15 @@ fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
     assert_eq!(a.level_stencils().len(), b.level_stencils().len(), "{what}");
     for (x, y) in a.level_stencils().iter().zip(b.level_stencils()) {
         assert_eq!(x.num_parent_vertices(), y.num_parent_vertices(), "{what}");
-        assert!(same_weights(&x.face(), &y.face()), "{what}: face stencils");
+        assert!(same_weights(x.face(), y.face()), "{what}: face stencils");
         assert!(
-            same_weights(&x.vertex(), &y.vertex()),
+            same_weights(x.vertex(), y.vertex()),
             "{what}: vertex stencils"
         );
-        assert!(same_weights(&x.edge(), &y.edge()), "{what}: edge stencils");
+        assert!(same_weights(x.edge(), y.edge()), "{what}: edge stencils");
     }
     assert!(
-        same_weights(&a.local_points(), &b.local_points()),
+        same_weights(a.local_points(), b.local_points()),
         "{what}: end caps"
     );
 }
@@ -116,13 +116,13 @@ fn assert_same_topology(what: &str, a: &Topology, b: &Topology) {
     );
     assert_eq!(a.arrays().vert_edges, b.arrays().vert_edges, "{what}");
     assert_eq!(
-        bits(&a.arrays().edge_sharpness),
-        bits(&b.arrays().edge_sharpness),
+        bits(a.arrays().edge_sharpness),
+        bits(b.arrays().edge_sharpness),
         "{what}"
     );
     assert_eq!(
-        bits(&a.arrays().vert_sharpness),
-        bits(&b.arrays().vert_sharpness),
+        bits(a.arrays().vert_sharpness),
+        bits(b.arrays().vert_sharpness),
         "{what}"
     );
     assert_eq!(a.arrays().face_is_hole, b.arrays().face_is_hole, "{what}");

@@ -176,11 +176,7 @@ fn f64_table_has_the_f32_tables_patches() {
             b.local_points().indices(),
             "{name}"
         );
-        close(
-            name,
-            &a.local_points().weights(),
-            &b.local_points().weights(),
-        );
+        close(name, a.local_points().weights(), b.local_points().weights());
         assert_eq!(a.level_stencils().len(), b.level_stencils().len(), "{name}");
         for (x, y) in a.level_stencils().iter().zip(b.level_stencils()) {
             for (s, t) in [
@@ -190,7 +186,7 @@ fn f64_table_has_the_f32_tables_patches() {
             ] {
                 assert_eq!(s.offsets(), t.offsets(), "{name}");
                 assert_eq!(s.indices(), t.indices(), "{name}");
-                close(name, &s.weights(), &t.weights());
+                close(name, s.weights(), t.weights());
             }
         }
     }

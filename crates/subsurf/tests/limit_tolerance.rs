@@ -47,7 +47,7 @@ fn each_region_is_the_table_of_its_level() {
         let t = Topology::new(&mesh).unwrap();
         let levels: Vec<u8> = (0..t.num_faces()).map(|_| 2 + rng.next(4) as u8).collect();
         let mixed = PatchTable::<f64>::build_face_levels(&t, &isolated(2), &levels).unwrap();
-        assert_eq!(mixed.face_levels().as_deref(), Some(&levels[..]), "{name}");
+        assert_eq!(mixed.face_levels(), Some(&levels[..]), "{name}");
         let uniform: Vec<PatchTable<f64>> = (2..6)
             .map(|l| PatchTable::build_real(&t, &isolated(l)).unwrap())
             .collect();
@@ -291,7 +291,7 @@ fn tolerance_bounds_the_whole_approximation() {
         PatchTable::build(&t, &isolated(4)).unwrap(),
         &mesh.positions,
     );
-    let mut p = plan(&plain.table(), &policy.rates(&plain, "").unwrap(), "").unwrap();
+    let mut p = plan(plain.table(), &policy.rates(&plain, "").unwrap(), "").unwrap();
     let uv = std::mem::take(&mut p.triangle_uv);
     let before = worst(&plain.eval_plan(p), &uv, &truth);
     eprintln!(
@@ -384,6 +384,6 @@ fn edits_keep_the_levels() {
     assert_eq!(table.cvs(), fresh.cvs());
     assert_eq!(table.patch_map(), fresh.patch_map());
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-    assert_eq!(bits(&table.sharpness()), bits(&fresh.sharpness()));
+    assert_eq!(bits(table.sharpness()), bits(fresh.sharpness()));
     assert_eq!(table.level_offsets(), fresh.level_offsets());
 }

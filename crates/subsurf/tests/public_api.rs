@@ -348,6 +348,14 @@ fn api() -> Vec<String> {
     }
     for (module, items) in &krate.modules {
         for item in items {
+            // `#[macro_export]` macros are at the crate root wherever they are defined.
+            if let Item::Macro(m) = item {
+                if m.attrs.iter().any(|a| a.path().is_ident("macro_export")) {
+                    if let Some(id) = &m.ident {
+                        lines.insert(format!("macro subsurf::{id}"));
+                    }
+                }
+            }
             match item {
                 Item::Struct(s) => {
                     let Some(names) = types.get(&(module.clone(), s.ident.to_string())) else {

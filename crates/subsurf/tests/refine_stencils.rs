@@ -47,8 +47,8 @@ fn stencils_from_the_plans_are_the_masks_tables() {
                 );
                 let bits = |w: &[f32]| w.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
                 assert_eq!(
-                    bits(&got.weights()),
-                    bits(&want.weights()),
+                    bits(got.weights()),
+                    bits(want.weights()),
                     "{} step {k} {what}",
                     path.display()
                 );

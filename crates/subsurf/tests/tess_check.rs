@@ -73,7 +73,7 @@ fn every_triangle_meets_the_tolerance() {
 
         // The rate curves' estimate alone (the plan before the check) misses the budget.
         let rates = chords.rates(&s, "tolerance").unwrap();
-        let p = plan(&s.table(), &rates, "").unwrap();
+        let p = plan(s.table(), &rates, "").unwrap();
         let before = worst(
             &p.triangles,
             &p.triangle_uv,

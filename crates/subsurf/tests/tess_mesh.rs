@@ -158,7 +158,7 @@ fn mixed_rates_up_to_64_to_1_make_no_slivers_or_flips() {
             faces: Vec::new(),
         };
         let s = LimitSurface::new(table, &mesh.positions);
-        let p = plan(&s.table(), &rates, "test").unwrap();
+        let p = plan(s.table(), &rates, "test").unwrap();
         let uv = p.triangle_uv.clone();
         let p_rates = p.ptex_rates.clone();
         let out = s.eval_plan(p);

@@ -33,9 +33,9 @@ fn mid(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
 fn tolerance_bounds_edge_midpoints_and_centroids() {
     for (name, e) in [("catmark_torus", 1e-3f32), ("catmark_pawn", 2e-3)] {
         let s = surface(name);
-        let diag = f64::from(bbox_diagonal(&s.points()));
+        let diag = f64::from(bbox_diagonal(s.points()));
         let rates = RatePolicy::Tolerance(e).rates(&s, "--tolerance").unwrap();
-        let p = plan(&s.table(), &rates, "--tolerance").unwrap();
+        let p = plan(s.table(), &rates, "--tolerance").unwrap();
         let uv = p.triangle_uv.clone();
         let out = s.eval_plan(p);
         let mut worst = 0.0f64;
@@ -88,7 +88,7 @@ fn longest_edge(
 #[test]
 fn length_policies_bound_every_edge() {
     let s = surface("catmark_pawn");
-    let diag = bbox_diagonal(&s.points());
+    let diag = bbox_diagonal(s.points());
     let l = diag / 40.0;
     let out = s
         .tessellate_rates(

@@ -14,11 +14,11 @@
 //! of its distance from the origin ([`subsurf::limit::LimitSurface::eval`]). The bases:
 //!
 //! - regular: bicubic B-spline, phantom points `2 P_edge − P_inner` of boundary edges folded
-//!   into the curve weights ([`subsurf::patch::bspline`]);
+//!   into the curve weights ([`subsurf::patch::bspline_patch_weights`]);
 //! - single-crease: the f32-stable direct evaluation of Nießner, Loop & Greiner 2012
-//!   ([`subsurf::patch::single_crease`]), integer and fractional sharpness, constant cost;
+//!   ([`subsurf::patch::single_crease_patch_weights`]), integer and fractional sharpness, constant cost;
 //! - Gregory end cap: the 20-point Gregory basis of Loop, Schaefer, Ni & Castaño 2009 with
-//!   OpenSubdiv's Bézier-approximation derivatives ([`subsurf::patch::gregory`]).
+//!   OpenSubdiv's Bézier-approximation derivatives ([`subsurf::patch::gregory_patch_weights`]).
 //!
 //! The unit normal is `∂P/∂u × ∂P/∂v` normalised, or, where that vanishes, the normal a step
 //! of `10⁻³` towards the face centre ([`subsurf::limit::LimitSurface::eval`]).

@@ -5,7 +5,7 @@
 //! [`subsurf::limit::PatchMap::find_triangle`]); `(u, v)` are the base face's. For each
 //! sample: the patch's [`PatchParam`](subsurf::patch::PatchParam) maps `(u, v)` to its own
 //! `(s, t)` (upright `(u 2^d − U, v 2^d − V)`, rotated `((2^d − U) − u 2^d, …)`,
-//! [`subsurf::patch::tri_basis`]); the basis of the patch kind gives one weight per point,
+//! [`subsurf::patch::tri_patch_weights`]); the basis of the patch kind gives one weight per point,
 //!
 //! ```text
 //! P = x_0 + Σ_k w_k(s, t) (x_k − x_0)        ∂P/∂u = ±2^d Σ_k ∂w_k/∂s (x_k − x_0)
@@ -20,7 +20,7 @@
 //!   weights ([`subsurf::patch::BOX_SPLINE_COEFFS`]);
 //! - end cap: the quartic Gregory triangle over 18 points, Bernstein weights with the
 //!   rational blend of the face points held constant in the derivatives
-//!   ([`subsurf::patch::gregory_tri`]).
+//!   ([`subsurf::patch::gregory_triangle_weights`]).
 //!
 //! The weights are computed in f32 in the library's operation order, so [`patch_weights`]
 //! reproduces `tri_patch_weights::<f32>` bit for bit. The library evaluates

@@ -74,7 +74,7 @@ pub fn refine_level(
 pub fn level_dispatches(s: &LevelStencils) -> [(&StencilTable, usize); 3] {
     let p = s.num_parent_vertices();
     let f = s.face().num_rows();
-    [(&s.face(), p), (&s.vertex(), 0), (&s.edge(), p + f)]
+    [(s.face(), p), (s.vertex(), 0), (s.edge(), p + f)]
 }
 
 /// One refinement step of `parent` (`stride` floats per vertex, 1..=4).
@@ -98,9 +98,9 @@ pub fn refine_level_step(s: &LevelStencils, parent: &[f32], stride: usize) -> Re
         };
         refine_level(
             &config,
-            &table.offsets(),
-            &table.indices(),
-            &table.weights(),
+            table.offsets(),
+            table.indices(),
+            table.weights(),
             parent,
             &mut child,
         );

@@ -212,7 +212,7 @@ impl StencilKernel {
         table: &subsurf::StencilTable,
         src: &VertexBuffer,
     ) -> Result<Vec<f32>> {
-        let kernel = Self::new(ctx, &table.offsets(), &table.indices(), &table.weights())?;
+        let kernel = Self::new(ctx, table.offsets(), table.indices(), table.weights())?;
         let mut dst = VertexBuffer::zeroed(ctx, table.num_rows(), src.stride())?;
         kernel.apply(ctx, src, &mut dst)?;
         dst.download(ctx)

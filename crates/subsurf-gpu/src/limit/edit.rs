@@ -63,11 +63,7 @@ fn fingerprint(parts: &[&[u32]]) -> u64 {
 fn level_print(s: &LevelStencils) -> u64 {
     let mut parts: Vec<&[u32]> = Vec::with_capacity(9);
     for t in [&s.face(), &s.vertex(), &s.edge()] {
-        parts.extend([
-            &t.offsets()[..],
-            &t.indices()[..],
-            bytemuck::cast_slice(&t.weights()),
-        ]);
+        parts.extend([t.offsets(), t.indices(), bytemuck::cast_slice(t.weights())]);
     }
     fingerprint(&parts)
 }
@@ -77,9 +73,9 @@ fn fixed_print(table: &PatchTable, t: &LimitTables) -> u64 {
     let mut parts: Vec<&[u32]> = vec![&t.patch_map, &t.cvs, &table.level_offsets()];
     parts.extend(table.level_inputs().iter().map(Vec::as_slice));
     parts.extend([
-        &lp.offsets()[..],
-        &lp.indices()[..],
-        bytemuck::cast_slice(&lp.weights()),
+        lp.offsets(),
+        lp.indices(),
+        bytemuck::cast_slice(lp.weights()),
     ]);
     fingerprint(&parts)
 }

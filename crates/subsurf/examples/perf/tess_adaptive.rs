@@ -50,7 +50,7 @@ fn deviation(
             w
         })
         .reduce(|| 0.0, f64::max);
-    worst / f64::from(subsurf::mesh::bbox_diagonal(&reference.points()))
+    worst / f64::from(subsurf::mesh::bbox_diagonal(reference.points()))
 }
 
 fn median(mut t: Vec<f64>) -> f64 {
@@ -78,7 +78,7 @@ fn main() {
         println!("---|---|---");
         let mut uniform = Vec::new();
         for r in [1u32, 2, 3, 4, 6, 8, 11, 16, 23, 32, 45, 64] {
-            let mut p = plan(&reference.table(), &EdgeRates::uniform(&t, r), "").unwrap();
+            let mut p = plan(reference.table(), &EdgeRates::uniform(&t, r), "").unwrap();
             let uv = std::mem::take(&mut p.triangle_uv);
             let out = reference.eval_plan(p);
             let d = deviation(&reference, &out.positions, &out.triangles, &uv);

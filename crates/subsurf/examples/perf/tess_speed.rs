@@ -60,15 +60,15 @@ fn main() {
         unreachable!()
     };
     let m = CurveMeasure::SecondDerivative;
-    let curves = RateCurves::new(&s.table());
+    let curves = RateCurves::new(s.table());
     let face_of_ptex = s.table().ptex_base_faces();
-    let diagonal = |s: &subsurf::limit::LimitSurface| subsurf::mesh::bbox_diagonal(&s.points());
+    let diagonal = |s: &subsurf::limit::LimitSurface| subsurf::mesh::bbox_diagonal(s.points());
     if let Ok(only) = std::env::var("ONLY") {
         let measures = curves.measure(&s, &m);
         let r = policy
-            .rates_from_measures(&s.table(), diagonal(&s), &curves, &measures, "")
+            .rates_from_measures(s.table(), diagonal(&s), &curves, &measures, "")
             .unwrap();
-        let p = plan(&s.table(), &r, "").unwrap();
+        let p = plan(s.table(), &r, "").unwrap();
         for _ in 0..runs {
             match only.as_str() {
                 "measure" => drop(std::hint::black_box(curves.measure(&s, &m))),
@@ -78,9 +78,9 @@ fn main() {
                     &face_of_ptex,
                     None,
                 ))),
-                "plan" => drop(std::hint::black_box(plan(&s.table(), &r, ""))),
+                "plan" => drop(std::hint::black_box(plan(s.table(), &r, ""))),
                 "rates" => drop(std::hint::black_box(policy.rates_from_measures(
-                    &s.table(),
+                    s.table(),
                     diagonal(&s),
                     &curves,
                     &measures,
@@ -96,7 +96,7 @@ fn main() {
     let mut stages = vec![Vec::new(); 6];
     let mut triangles = 0;
     // Orthographic, along -z, the bounding box framed in 800 x 600 pixels.
-    let (lo, hi) = subsurf::mesh::bounding_box(&s.points()).unwrap();
+    let (lo, hi) = subsurf::mesh::bounding_box(s.points()).unwrap();
     let half = 0.55 * (hi[0] - lo[0]).max((hi[1] - lo[1]) * 4.0 / 3.0);
     let (cx, cy) = (0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]));
     let (sx, sy) = (1.0 / half, 4.0 / 3.0 / half);
@@ -119,7 +119,7 @@ fn main() {
         let t0 = Instant::now();
         let measures = curves.measure(&s, &screen_m);
         let r = screen
-            .rates_from_measures(&s.table(), diagonal(&s), &curves, &measures, "")
+            .rates_from_measures(s.table(), diagonal(&s), &curves, &measures, "")
             .unwrap();
         let out = s.tessellate_rates(&r, "").unwrap();
         let t1 = Instant::now();
@@ -141,7 +141,7 @@ fn main() {
         let t0 = Instant::now();
         let measures = curves.measure(&s, &m);
         let r = policy
-            .rates_from_measures(&s.table(), diagonal(&s), &curves, &measures, "")
+            .rates_from_measures(s.table(), diagonal(&s), &curves, &measures, "")
             .unwrap();
         let t1 = Instant::now();
         let (_, out, _) = tessellate_within_tolerance(&s, r, chords, "").unwrap();
@@ -151,15 +151,15 @@ fn main() {
         frame.1.push(ms(t0, t2));
         // The stages of one plan.
         let t0 = Instant::now();
-        let c = RateCurves::new(&s.table());
+        let c = RateCurves::new(s.table());
         let t1 = Instant::now();
         let measures = c.measure(&s, &m);
         let t2 = Instant::now();
         let r = policy
-            .rates_from_measures(&s.table(), diagonal(&s), &c, &measures, "")
+            .rates_from_measures(s.table(), diagonal(&s), &c, &measures, "")
             .unwrap();
         let t3 = Instant::now();
-        let p = plan(&s.table(), &r, "").unwrap();
+        let p = plan(s.table(), &r, "").unwrap();
         let t4 = Instant::now();
         let e = chord_errors(&s, &p, &face_of_ptex, None);
         let t5 = Instant::now();
