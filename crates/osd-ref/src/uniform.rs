@@ -269,7 +269,7 @@ impl Drop for OsdRefiner {
 /// };
 /// let refiner = subsurf::Refiner::new(subsurf::Topology::new(&cube)?, 2)?;
 /// let ours = refiner.refine_positions(&cube.positions);
-/// assert_eq!(levels[2].face_verts, refiner.last().face_verts);
+/// assert_eq!(levels[2].face_verts, refiner.last().arrays().face_verts);
 /// for (a, b) in levels[2].positions.iter().zip(&ours) {
 ///     assert!((0..3).all(|c| (a[c] - b[c]).abs() < 1e-6));
 /// }

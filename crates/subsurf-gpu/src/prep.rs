@@ -251,7 +251,7 @@ struct ChunkBuffers {
 ///     Err(GpuError::NoAdapter { .. }) => return Ok(()), // CPU only: `cpu.tessellate(n)`
 ///     Err(e) => return Err(e.into()),
 /// };
-/// let mut gpu = GpuPrep::new(&ctx, &cpu.topology)?;
+/// let mut gpu = GpuPrep::new(&ctx, cpu.topology())?;
 /// let grid = gpu.grid(&ctx, 5)?; // 5 samples per patch side, shared along edges
 /// for frame in 0..2 {
 ///     cube.positions[0][2] += 0.25 * frame as f32; // animate one vertex

@@ -43,8 +43,8 @@
 //! let surface = LimitSurface::new(table, &grid.positions);
 //!
 //! let middle = 5 * 2 + 2; // face (2, 2): a quad is one ptex face
-//! let patch = surface.table.patch_map.find(middle, 0.5, 0.5).expect("not a hole") as usize;
-//! assert_eq!(surface.table.patch_type(patch), PatchType::Regular);
+//! let patch = surface.table().patch_map().find(middle, 0.5, 0.5).expect("not a hole") as usize;
+//! assert_eq!(surface.table().patch_type(patch), PatchType::Regular);
 //!
 //! let basis = |t: f32| {
 //!     let s = 1.0 - t;

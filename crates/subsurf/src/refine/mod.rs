@@ -131,7 +131,7 @@ impl RefineOptions {
 /// assert_eq!(lattice, want);
 /// // The corner at the face point has the centre UV in every child face.
 /// let t = refiner.last();
-/// for (corner, &v) in t.face_verts.iter().enumerate() {
+/// for (corner, &v) in t.arrays().face_verts.iter().enumerate() {
 ///     if v == 4 {
 ///         assert_eq!(last.values[last.indices[corner] as usize], [0.5, 0.5]);
 ///     }

@@ -21,9 +21,9 @@ use rayon::prelude::*;
 /// let torus = shapes::torus(6, 4, 2.0, 0.5);
 /// let refiner = Refiner::new(Topology::new(&torus)?, 2)?;
 /// let table: StencilTable = refiner.stencil_table();
-/// assert_eq!(table.num_inputs, torus.num_vertices());
+/// assert_eq!(table.num_inputs(), torus.num_vertices());
 /// assert_eq!(table.num_rows(), refiner.last().num_vertices());
-/// assert_eq!(table.offsets.len(), table.num_rows() + 1);
+/// assert_eq!(table.offsets().len(), table.num_rows() + 1);
 ///
 /// let mut direct = vec![[0.0f32; 3]; table.num_rows()];
 /// table.apply(&torus.positions, &mut direct);
@@ -32,8 +32,8 @@ use rayon::prelude::*;
 ///     assert!((0..3).all(|c| (a[c] - b[c]).abs() < 1e-5));
 /// }
 /// for r in 0..table.num_rows() {
-///     let (lo, hi) = (table.offsets[r] as usize, table.offsets[r + 1] as usize);
-///     let sum: f32 = table.weights[lo..hi].iter().sum();
+///     let (lo, hi) = (table.offsets()[r] as usize, table.offsets()[r + 1] as usize);
+///     let sum: f32 = table.weights()[lo..hi].iter().sum();
 ///     assert!((sum - 1.0).abs() < 1e-5);
 /// }
 /// # Ok::<(), subsurf::Error>(())

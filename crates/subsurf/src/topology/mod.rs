@@ -42,10 +42,10 @@ use crate::options::Options;
 /// assert!(t.is_manifold() && !t.is_closed() && t.is_all_quads());
 ///
 /// let crease = t.find_edge(1, 4).expect("1 and 4 are joined") as usize;
-/// assert_eq!(t.edge_sharpness[crease], 2.5);
+/// assert_eq!(t.edge_sharpness(crease), 2.5);
 /// assert_eq!(t.edge_faces(crease).len(), 2);
 /// let boundary = t.find_edge(0, 1).expect("0 and 1 are joined") as usize;
-/// assert_eq!(t.edge_sharpness[boundary], SHARPNESS_INFINITE);
+/// assert_eq!(t.edge_sharpness(boundary), SHARPNESS_INFINITE);
 ///
 /// mesh.face_indices[0] = 99;
 /// assert!(matches!(
