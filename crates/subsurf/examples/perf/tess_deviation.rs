@@ -84,7 +84,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             let d = deviation(&reference, &t.positions, &t.triangles, &opts);
             let reached = d.hausdorff();
             // The coarsest uniform rate within `reached`: doubling, then bisection.
-            let (mut lo, mut hi) = (0usize, 1usize);
+            let (mut lo, mut hi) = (1usize, 2usize); // rate 2 is the coarsest uniform one
             while hi < 64 && uniform_at(hi)?.0.hausdorff() > reached {
                 (lo, hi) = (hi, (2 * hi).min(64));
             }
