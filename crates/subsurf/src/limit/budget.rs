@@ -13,10 +13,9 @@
 //! patches    90 F'                   at most one patch per face: 16 indices, parameters
 //! ```
 //!
-//! The levels are counted against a [`Budget`] (80% of the available memory by default).
+//! The levels are counted against a `crate::util::budget::Budget` (80% of the available memory by default).
 
 use crate::topology::Topology;
-pub(crate) use crate::util::budget::Budget;
 
 /// Estimated bytes of the level one Loop refinement step of a triangle mesh of `faces`
 /// triangles makes, with what the Loop isolation keeps of it: `4 F` triangles at about 150

@@ -17,7 +17,6 @@
 //! vertices that boundary and non-manifold sharpening keep infinitely sharp) leave it
 //! untouched.
 
-use super::budget::Budget;
 use super::edit_region::Incremental;
 use super::sparse::Selection;
 use super::table::{PatchOptions, PatchTable};
@@ -26,6 +25,7 @@ use crate::mesh::Crease;
 use crate::options::BoundaryInterpolation;
 use crate::real::Real;
 use crate::topology::{clamp_sharpness, Topology};
+use crate::util::budget::Budget;
 
 /// One sharpness edit of [`PatchTable::set_sharpness`].
 #[derive(Debug, Clone, Copy, PartialEq)]

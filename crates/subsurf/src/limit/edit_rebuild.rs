@@ -18,7 +18,6 @@
 //! levels near the base, so it grows with `d` (a crease moved across sharpness `k` changes
 //! the decisions at level `k` or so).
 
-use super::budget::Budget;
 use super::edit_region::{write_params, EditState, NewParams, CHOSEN, NONE};
 use super::features::FeatureMask;
 use super::leaves::{level_patches, Leaf, LeafOptions, LeafPoints, LevelPatches, UNWALKED};
@@ -29,6 +28,7 @@ use crate::error::{Error, Result};
 use crate::patch::PatchParam;
 use crate::real::Real;
 use crate::refine::Restenciled;
+use crate::util::budget::Budget;
 
 /// The type, crease sharpness and parameter of every patch.
 type Leaves = (Vec<u8>, Vec<f32>, Vec<PatchParam>);

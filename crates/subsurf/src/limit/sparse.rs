@@ -53,7 +53,6 @@
 //! rebuilt from face lists), so the rings of complete vertices are the level's own, ordering
 //! and non-manifold edge instances included.
 
-use super::budget::Budget;
 use super::features::{face_has_features, level_tags, FeatureMask, VTag};
 use crate::error::{Error, MeshError, Result};
 use crate::options::CreaseMethod;
@@ -61,6 +60,7 @@ use crate::real::Real;
 use crate::refine::{level_stencils_real, refine_topology, LevelStencils};
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
+use crate::util::budget::Budget;
 use crate::SHARPNESS_INFINITE;
 
 /// No child / not in the sub-mesh.

@@ -1,13 +1,13 @@
 //! The sparse construction against uniform refinement, its cost per level, and its
 //! exactness check.
 
-use super::budget::Budget;
 use super::features::FeatureMask;
 use super::sparse::{build, Selection};
 use super::table::{PatchOptions, PatchTable};
 use crate::error::{Error, MeshError};
 use crate::options::CreaseMethod;
 use crate::topology::Topology;
+use crate::util::budget::Budget;
 use crate::Mesh;
 
 /// The levels alone, within no memory limit.

@@ -50,7 +50,6 @@
 //! (`P + 1` offsets into `cvs`: 16 or 20 `u32` indices), `params` (packed
 //! [`PatchParam`], 2 × `u32`), `sharpness` (`f32`, 0 unless single-crease).
 
-use super::budget::Budget;
 use super::features::FeatureMask;
 use super::leaves::{level_patches, LeafOptions, LevelPatches, UNWALKED};
 use super::patch_map::{PatchMap, EMPTY, LEAF, QUADRANT};
@@ -61,6 +60,7 @@ use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
 use crate::real::Real;
 use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
+use crate::util::budget::Budget;
 use rayon::prelude::*;
 
 /// Largest isolation level accepted ([`PatchParam`]'s depth field holds 15, OpenSubdiv

@@ -10,7 +10,8 @@
 //! boundary; `b` is for export and for the reference checker.
 
 use super::patch_pass::H_SLOTS;
-use super::scalar::{Real, V3};
+use crate::real::Real;
+use crate::util::vec3::V3;
 
 /// Degree-raising matrix `E` (6×4), times 10.
 const E10: [[f64; 4]; 6] = [

@@ -11,7 +11,7 @@
 //! Everything is computed once in `f64` and rounded to the target scalar, so both patches
 //! along an edge read the very same constant.
 
-use super::scalar::Real;
+use crate::real::Real;
 
 /// Smallest valence the p-rep handles (interior Catmull-Clark stencils need `n >= 3`).
 pub const MIN_VALENCE: usize = 3;

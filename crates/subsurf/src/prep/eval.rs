@@ -15,8 +15,9 @@ use rayon::prelude::*;
 
 use super::grid::{uniform_params, GridBasis};
 use super::patch_pass::{corner_index, H_SLOTS};
-use super::scalar::{add, cross, normalize, scale, sub, zero3, Real, V3};
 use super::PrepPatches;
+use crate::real::Real;
+use crate::util::vec3::{add, cross, normalize, scale, sub, zero3, V3};
 
 /// Bernstein values and derivatives of degree 3 and 5 at one parameter.
 #[derive(Debug, Clone, Copy)]

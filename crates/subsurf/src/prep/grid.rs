@@ -28,7 +28,8 @@
 //! forming the 36 bi-5 control points.
 
 use super::patch_pass::H_SLOTS;
-use super::scalar::{Real, V3};
+use crate::real::Real;
+use crate::util::vec3::V3;
 
 /// Bernstein bases of degree 3 and 5 (values and derivatives) at one `v` parameter.
 #[derive(Debug, Clone, Copy)]
@@ -239,7 +240,7 @@ fn eval_row<T: Real, const N: usize, const D: usize>(
     }
 }
 
-/// `a × b / |a × b|` (unchanged when zero, as [`super::scalar::normalize`]), branch-free.
+/// `a × b / |a × b|` (unchanged when zero, as [`crate::util::vec3::normalize`]), branch-free.
 #[inline(always)]
 fn unit_cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     let x = a[1] * b[2] - a[2] * b[1];

@@ -25,7 +25,6 @@ pub(crate) mod npy;
 pub(crate) mod patch_pass;
 pub(crate) mod quadrangulate;
 pub(crate) mod ring;
-pub(crate) mod scalar;
 pub(crate) mod vertex_pass;
 
 pub use bezier::face_bezier;
@@ -46,15 +45,15 @@ pub mod kernel {
     #[doc(inline)]
     pub use crate::prep::vertex_pass::{frame_from_ring, interior_coeff, tangent_coeff};
 }
+pub(crate) use crate::real::Real;
 pub use ring::{check_input, PrepTopology};
-pub(crate) use scalar::Real;
 pub use vertex_pass::VertexData;
 
 use crate::error::{MeshError, Result};
 use crate::mesh::Mesh;
 use crate::topology::Topology;
+use crate::util::vec3::{zero3, V3};
 use constants::ValenceTable;
-use scalar::{zero3, V3};
 
 /// A p-rep surface: one patch per quad.
 ///

@@ -21,8 +21,9 @@ use rayon::prelude::*;
 
 use super::constants::ValenceTable;
 use super::ring::PrepTopology;
-use super::scalar::{add, Real, V3};
 use super::vertex_pass::VertexData;
+use crate::real::Real;
+use crate::util::vec3::{add, V3};
 
 /// Face index `(i, j)` of local index `(i, j)` at corner `c` for a `(d+1)×(d+1)` array.
 #[inline(always)]

@@ -20,7 +20,8 @@ use rayon::prelude::*;
 
 use super::constants::{Valence, ValenceTable};
 use super::ring::PrepTopology;
-use super::scalar::{add, axpy, scale, zero3, Real, V3};
+use crate::real::Real;
+use crate::util::vec3::{add, axpy, scale, zero3, V3};
 
 /// Per-vertex `(limit, e1, e2)` arrays, read by the sector step.
 pub type Frames<'a, T> = (&'a [V3<T>], &'a [V3<T>], &'a [V3<T>]);
