@@ -260,7 +260,7 @@ fn old_spellings_do_what_the_new_ones_do() {
     let car = repo("examples/car.obj");
     let car = car.to_str().unwrap();
     assert_eq!(
-        output_of(&["eval", car, "--tess", "3"], "old_eval.txt"),
+        output_of(&["eval", car, "--samples", "3"], "old_eval.txt"),
         output_of(&["eval", car, "--tess", "3"], "new_eval.txt")
     );
     let uv = repo("testdata/shapes/catmark_pyramid.obj");
@@ -270,7 +270,7 @@ fn old_spellings_do_what_the_new_ones_do() {
         uv,
         "-l",
         "1",
-        "--uv-interpolation",
+        "--uv-interp",
         "corners-only",
         "--triangles",
         "smooth",
