@@ -36,11 +36,13 @@ pub struct PatchMap {
 
 impl PatchMap {
     /// One handle per ptex face.
+    #[inline]
     pub fn roots(&self) -> &[u32] {
         &self.roots
     }
 
     /// Four child handles per inner node.
+    #[inline]
     pub fn nodes(&self) -> &[[u32; 4]] {
         &self.nodes
     }
@@ -102,11 +104,13 @@ pub const QUADRANT: [(u32, u32); 4] = [(0, 0), (1, 0), (1, 1), (0, 1)];
 
 impl PatchMap {
     /// Number of ptex faces.
+    #[inline]
     pub fn num_ptex(&self) -> usize {
         self.roots.len()
     }
 
     /// Whether ptex face `ptex` has patches (is in range and not a hole).
+    #[inline]
     pub fn has_patches(&self, ptex: usize) -> bool {
         self.roots.get(ptex).is_some_and(|&h| h != EMPTY)
     }

@@ -42,23 +42,27 @@ pub struct RateCurves {
 
 impl RateCurves {
     /// `(ptex face, u, v)` of every sample, [`CURVE_POINTS`] per curve, curve after curve.
+    #[inline]
     pub fn queries(&self) -> &[(u32, f32, f32)] {
         &self.queries
     }
 
     /// Per curve: whether it lies on the surface. A dead curve (the edge of holes only, or
     /// a ptex face without patches) measures zero; its queries name ptex face `u32::MAX`.
+    #[inline]
     pub fn live(&self) -> &[bool] {
         &self.live
     }
 
     /// Number of base edges: curve `e < num_edges` is base edge `e`'s.
+    #[inline]
     pub fn num_edges(&self) -> usize {
         self.num_edges
     }
 
     /// Per base face, the first of its isolines (curves `face_curves[f]..face_curves[f + 1]`,
     /// [`ISOLINES_PER_PTEX`] per ptex face; none for holes); `num_faces + 1` entries.
+    #[inline]
     pub fn face_curves(&self) -> &[u32] {
         &self.face_curves
     }

@@ -57,68 +57,81 @@ pub struct PrepTopology {
 
 impl PrepTopology {
     /// Number of vertices `V`.
+    #[inline]
     pub fn num_vertices(&self) -> usize {
         self.num_vertices
     }
 
     /// Valence of each vertex (count: V); 0 for a vertex used by no face.
+    #[inline]
     pub fn valence(&self) -> &[u32] {
         &self.valence
     }
 
     /// Offsets into `ring_indices` (count: V + 1); vertex v's ring is `2 valence(v)` long.
+    #[inline]
     pub fn ring_offsets(&self) -> &[u32] {
         &self.ring_offsets
     }
 
     /// `p1 … p2n` of every vertex, concatenated (count: 2 S).
+    #[inline]
     pub fn ring_indices(&self) -> &[u32] {
         &self.ring_indices
     }
 
     /// The vertex of each sector (count: S); vertex v's sectors are `ring_offsets[v]/2 ..`.
+    #[inline]
     pub fn sector_vertex(&self) -> &[u32] {
         &self.sector_vertex
     }
 
     /// Vertex of each face corner (count: 4 F) (faces are quads).
+    #[inline]
     pub fn face_verts(&self) -> &[u32] {
         &self.face_verts
     }
 
     /// Sector number `k` of face f at corner c (count: 4 F), i.e. the face is `(p0, p_{2k+1}, p_{2k+2}, p_{2k+3})`
     /// of the corner's vertex.
+    #[inline]
     pub fn corner_sector(&self) -> &[u32] {
         &self.corner_sector
     }
 
     /// Edge of each face corner (count: 4 F): edge c of a face joins corner c and corner c+1.
+    #[inline]
     pub fn face_edges(&self) -> &[u32] {
         &self.face_edges
     }
 
     /// End vertices of each edge (count: E), lower index first (the canonical direction).
+    #[inline]
     pub fn edge_verts(&self) -> &[[u32; 2]] {
         &self.edge_verts
     }
 
     /// For each edge (count: E), the face corner `4 f + c` whose edge runs in the canonical direction.
+    #[inline]
     pub fn edge_corner(&self) -> &[u32] {
         &self.edge_corner
     }
 
     /// Index of each face's block of 16 `h` coefficients (count: F), `u32::MAX` for a B-quad
     /// (all four vertices of valence 4).
+    #[inline]
     pub fn h_index(&self) -> &[u32] {
         &self.h_index
     }
 
     /// The faces that are not B-quads, in `h_index` order.
+    #[inline]
     pub fn perturbed_faces(&self) -> &[u32] {
         &self.perturbed_faces
     }
 
     /// Largest valence.
+    #[inline]
     pub fn max_valence(&self) -> usize {
         self.max_valence
     }

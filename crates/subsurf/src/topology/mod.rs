@@ -235,6 +235,7 @@ impl Topology {
     }
 
     /// The flat arrays, borrowed.
+    #[inline]
     pub fn arrays(&self) -> TopologyArrays<'_> {
         TopologyArrays {
             face_offsets: &self.face_offsets,
@@ -259,31 +260,37 @@ impl Topology {
     }
 
     /// The options the surface is built with.
+    #[inline]
     pub fn options(&self) -> &Options {
         &self.options
     }
 
     /// The two vertices of edge `e`, oriented as the first face that uses it.
+    #[inline]
     pub fn edge_vertices(&self, e: usize) -> [u32; 2] {
         self.edge_verts[e]
     }
 
     /// Whether face `f` is a hole (not emitted, yet it shapes its neighbours).
+    #[inline]
     pub fn face_is_hole(&self, f: usize) -> bool {
         self.face_is_hole[f]
     }
 
     /// Sharpness of edge `e` in `[0, 10]` (boundary and non-manifold edges are 10).
+    #[inline]
     pub fn edge_sharpness(&self, e: usize) -> f32 {
         self.edge_sharpness[e]
     }
 
     /// Sharpness of vertex `v` in `[0, 10]`.
+    #[inline]
     pub fn vertex_sharpness(&self, v: usize) -> f32 {
         self.vert_sharpness[v]
     }
 
     /// Whether edge `e` is semi-sharp (sharpness in `(0, 10)`).
+    #[inline]
     pub fn is_semi_sharp_edge(&self, e: usize) -> bool {
         self.edge_tags[e] & tags::E_SEMI_SHARP != 0
     }
