@@ -227,6 +227,24 @@ int osd_uniform_interpolate_all(const osd_uniform *u, const float *coarse, float
     });
 }
 
+int osd_uniform_interpolate_last_f64(const osd_uniform *u, const double *coarse, double *last) {
+    return guarded([&] {
+        const Far::TopologyRefiner &r = *u->refiner;
+        int max = r.GetMaxLevel();
+        std::vector<Vec3d> all(r.GetNumVerticesTotal());
+        std::memcpy(all.data(), coarse, sizeof(Vec3d) * r.GetLevel(0).GetNumVertices());
+        Far::PrimvarRefinerReal<double> pr(r);
+        Vec3d *src = all.data();
+        for (int level = 1; level <= max; ++level) {
+            Vec3d *dst = src + r.GetLevel(level - 1).GetNumVertices();
+            pr.Interpolate(level, src, dst);
+            src = dst;
+        }
+        std::memcpy(last, src, sizeof(Vec3d) * r.GetLevel(max).GetNumVertices());
+        return 0;
+    });
+}
+
 int osd_uniform_interpolate_last(osd_uniform *u, const float *coarse, float *last) {
     return guarded([&] {
         const Far::TopologyRefiner &r = *u->refiner;
@@ -512,7 +530,9 @@ int64_t osd_adaptive_eval_grid_f64(const osd_mesh_desc *mesh, int isolation, int
         int nlocal = pt->GetNumLocalPoints();
         std::vector<Vec3d> points(nref + nlocal);
         for (int i = 0; i < mesh->num_vertices; ++i)
-            for (int k = 0; k < 3; ++k) points[i].v[k] = (double)mesh->positions[3 * i + k];
+            for (int k = 0; k < 3; ++k)
+                points[i].v[k] = mesh->positions_f64 ? mesh->positions_f64[3 * i + k]
+                                                     : (double)mesh->positions[3 * i + k];
         Far::PrimvarRefinerReal<double> pr(*refiner);
         Vec3d *src = points.data();
         for (int level = 1; level <= refiner->GetMaxLevel(); ++level) {

@@ -39,6 +39,8 @@ typedef struct osd_mesh_desc {
     int crease_method;     /* Sdc::Options::CreasingMethod */
     int triangle_smooth;   /* Sdc::Options::TriangleSubdivision */
     int fvar_interp;       /* Sdc::Options::FVarLinearInterpolation */
+    const double *positions_f64; /* 3 * num_vertices, or NULL: the positions as given, read
+                                    by the double-precision paths instead of `positions` */
 } osd_mesh_desc;
 
 /* One limit-surface sample; layout shared with the Rust `LimitSample`. */
@@ -72,6 +74,8 @@ int osd_uniform_level_topology(const osd_uniform *u, int level, int *face_counts
 int osd_uniform_interpolate_all(const osd_uniform *u, const float *coarse, float *all);
 /* last: 3 * V(max level) floats. Not thread-safe on one handle (internal scratch). */
 int osd_uniform_interpolate_last(osd_uniform *u, const float *coarse, float *last);
+/* The last level in double precision (PrimvarRefinerReal<double>) from double positions. */
+int osd_uniform_interpolate_last_f64(const osd_uniform *u, const double *coarse, double *last);
 /* coarse: 2 * fvar values of level 0; all: 2 * total fvar values. */
 int osd_uniform_interpolate_fvar_all(const osd_uniform *u, const float *coarse, float *all);
 /* last_level: 3 * V(max level) floats, limit: same size. */

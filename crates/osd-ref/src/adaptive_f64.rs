@@ -8,7 +8,8 @@ use crate::mesh::{Desc, OsdMesh};
 use crate::{unavailable_or_osd, Error, Result};
 
 /// One limit-surface sample in double precision (see [`crate::LimitSample`]): the mesh's
-/// `f32` positions widened, refined, turned into end-cap points and evaluated in `f64`.
+/// `f64` positions ([`crate::OsdMesh::positions_f64`], else its `f32` ones widened) refined,
+/// turned into end-cap points and evaluated in `f64`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct LimitSampleF64 {

@@ -33,6 +33,7 @@ pub(crate) struct MeshDesc {
     pub crease_method: c_int,
     pub triangle_smooth: c_int,
     pub fvar_interp: c_int,
+    pub positions_f64: *const f64,
 }
 
 /// Opaque `osd_uniform`.
@@ -86,6 +87,11 @@ extern "C" {
         u: *mut Uniform,
         coarse: *const c_float,
         last: *mut c_float,
+    ) -> c_int;
+    pub(crate) fn osd_uniform_interpolate_last_f64(
+        u: *const Uniform,
+        coarse: *const f64,
+        last: *mut f64,
     ) -> c_int;
     pub(crate) fn osd_uniform_interpolate_fvar_all(
         u: *const Uniform,
@@ -188,6 +194,13 @@ mod stubs {
         _: *const Uniform,
         _: *const c_float,
         _: *mut c_float,
+    ) -> c_int {
+        -1
+    }
+    pub(crate) unsafe fn osd_uniform_interpolate_last_f64(
+        _: *const Uniform,
+        _: *const f64,
+        _: *mut f64,
     ) -> c_int {
         -1
     }

@@ -44,6 +44,7 @@ impl<'a> From<&'a subsurf::Mesh> for OsdMesh<'a> {
     fn from(m: &'a subsurf::Mesh) -> Self {
         OsdMesh {
             positions: &m.positions,
+            positions_f64: m.positions.as_f64(),
             face_counts: &m.face_counts,
             face_indices: &m.face_indices,
             creases: Cow::Owned(

@@ -80,6 +80,10 @@ impl Default for OsdOptions {
 pub struct OsdMesh<'a> {
     /// Vertex positions.
     pub positions: &'a [[f32; 3]],
+    /// The positions as given, when they were given in `f64`: what the double-precision
+    /// paths ([`crate::eval_limit_grid_f64`], [`crate::OsdRefiner::interpolate_f64`]) read
+    /// instead of `positions`.
+    pub positions_f64: Option<&'a [[f64; 3]]>,
     /// Number of vertices of each face.
     pub face_counts: &'a [u32],
     /// Vertex indices of all faces, concatenated.
@@ -101,6 +105,7 @@ impl<'a> OsdMesh<'a> {
     pub fn new(positions: &'a [[f32; 3]], face_counts: &'a [u32], face_indices: &'a [u32]) -> Self {
         OsdMesh {
             positions,
+            positions_f64: None,
             face_counts,
             face_indices,
             creases: Cow::Borrowed(&[]),
@@ -222,6 +227,10 @@ impl<'a> Desc<'a> {
         MeshDesc {
             num_vertices: m.positions.len() as c_int,
             positions: m.positions.as_ptr().cast::<f32>(),
+            positions_f64: m
+                .positions_f64
+                .filter(|p| p.len() == m.positions.len())
+                .map_or(std::ptr::null(), |p| p.as_ptr().cast::<f64>()),
             num_faces: m.face_counts.len() as c_int,
             face_counts: ints(m.face_counts),
             face_indices: ints(m.face_indices),

@@ -141,6 +141,28 @@ impl OsdRefiner {
         })
     }
 
+    /// The last level in double precision (`PrimvarRefinerReal<double>`) from `f64` coarse
+    /// positions (a subsurf mesh's [`subsurf::Positions::to_f64`]).
+    pub fn interpolate_f64(&self, positions: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
+        if positions.len() != self.num_vertices[0] {
+            return Err(Error::Invalid(format!(
+                "{} positions for {} coarse vertices",
+                positions.len(),
+                self.num_vertices[0]
+            )));
+        }
+        let mut out = vec![[0.0f64; 3]; self.num_vertices(self.max_level)];
+        // SAFETY: `positions` holds level 0 and `out` the last level, in packed doubles.
+        check(unsafe {
+            ffi::osd_uniform_interpolate_last_f64(
+                self.raw.as_ptr(),
+                positions.as_ptr().cast(),
+                out.as_mut_ptr().cast(),
+            )
+        })?;
+        Ok(out)
+    }
+
     /// Positions of every level, concatenated (level 0 first).
     pub fn interpolate_all(&self, positions: &[[f32; 3]]) -> Result<Vec<[f32; 3]>> {
         self.check_coarse(positions)?;

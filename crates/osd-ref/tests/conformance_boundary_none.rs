@@ -24,7 +24,7 @@ fn crease(v0: u32, v1: u32, sharpness: f32) -> Crease {
 /// A bumpy `n × n` grid with UVs split along a seam in the middle column, boundary `none`.
 fn grid(n: usize) -> Mesh {
     let mut m = subsurf::shapes::grid(n, n);
-    for (i, p) in m.positions.iter_mut().enumerate() {
+    for (i, p) in m.positions.as_f32_mut().iter_mut().enumerate() {
         p[2] = ((i * 7919) % 13) as f32 * 0.05;
     }
     let values: Vec<[f32; 2]> = m
@@ -135,11 +135,8 @@ fn cases() -> Vec<(String, Mesh)> {
     let g = subsurf::shapes::grid(3, 3);
     let base = m.positions.len() as u32;
     let shared = 15u32; // corner (3, 3) of the first grid
-    m.positions.extend(
-        g.positions
-            .iter()
-            .map(|p| [p[0] + 3.0, p[1] + 3.0, 0.5 * p[0]]),
-    );
+    m.positions
+        .append(&g.positions.map(|p| [p[0] + 3.0, p[1] + 3.0, 0.5 * p[0]]));
     for &v in &g.face_indices {
         m.face_indices.push(if v == 0 { shared } else { base + v });
     }

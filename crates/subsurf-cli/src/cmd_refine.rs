@@ -3,7 +3,8 @@
 
 use crate::cmd_limit::surface_backend;
 use crate::common::{
-    check_mesh_output, option_parser, output_mesh, shown, write_mesh, Backend, SchemeArgs,
+    check_mesh_output, option_parser, output_mesh, shown, write_mesh, write_options, Backend,
+    SchemeArgs,
 };
 use crate::usd_stage::{is_usd, read_stage, select};
 use anyhow::Context as _;
@@ -35,12 +36,22 @@ pub struct RefineArgs {
     /// Where the refinement stencils are applied.
     #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
+    /// Double precision from the file to the output: the positions as the file holds them
+    /// (OBJ digits, PLY doubles, USD point3d), every step's masks in f64 (CPU only), the
+    /// result written in f64 (OBJ shortest round-trip digits, PLY double, USD point3d[]).
+    #[arg(long)]
+    pub f64: bool,
     #[command(flatten)]
     pub scheme: SchemeArgs,
 }
 
 pub fn run(a: &RefineArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
+    anyhow::ensure!(
+        !(a.f64 && a.backend == Backend::Gpu),
+        "--f64 refines on the CPU: it cannot be combined with --backend gpu"
+    );
+    crate::common::set_f64_output(a.f64);
     let backend = surface_backend(a.backend)?;
     if is_usd(&a.input) {
         return run_stage(a, backend.as_ref());
@@ -81,7 +92,7 @@ fn run_stage(a: &RefineArgs, backend: &dyn surface::Backend) -> anyhow::Result<(
         if !usd_out {
             return finish(a, &mesh, out);
         }
-        stage.set_mesh(&p.path, &output_mesh(&out), true)?;
+        stage.set_mesh_with(&p.path, &output_mesh(&out), true, &write_options())?;
     }
     stage
         .write_path(&a.output)
@@ -96,6 +107,14 @@ fn refine_one(
     mesh: &subsurf::Mesh,
     backend: &dyn surface::Backend,
 ) -> anyhow::Result<subsurf::Mesh> {
+    if a.f64 {
+        return Ok(surface::refine_mesh_f64(
+            mesh,
+            a.level,
+            a.limit,
+            a.uv_interpolation,
+        )?);
+    }
     Ok(refine_mesh(
         mesh,
         a.level,
@@ -110,8 +129,8 @@ fn finish(a: &RefineArgs, mesh: &subsurf::Mesh, out: subsurf::Mesh) -> anyhow::R
     let written = output_mesh(&out);
     if is_usd(&a.output) {
         // A refined mesh in USD is a polygon mesh (subdivisionScheme none).
-        let mut stage = subsurf::io::usd::Stage::from_mesh(&written);
-        stage.set_mesh("/Mesh", &written, true)?;
+        let mut stage = subsurf::io::usd::Stage::from_mesh_with(&written, &write_options());
+        stage.set_mesh_with("/Mesh", &written, true, &write_options())?;
         stage
             .write_path(&a.output)
             .with_context(|| format!("writing {}", a.output.display()))?;

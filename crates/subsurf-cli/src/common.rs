@@ -102,10 +102,20 @@ pub fn set_keep_holes(keep: bool) {
     let _ = KEEP_HOLES.set(keep);
 }
 
-/// How mesh output is written (the global `--keep-holes`).
-fn write_options() -> subsurf::io::WriteOptions {
+/// Whether mesh output writes positions held in `f64` as `f64` where the format has the
+/// choice (USD `point3d[]`): set by a command's `--f64`.
+static F64_OUTPUT: OnceLock<bool> = OnceLock::new();
+
+/// Sets the output precision of a command run with `--f64`.
+pub fn set_f64_output(f64: bool) {
+    let _ = F64_OUTPUT.set(f64);
+}
+
+/// How mesh output is written (the global `--keep-holes`, a command's `--f64`).
+pub fn write_options() -> subsurf::io::WriteOptions {
     subsurf::io::WriteOptions {
         keep_holes: *KEEP_HOLES.get().unwrap_or(&false),
+        f64: *F64_OUTPUT.get().unwrap_or(&false),
     }
 }
 

@@ -59,12 +59,8 @@ pub fn merge_world(meshes: &[MeshPrim]) -> Mesh {
     for m in meshes {
         let v0 = out.positions.len() as u32;
         let f0 = out.face_counts.len() as u32;
-        out.positions.extend(
-            m.mesh
-                .positions
-                .iter()
-                .map(|&p| transform_point(&m.world, p)),
-        );
+        out.positions
+            .append(&m.mesh.positions.map(|p| transform_point(&m.world, p)));
         out.face_counts.extend_from_slice(&m.mesh.face_counts);
         out.face_indices
             .extend(m.mesh.face_indices.iter().map(|&i| i + v0));

@@ -148,7 +148,7 @@ fn refine_writes_every_mesh_prim_back_into_its_stage() {
         "/World/Group/B is moved by its transforms"
     );
     let moved = subsurf::Mesh {
-        positions: world,
+        positions: world.into(),
         ..b.mesh.clone()
     };
     for (flatten, mesh) in [(true, &moved), (false, &b.mesh)] {

@@ -69,7 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::env::temp_dir().join(format!("subsurf_tutorial_01_{}.obj", std::process::id()));
     io::write_path(&out, &refined, None)?;
     let back = io::read_path(&out)?;
-    assert_eq!(back.positions, refined.positions); // OBJ keeps every f32 bit
+    assert_eq!(*back.positions, *refined.positions); // OBJ keeps every f32 bit
     assert_eq!(back.face_indices, refined.face_indices);
     assert_eq!(back.creases.len(), refined.creases.len());
     println!(

@@ -20,7 +20,7 @@ fn dist(a: [f32; 3], b: [f32; 3]) -> f32 {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // A cube (every vertex of valence 3: extraordinary) with one corner pulled out.
     let mut cube = shapes::cube();
-    cube.positions[3] = [1.5, 1.2, 1.4];
+    cube.positions.set(3, [1.5, 1.2, 1.4]);
     let topology = Topology::new(&cube)?;
     let table = PatchTable::build(&topology, &PatchOptions::default())?;
     let counts = table.counts();

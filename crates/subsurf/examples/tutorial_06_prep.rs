@@ -64,7 +64,7 @@ fn on_edge(k: usize, t: f64) -> (f64, f64) {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // A closed quad mesh with valences 3 and 4: a cube refined twice (one corner pulled out).
     let mut cube = shapes::cube();
-    cube.positions[3] = [1.5, 1.2, 1.4];
+    cube.positions.set(3, [1.5, 1.2, 1.4]);
     let refiner = Refiner::new(Topology::new(&cube)?, 2)?;
     let mesh = refiner.to_mesh(2, refiner.refine_positions(&cube.positions));
     let topology = Topology::new(&mesh)?;

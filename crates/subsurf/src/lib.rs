@@ -111,14 +111,14 @@ pub mod budget {
 #[doc(inline)]
 pub use error::{Error, MeshError, QueryError, Result, TessError};
 #[doc(inline)]
-pub use mesh::{Corner, Crease, FaceVarying, Mesh};
+pub use mesh::{Corner, Crease, FaceVarying, Mesh, Positions};
 #[doc(inline)]
 pub use options::{
     BoundaryInterpolation, CreaseMethod, FVarLinearInterpolation, OptionValue, Options,
     ParseOptionError, Scheme, TriangleSubdivision,
 };
 #[doc(inline)]
-pub use real::Real;
+pub use real::{Real, VertexData};
 #[doc(inline)]
 pub use refine::{RefineOptions, Refiner, StencilTable};
 #[doc(inline)]

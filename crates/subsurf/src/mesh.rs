@@ -1,6 +1,9 @@
 //! The input model: polygons, positions, optional face-varying UVs and sharpness tags.
 
+use std::borrow::Cow;
+
 use crate::options::Options;
+use crate::real::{Real, VertexData};
 
 /// A semi-sharp or infinitely sharp edge tag: the edge between `v0` and `v1`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,8 +38,8 @@ pub struct FaceVarying {
 /// [`crate::topology::Topology`] to get a checked, connected model.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Mesh {
-    /// Vertex positions.
-    pub positions: Vec<[f32; 3]>,
+    /// Vertex positions, at the precision they were given ([`Positions`]).
+    pub positions: Positions,
     /// Number of vertices of each face (each >= 3 in a valid mesh).
     pub face_counts: Vec<u32>,
     /// Vertex indices of all faces, concatenated, counter-clockwise seen from outside.
@@ -55,7 +58,7 @@ pub struct Mesh {
 
 impl Mesh {
     /// Builds a mesh from positions and faces given as slices of indices.
-    pub fn from_faces<F: AsRef<[u32]>>(positions: Vec<[f32; 3]>, faces: &[F]) -> Self {
+    pub fn from_faces<F: AsRef<[u32]>>(positions: impl Into<Positions>, faces: &[F]) -> Self {
         let mut face_counts = Vec::with_capacity(faces.len());
         let mut face_indices = Vec::new();
         for f in faces {
@@ -63,7 +66,7 @@ impl Mesh {
             face_indices.extend_from_slice(f.as_ref());
         }
         Mesh {
-            positions,
+            positions: positions.into(),
             face_counts,
             face_indices,
             ..Default::default()
@@ -139,6 +142,217 @@ impl Mesh {
     /// Axis-aligned bounding box `(min, max)` of the positions; `None` for an empty mesh.
     pub fn bounding_box(&self) -> Option<([f32; 3], [f32; 3])> {
         bounding_box(&self.positions)
+    }
+}
+
+/// Vertex positions at the precision they were given: the `f32` values every `f32` table and
+/// GPU upload reads (dereferencing gives them, `&[[f32; 3]]`), and, for positions given in
+/// `f64` (an OBJ file's digits, a PLY `double` property, USD `point3d[]`/`double3[]`, a
+/// float64 array), those values themselves, which double-precision paths read without
+/// rounding ([`VertexData`] gives them).
+///
+/// The `f32` values are always the `f64` ones rounded to nearest, so the two never disagree:
+/// positions are set through [`Positions::from_f32`], [`Positions::from_f64`] or
+/// [`Positions::set`], never through a mutable slice.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Positions {
+    f32: Vec<[f32; 3]>,
+    f64: Option<Vec<[f64; 3]>>,
+}
+
+impl Positions {
+    /// Positions given in `f32`.
+    pub fn from_f32(values: Vec<[f32; 3]>) -> Positions {
+        Positions {
+            f32: values,
+            f64: None,
+        }
+    }
+
+    /// Positions given in `f64`, kept as given (their `f32` rounding alongside).
+    pub fn from_f64(values: Vec<[f64; 3]>) -> Positions {
+        Positions {
+            f32: values.iter().map(|p| p.map(|x| x as f32)).collect(),
+            f64: Some(values),
+        }
+    }
+
+    /// Positions read as `f64` from a format without a declared precision (OBJ text): kept in
+    /// `f64` if any value differs from its `f32` rounding, in `f32` otherwise (nothing is lost
+    /// either way).
+    pub fn from_f64_compact(values: Vec<[f64; 3]>) -> Positions {
+        if values
+            .iter()
+            .flatten()
+            .all(|&x| (x as f32) as f64 == x || x.is_nan())
+        {
+            Positions::from_f32(values.iter().map(|p| p.map(|x| x as f32)).collect())
+        } else {
+            Positions::from_f64(values)
+        }
+    }
+
+    /// Whether the positions are held in `f64` (given in `f64`, not all exact in `f32`).
+    pub fn is_f64(&self) -> bool {
+        self.f64.is_some()
+    }
+
+    /// The `f32` values (the same as dereferencing).
+    pub fn as_f32(&self) -> &[[f32; 3]] {
+        &self.f32
+    }
+
+    /// The `f32` values, to change in place; positions held in `f64` are narrowed to `f32`
+    /// first (the `f64` values are dropped, so that the two never disagree).
+    pub fn as_f32_mut(&mut self) -> &mut [[f32; 3]] {
+        self.f64 = None;
+        &mut self.f32
+    }
+
+    /// The `f64` values when held in `f64`.
+    pub fn as_f64(&self) -> Option<&[[f64; 3]]> {
+        self.f64.as_deref()
+    }
+
+    /// Every position in `f64`: the values as given (the `f32` ones widened, exactly, when
+    /// they were given in `f32`).
+    pub fn to_f64(&self) -> Cow<'_, [[f64; 3]]> {
+        match &self.f64 {
+            Some(v) => Cow::Borrowed(v),
+            None => Cow::Owned(self.f32.iter().map(|p| p.map(f64::from)).collect()),
+        }
+    }
+
+    /// Position `i` in `f64` (exact).
+    pub fn get_f64(&self, i: usize) -> [f64; 3] {
+        match &self.f64 {
+            Some(v) => v[i],
+            None => self.f32[i].map(f64::from),
+        }
+    }
+
+    /// Sets position `i` (in `f64` when the positions are held in `f64`, rounded to `f32`
+    /// otherwise).
+    pub fn set(&mut self, i: usize, p: [f64; 3]) {
+        self.f32[i] = p.map(|x| x as f32);
+        if let Some(v) = &mut self.f64 {
+            v[i] = p;
+        }
+    }
+
+    /// Appends a position (kept in `f64` when the positions are held in `f64`).
+    pub fn push(&mut self, p: [f64; 3]) {
+        self.f32.push(p.map(|x| x as f32));
+        if let Some(v) = &mut self.f64 {
+            v.push(p);
+        }
+    }
+
+    /// Appends `other`'s positions; the result is held in `f64` when either is.
+    pub fn append(&mut self, other: &Positions) {
+        if self.f64.is_none() && other.f64.is_some() {
+            let wide = self.to_f64().into_owned();
+            self.f64 = Some(wide);
+        }
+        if let Some(v) = &mut self.f64 {
+            v.extend(other.to_f64().iter());
+        }
+        self.f32.extend_from_slice(&other.f32);
+    }
+
+    /// Every position replaced by `f(position)`, computed in `f64` from the values as given
+    /// and kept at the same precision.
+    pub fn map(&self, mut f: impl FnMut([f64; 3]) -> [f64; 3]) -> Positions {
+        match &self.f64 {
+            Some(v) => Positions::from_f64(v.iter().map(|&p| f(p)).collect()),
+            None => Positions::from_f32(
+                self.f32
+                    .iter()
+                    .map(|p| f(p.map(f64::from)).map(|x| x as f32))
+                    .collect(),
+            ),
+        }
+    }
+
+    /// The positions listed in `order`, at the same precision.
+    pub fn select(&self, order: impl IntoIterator<Item = usize> + Clone) -> Positions {
+        Positions {
+            f32: order.clone().into_iter().map(|i| self.f32[i]).collect(),
+            f64: self
+                .f64
+                .as_ref()
+                .map(|v| order.into_iter().map(|i| v[i]).collect()),
+        }
+    }
+
+    /// The `f32` values, taken out.
+    pub fn into_f32(self) -> Vec<[f32; 3]> {
+        self.f32
+    }
+}
+
+impl std::ops::Deref for Positions {
+    type Target = [[f32; 3]];
+    fn deref(&self) -> &[[f32; 3]] {
+        &self.f32
+    }
+}
+
+/// Compares the `f32` values (what an `f32` table reads).
+impl PartialEq<Vec<[f32; 3]>> for Positions {
+    fn eq(&self, other: &Vec<[f32; 3]>) -> bool {
+        self.f32 == *other
+    }
+}
+
+impl<const K: usize> PartialEq<[[f32; 3]; K]> for Positions {
+    fn eq(&self, other: &[[f32; 3]; K]) -> bool {
+        self.f32 == *other
+    }
+}
+
+impl PartialEq<Positions> for Vec<[f32; 3]> {
+    fn eq(&self, other: &Positions) -> bool {
+        other == self
+    }
+}
+
+impl From<Vec<[f32; 3]>> for Positions {
+    fn from(values: Vec<[f32; 3]>) -> Positions {
+        Positions::from_f32(values)
+    }
+}
+
+impl FromIterator<[f32; 3]> for Positions {
+    fn from_iter<I: IntoIterator<Item = [f32; 3]>>(iter: I) -> Positions {
+        Positions::from_f32(iter.into_iter().collect())
+    }
+}
+
+impl<'a> IntoIterator for &'a Positions {
+    type Item = &'a [f32; 3];
+    type IntoIter = std::slice::Iter<'a, [f32; 3]>;
+    fn into_iter(self) -> Self::IntoIter {
+        self.f32.iter()
+    }
+}
+
+impl VertexData<3> for Positions {
+    #[inline]
+    fn num_vertices(&self) -> usize {
+        self.f32.len()
+    }
+    #[inline]
+    fn vertex<R: Real>(&self, i: usize) -> [R; 3] {
+        match &self.f64 {
+            Some(v) => v[i].map(R::from_f64),
+            None => self.f32[i].map(R::from_f32),
+        }
+    }
+    #[inline]
+    fn as_f32(&self) -> Option<&[[f32; 3]]> {
+        // The f32 values are exact only when the positions were given in f32.
+        self.f64.is_none().then_some(self.f32.as_slice())
     }
 }
 

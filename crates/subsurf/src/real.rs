@@ -136,6 +136,85 @@ impl Real for f64 {
     type V3 = [f64; 3];
 }
 
+/// Base vertex data that tables are applied to: `N` values per vertex, held in `f32` or `f64`
+/// (slices and vectors of either, and a mesh's [`crate::mesh::Positions`], which give their
+/// full-precision values). Every consumer reads each value once, converted to its own scalar
+/// with one rounding at most ([`Real::from_f64`]; exact for `f32` into either, and for `f64`
+/// into `f64`).
+pub trait VertexData<const N: usize> {
+    /// Number of vertices.
+    fn num_vertices(&self) -> usize;
+    /// Vertex `i` in `R` (one rounding at most). Panics past the end, as indexing does.
+    fn vertex<R: Real>(&self, i: usize) -> [R; N];
+    /// The values in `f64` (exact).
+    fn vertex_f64(&self, i: usize) -> [f64; N] {
+        self.vertex::<f64>(i)
+    }
+    /// The data as `f32` values when it is held that way (no conversion needed).
+    fn as_f32(&self) -> Option<&[[f32; N]]> {
+        None
+    }
+}
+
+impl<const N: usize> VertexData<N> for [[f32; N]] {
+    #[inline]
+    fn num_vertices(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn vertex<R: Real>(&self, i: usize) -> [R; N] {
+        self[i].map(R::from_f32)
+    }
+    #[inline]
+    fn as_f32(&self) -> Option<&[[f32; N]]> {
+        Some(self)
+    }
+}
+
+impl<const N: usize> VertexData<N> for [[f64; N]] {
+    #[inline]
+    fn num_vertices(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn vertex<R: Real>(&self, i: usize) -> [R; N] {
+        self[i].map(R::from_f64)
+    }
+}
+
+impl<const N: usize, T: Copy> VertexData<N> for Vec<[T; N]>
+where
+    [[T; N]]: VertexData<N>,
+{
+    #[inline]
+    fn num_vertices(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn vertex<R: Real>(&self, i: usize) -> [R; N] {
+        self.as_slice().vertex(i)
+    }
+    #[inline]
+    fn as_f32(&self) -> Option<&[[f32; N]]> {
+        self.as_slice().as_f32()
+    }
+}
+
+impl<const N: usize, T: VertexData<N> + ?Sized> VertexData<N> for &T {
+    #[inline]
+    fn num_vertices(&self) -> usize {
+        (**self).num_vertices()
+    }
+    #[inline]
+    fn vertex<R: Real>(&self, i: usize) -> [R; N] {
+        (**self).vertex(i)
+    }
+    #[inline]
+    fn as_f32(&self) -> Option<&[[f32; N]]> {
+        (**self).as_f32()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -94,7 +94,7 @@ fn subsurf_glb_reads_back_identically() {
         assert_eq!(back_mesh.positions.len(), used.len(), "{name}");
         // Without UVs, positions keep their order when all are used and distinct.
         if mesh.uvs.is_none() && used.len() == mesh.positions.len() {
-            assert_eq!(back_mesh.positions, mesh.positions, "{name}");
+            assert_eq!(*back_mesh.positions, *mesh.positions, "{name}");
         }
         checked += 1;
     }
@@ -110,7 +110,7 @@ fn read_path_and_read_from_know_glb_and_gltf() {
     let path = dir.join("cube.glb");
     subsurf::io::write_path(&path, &mesh, None).unwrap();
     let back = subsurf::io::read_path(&path).unwrap();
-    assert_eq!(back.positions, mesh.positions);
+    assert_eq!(*back.positions, *mesh.positions);
     assert_eq!(back.face_indices.len(), 36);
     let bytes = std::fs::read(&path).unwrap();
     let from = subsurf::io::read_from(&bytes[..], subsurf::io::Format::Glb).unwrap();

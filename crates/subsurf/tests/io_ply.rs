@@ -126,7 +126,7 @@ property float y\nproperty float z\nelement face 1\nproperty list uchar ushort v
         bytes.extend_from_slice(&i.to_be_bytes());
     }
     let mesh = ply::read(&bytes).unwrap();
-    assert_eq!(mesh.positions, pts);
+    assert_eq!(mesh.positions, pts.to_vec());
     assert_eq!(mesh.face_indices, [0, 1, 2]);
 }
 

@@ -180,7 +180,7 @@ fn issue_12_translated_shape_has_accurate_normals() {
     }
     let mut mesh = load_shape("catmark_gregory_test6");
     let d = subsurf::mesh::bbox_diagonal(&mesh.positions);
-    for p in &mut mesh.positions {
+    for p in mesh.positions.as_f32_mut() {
         p[0] += 1000.0 * d;
         p[1] -= 700.0 * d;
         p[2] += 400.0 * d;

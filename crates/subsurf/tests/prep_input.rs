@@ -71,7 +71,7 @@ fn non_manifold_edge_is_named() {
 fn non_manifold_vertex_is_named() {
     // Two cubes sharing only vertex 7 of the first (= vertex 0 of the second).
     let a = prep_shapes::cube();
-    let mut p = a.positions.clone();
+    let mut p = a.positions.to_vec();
     let mut f: Vec<[u32; 4]> = a
         .face_indices
         .chunks(4)
@@ -122,7 +122,7 @@ fn holes_and_bad_valence_are_named() {
 #[test]
 fn non_finite_and_wrong_length_positions() {
     let mut m = prep_shapes::cube();
-    m.positions[3][1] = f32::NAN;
+    m.positions.as_f32_mut()[3][1] = f32::NAN;
     assert!(matches!(
         PrepPatches::<f32>::build(&m),
         Err(Error::Mesh(MeshError::NonFiniteCoordinate {
@@ -131,5 +131,5 @@ fn non_finite_and_wrong_length_positions() {
         }))
     ));
     let mut p = PrepPatches::<f32>::build(&prep_shapes::cube()).unwrap();
-    assert!(p.update(&[[0.0; 3]; 7]).is_err());
+    assert!(p.update(&[[0.0f32; 3]; 7][..]).is_err());
 }

@@ -36,7 +36,7 @@ fn grid_normal_error(mesh: &Mesh, n: usize) -> f64 {
 }
 
 fn translated(mut mesh: Mesh, by: [f32; 3]) -> Mesh {
-    for p in &mut mesh.positions {
+    for p in mesh.positions.as_f32_mut() {
         for c in 0..3 {
             p[c] += by[c];
         }

@@ -112,7 +112,7 @@ fn shapes() -> Vec<(String, Mesh)> {
 /// holes, so the refined level must keep its boundary tags for its faces to stay faces.
 fn grid_with_sharp_sides() -> Mesh {
     let mut m = subsurf::shapes::grid(5, 4);
-    for p in &mut m.positions {
+    for p in m.positions.as_f32_mut() {
         p[2] = 0.3 * (p[0] * 1.3).sin() * (p[1] * 0.9).cos();
     }
     let t = Topology::new(&m).unwrap();

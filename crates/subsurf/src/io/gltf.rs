@@ -60,7 +60,7 @@ fn build_streams(mesh: &Mesh, normals: Option<&[[f32; 3]]>) -> Result<Streams> {
         positions: if uv.is_some() {
             vec![]
         } else {
-            mesh.positions.clone()
+            mesh.positions.to_vec()
         },
         normals: normals.map(|n| if uv.is_some() { vec![] } else { n.to_vec() }),
         uvs: uv.map(|_| vec![]),
@@ -311,7 +311,7 @@ mod tests {
         mesh.face_indices[3] = 99;
         assert!(write(&mesh, None, &mut vec![]).is_err());
         let mut mesh = crate::shapes::cube();
-        mesh.positions[0][1] = f32::NAN;
+        mesh.positions.as_f32_mut()[0][1] = f32::NAN;
         assert!(write(&mesh, None, &mut vec![]).is_err());
         let mesh = crate::shapes::cube();
         assert!(write(&mesh, Some(&[[0.0; 3]; 2]), &mut vec![]).is_err());

@@ -476,7 +476,7 @@ impl Builder {
             })
         };
         let mesh = Mesh {
-            positions: self.positions,
+            positions: self.positions.into(),
             face_counts: vec![3; self.faces.len() / 3],
             face_indices: self.faces,
             uvs,

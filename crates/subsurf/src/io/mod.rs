@@ -166,6 +166,11 @@ pub struct WriteOptions {
     /// Off by default: hole faces are left out of every format, as viewers and libraries that
     /// ignore the tags (trimesh, Blender, MeshLab) would otherwise draw the holes closed.
     pub keep_holes: bool,
+    /// Write positions held in `f64` ([`crate::mesh::Positions::is_f64`]) as `f64` where the
+    /// format would otherwise round them: USD `point3d[]` instead of the UsdGeom schema's
+    /// `point3f[]`. (OBJ and PLY always write what the mesh holds: the shortest digits that
+    /// read back to the same `f64` values, and `double` properties.)
+    pub f64: bool,
 }
 
 impl WriteOptions {
@@ -221,7 +226,7 @@ pub fn write_to_with(
         (Format::Obj, Some(n)) => obj::write_with_normals(mesh, n, w)?,
         (Format::Ply, n) => ply::write(mesh, n, w)?,
         (Format::Glb, n) => gltf::write(mesh, n, w)?,
-        (Format::Usd(u), _) => usd::write(mesh, u, w)?,
+        (Format::Usd(u), _) => usd::write_with(mesh, u, &options, w)?,
         (Format::Gltf, _) => {
             return Err(Error::Unsupported(
                 "writing .gltf; subsurf writes binary glTF (.glb)".into(),

@@ -22,7 +22,7 @@ use super::obj_tags::{
 };
 use super::parse_error;
 use crate::error::{Error, Result};
-use crate::mesh::{FaceVarying, Mesh};
+use crate::mesh::{FaceVarying, Mesh, Positions};
 use crate::options::{OptionValue, Options, Scheme};
 use std::io::Write;
 use std::path::Path;
@@ -94,7 +94,8 @@ pub fn read_with_scheme(text: &str, scheme: Scheme) -> Result<Mesh> {
 /// Reader state: what has been read so far.
 #[derive(Debug, Default)]
 struct Reader {
-    positions: Vec<[f32; 3]>,
+    /// Positions as written (f64: the file's digits, rounded once).
+    positions: Vec<[f64; 3]>,
     uv_values: Vec<[f32; 2]>,
     num_normals: usize,
     face_counts: Vec<u32>,
@@ -136,9 +137,9 @@ impl Reader {
                     ));
                 }
                 let p = [
-                    coordinate(line, args[0])?,
-                    coordinate(line, args[1])?,
-                    coordinate(line, args[2])?,
+                    coordinate_f64(line, args[0])?,
+                    coordinate_f64(line, args[1])?,
+                    coordinate_f64(line, args[2])?,
                 ];
                 self.positions.push(p);
             }
@@ -315,7 +316,7 @@ impl Reader {
             indices: uv_indices,
         });
         Ok(Mesh {
-            positions,
+            positions: Positions::from_f64_compact(positions),
             face_counts,
             face_indices,
             uvs,
@@ -341,6 +342,22 @@ fn out_of_range(line: usize, kind: &str, index: u32, count: usize) -> Error {
 }
 
 /// Parses a finite coordinate.
+/// A position coordinate: the file's digits in `f64` (within the `f32` range, so that the
+/// `f32` tables see a finite value too).
+fn coordinate_f64(line: usize, token: &str) -> Result<f64> {
+    match token.parse::<f64>() {
+        Ok(x) if (x as f32).is_finite() => Ok(x),
+        Ok(_) => Err(parse_error(
+            line,
+            format!("coordinate '{}' is not finite in f32", truncate(token)),
+        )),
+        Err(_) => Err(parse_error(
+            line,
+            format!("'{}' is not a number", truncate(token)),
+        )),
+    }
+}
+
 fn coordinate(line: usize, token: &str) -> Result<f32> {
     match token.parse::<f32>() {
         Ok(x) if x.is_finite() => Ok(x),
@@ -416,8 +433,18 @@ fn write_impl(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> 
         mesh.positions.len(),
         mesh.face_counts.len()
     )?;
-    for p in &mesh.positions {
-        writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
+    // What the mesh holds, in the shortest digits that read back to the same values.
+    match mesh.positions.as_f64() {
+        Some(v) => {
+            for p in v {
+                writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
+            }
+        }
+        None => {
+            for p in &mesh.positions {
+                writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
+            }
+        }
     }
     if let Some(uv) = &mesh.uvs {
         for t in &uv.values {

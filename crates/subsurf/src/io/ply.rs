@@ -11,7 +11,7 @@
 
 use super::parse_error;
 use crate::error::{Error, Result};
-use crate::mesh::{FaceVarying, Mesh};
+use crate::mesh::{FaceVarying, Mesh, Positions};
 use std::io::Write;
 use std::path::Path;
 
@@ -67,20 +67,22 @@ pub fn read_with_normals(bytes: &[u8]) -> Result<(Mesh, Option<Vec<[f32; 3]>>)> 
                 let uv = [("u", "v"), ("s", "t"), ("texture_u", "texture_v")]
                     .iter()
                     .find_map(|(a, b)| Some([slot(a)?, slot(b)?]));
-                mesh.positions.reserve(cap);
+                // Kept in f64 when any coordinate is declared `double`.
+                let wide = [x, y, z].iter().any(|&k| el.props[k].ty == Ty::F64);
+                let mut points: Vec<[f64; 3]> = Vec::with_capacity(cap);
                 let mut n_out = nrm.map(|_| Vec::with_capacity(cap));
                 let mut uv_out = uv.map(|_| Vec::with_capacity(cap));
                 let mut row = vec![0f64; el.props.len()];
                 for i in 0..el.count {
                     let line = read_row(&mut src, el, i, &mut row)?;
-                    let p = [row[x] as f32, row[y] as f32, row[z] as f32];
-                    if p.iter().any(|c| !c.is_finite()) {
+                    let p = [row[x], row[y], row[z]];
+                    if p.iter().any(|&c| !(c as f32).is_finite()) {
                         return Err(parse_error(
                             line,
                             format!("vertex {i} has a non-finite coordinate {p:?}"),
                         ));
                     }
-                    mesh.positions.push(p);
+                    points.push(p);
                     if let (Some(out), Some([a, b, c])) = (&mut n_out, nrm) {
                         out.push([row[a] as f32, row[b] as f32, row[c] as f32]);
                     }
@@ -88,6 +90,11 @@ pub fn read_with_normals(bytes: &[u8]) -> Result<(Mesh, Option<Vec<[f32; 3]>>)> 
                         out.push([row[a] as f32, row[b] as f32]);
                     }
                 }
+                mesh.positions = if wide {
+                    Positions::from_f64(points)
+                } else {
+                    Positions::from_f32(points.iter().map(|p| p.map(|c| c as f32)).collect())
+                };
                 normals = n_out;
                 uv_values = uv_out;
             }
@@ -503,8 +510,9 @@ impl Source<'_> {
     }
 }
 
-/// Writes `mesh` as binary little-endian PLY: `x y z` (and `nx ny nz` with `normals`, one per
-/// vertex) as floats, faces as a `vertex_indices` list of `uint` (count `uchar` when every
+/// Writes `mesh` as binary little-endian PLY: `x y z` as floats, or as doubles when the
+/// mesh holds its positions in `f64` ([`crate::mesh::Positions::is_f64`]), `nx ny nz` with
+/// `normals` (one per vertex) as floats, faces as a `vertex_indices` list of `uint` (count `uchar` when every
 /// face has at most 255 vertices, else `uint`). UVs and tags are not written; faces tagged as
 /// holes are left out (PLY cannot tag them), their vertices kept.
 pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> Result<()> {
@@ -526,7 +534,9 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
         "ply\nformat binary_little_endian 1.0\ncomment written by subsurf"
     )?;
     writeln!(w, "element vertex {}", mesh.positions.len())?;
-    writeln!(w, "property float x\nproperty float y\nproperty float z")?;
+    let wide = mesh.positions.as_f64();
+    let ty = if wide.is_some() { "double" } else { "float" };
+    writeln!(w, "property {ty} x\nproperty {ty} y\nproperty {ty} z")?;
     if normals.is_some() {
         writeln!(w, "property float nx\nproperty float ny\nproperty float nz")?;
     }
@@ -537,8 +547,17 @@ pub fn write(mesh: &Mesh, normals: Option<&[[f32; 3]]>, w: &mut impl Write) -> R
         "property list {count_ty} uint vertex_indices\nend_header"
     )?;
     for (i, p) in mesh.positions.iter().enumerate() {
-        for c in p {
-            w.write_all(&c.to_le_bytes())?;
+        match wide {
+            Some(v) => {
+                for c in &v[i] {
+                    w.write_all(&c.to_le_bytes())?;
+                }
+            }
+            None => {
+                for c in p {
+                    w.write_all(&c.to_le_bytes())?;
+                }
+            }
         }
         if let Some(n) = normals {
             for c in &n[i] {

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use super::patch_map::clamp01;
 use super::table::PatchTable;
 use crate::patch::{patch_first_weights, patch_position_weights};
-use crate::real::{Real, Vec3};
+use crate::real::{Real, Vec3, VertexData};
 
 /// A point of the limit surface.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -67,15 +67,16 @@ fn unit<R: Real>(a: [R; 3]) -> Option<[R; 3]> {
 }
 
 impl<R: Real> LimitSurface<R> {
-    /// Builds the points of `table` for base positions `positions`.
-    pub fn new(table: PatchTable<R>, positions: &[[f32; 3]]) -> LimitSurface<R> {
+    /// Builds the points of `table` for base positions `positions` (`f32` or `f64` values,
+    /// or a mesh's [`crate::mesh::Positions`], read at the precision they were given).
+    pub fn new(table: PatchTable<R>, positions: &(impl VertexData<3> + ?Sized)) -> LimitSurface<R> {
         let points = table.points(positions);
         LimitSurface { table, points }
     }
 
     /// Moves the base vertices: the patch points are formed again from `positions` (one per
     /// base vertex); the table is kept.
-    pub fn set_positions(&mut self, positions: &[[f32; 3]]) {
+    pub fn set_positions(&mut self, positions: &(impl VertexData<3> + ?Sized)) {
         self.points = self.table.points(positions);
     }
 
@@ -84,7 +85,7 @@ impl<R: Real> LimitSurface<R> {
     pub fn apply_sharpness(
         &mut self,
         edits: &[super::SharpnessEdit],
-        positions: &[[f32; 3]],
+        positions: &(impl VertexData<3> + ?Sized),
     ) -> crate::Result<super::EditOutcome> {
         let outcome = self.table.apply_sharpness(edits)?;
         if outcome != super::EditOutcome::Unchanged {

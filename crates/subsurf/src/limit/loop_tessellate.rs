@@ -201,7 +201,7 @@ impl TriTessellation {
         for (i, slot) in new_index.iter_mut().enumerate() {
             if *slot == 0 {
                 *slot = mesh.positions.len() as u32;
-                mesh.positions.push(self.positions[i].map(|x| x as f32));
+                mesh.positions.push(self.positions[i]);
                 normals.push(self.normals[i].map(|x| x as f32));
             }
         }

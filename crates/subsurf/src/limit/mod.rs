@@ -36,7 +36,7 @@
 //! use subsurf::{shapes, Topology};
 //!
 //! let mut grid = shapes::grid(5, 5); // vertex (x, y) is 6 y + x, face (i, j) is 5 j + i
-//! for p in &mut grid.positions {
+//! for p in grid.positions.as_f32_mut() {
 //!     p[2] = ((7 * p[0] as usize + 3 * p[1] as usize) % 5) as f32 * 0.1;
 //! }
 //! let table = PatchTable::build(&Topology::new(&grid)?, &PatchOptions::default())?;

@@ -57,7 +57,7 @@ use super::sparse::{self, Selection};
 use crate::error::{Error, Result};
 use crate::options::Scheme;
 use crate::patch::{GregoryDerivatives, PatchKind, PatchParam, PatchParamFields};
-use crate::real::Real;
+use crate::real::{Real, VertexData};
 use crate::refine::{LevelStencils, StencilTable};
 use crate::topology::Topology;
 use crate::util::budget::Budget;
@@ -758,9 +758,12 @@ impl<R: Real> PatchTable<R> {
     /// The flat point array for base vertex data `base` (`N` components): every level's
     /// vertices, then the local points; every stencil row is applied relative to its first
     /// input (`super::points`), so the rounding is relative to the patch, not the origin.
-    pub fn points<const N: usize>(&self, base: &[[f32; N]]) -> Vec<[R; N]> {
+    ///
+    /// `base` may hold `f32` or `f64` values ([`VertexData`]; a mesh's
+    /// [`crate::mesh::Positions`] give the values as read): each is rounded to `R` once.
+    pub fn points<const N: usize>(&self, base: &(impl VertexData<N> + ?Sized)) -> Vec<[R; N]> {
         let mut all = Vec::with_capacity(self.num_points());
-        all.extend(base.iter().map(|x| x.map(R::from_f32)));
+        all.extend((0..base.num_vertices()).map(|i| base.vertex::<R>(i)));
         for (d, (s, inputs)) in self
             .level_stencils
             .iter()

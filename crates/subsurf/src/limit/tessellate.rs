@@ -44,7 +44,7 @@ impl Tessellation {
     /// A mesh of the triangles (`quads = false`) or of the grid quads.
     pub fn to_mesh(&self, quads: bool) -> Mesh {
         let mut m = Mesh {
-            positions: self.positions.clone(),
+            positions: self.positions.clone().into(),
             ..Default::default()
         };
         if quads {

@@ -168,12 +168,18 @@ impl<T: Real> PrepPatches<T> {
     }
 
     /// Builds the p-rep from a validated topology and one position per vertex.
-    pub fn from_topology(topo: &Topology, positions: &[[f32; 3]]) -> Result<Self> {
+    pub fn from_topology(
+        topo: &Topology,
+        positions: &(impl crate::real::VertexData<3> + Sync + ?Sized),
+    ) -> Result<Self> {
         Self::from_prep_topology(PrepTopology::new(topo)?, positions)
     }
 
     /// Builds the p-rep from prepared ring tables and vertex positions.
-    pub fn from_prep_topology(topology: PrepTopology, positions: &[[f32; 3]]) -> Result<Self> {
+    pub fn from_prep_topology(
+        topology: PrepTopology,
+        positions: &(impl crate::real::VertexData<3> + Sync + ?Sized),
+    ) -> Result<Self> {
         let mut p = Self::allocate(topology);
         p.update(positions)?;
         Ok(p)
@@ -191,14 +197,17 @@ impl<T: Real> PrepPatches<T> {
         }
     }
 
-    fn check_len(&self, positions: &[[f32; 3]]) -> Result<()> {
-        if positions.len() != self.topology.num_vertices {
+    fn check_len(
+        &self,
+        positions: &(impl crate::real::VertexData<3> + Sync + ?Sized),
+    ) -> Result<()> {
+        if positions.num_vertices() != self.topology.num_vertices {
             return Err(MeshError::Unsupported {
                 construction: "the p-rep",
                 requirement: "one position per vertex of the connectivity",
                 details: format!(
                     "{} positions for {} vertices",
-                    positions.len(),
+                    positions.num_vertices(),
                     self.topology.num_vertices
                 ),
             }
@@ -208,7 +217,10 @@ impl<T: Real> PrepPatches<T> {
     }
 
     /// Recomputes every coefficient for new positions (same connectivity), in parallel.
-    pub fn update(&mut self, positions: &[[f32; 3]]) -> Result<()> {
+    pub fn update(
+        &mut self,
+        positions: &(impl crate::real::VertexData<3> + Sync + ?Sized),
+    ) -> Result<()> {
         self.check_len(positions)?;
         vertex_pass::vertex_pass(&self.topology, &self.consts, positions, &mut self.vertex);
         patch_pass::patch_pass(
@@ -222,7 +234,10 @@ impl<T: Real> PrepPatches<T> {
     }
 
     /// Sequential reference of [`Self::update`].
-    pub fn update_sequential(&mut self, positions: &[[f32; 3]]) -> Result<()> {
+    pub fn update_sequential(
+        &mut self,
+        positions: &(impl crate::real::VertexData<3> + Sync + ?Sized),
+    ) -> Result<()> {
         self.check_len(positions)?;
         vertex_pass::vertex_pass_seq(&self.topology, &self.consts, positions, &mut self.vertex);
         patch_pass::patch_pass_seq(

@@ -16,6 +16,7 @@
 //! pure function of the input positions, so the parallel pass ([`vertex_pass`]) and the
 //! sequential reference ([`vertex_pass_seq`]) give identical bits.
 
+use crate::real::VertexData as Values;
 use rayon::prelude::*;
 
 use super::constants::{Valence, ValenceTable};
@@ -59,9 +60,8 @@ impl<T: Real> VertexData<T> {
 }
 
 #[inline(always)]
-fn pos<T: Real>(p: &[[f32; 3]], i: u32) -> V3<T> {
-    let q = p[i as usize];
-    [T::from_f32(q[0]), T::from_f32(q[1]), T::from_f32(q[2])]
+fn pos<T: Real>(p: &(impl Values<3> + ?Sized), i: u32) -> V3<T> {
+    p.vertex::<T>(i as usize)
 }
 
 /// `(g00, e1, e2)` from `p0` and its ring (equations (2) and (3)): `ring(j)` returns
@@ -109,7 +109,7 @@ pub fn interior_coeff<T: Real>(p0: V3<T>, p1: V3<T>, p2: V3<T>, p3: V3<T>) -> V3
 pub fn vertex_frame<T: Real>(
     topo: &PrepTopology,
     consts: &ValenceTable<T>,
-    positions: &[[f32; 3]],
+    positions: &(impl Values<3> + Sync + ?Sized),
     v: usize,
 ) -> (V3<T>, V3<T>, V3<T>) {
     let p0 = pos::<T>(positions, v as u32);
@@ -128,7 +128,7 @@ pub fn vertex_frame<T: Real>(
 pub fn sector_coeffs<T: Real>(
     topo: &PrepTopology,
     consts: &ValenceTable<T>,
-    positions: &[[f32; 3]],
+    positions: &(impl Values<3> + Sync + ?Sized),
     frame: Frames<'_, T>,
     s: usize,
 ) -> (V3<T>, V3<T>) {
@@ -150,7 +150,7 @@ pub fn sector_coeffs<T: Real>(
 pub fn vertex_pass<T: Real>(
     topo: &PrepTopology,
     consts: &ValenceTable<T>,
-    positions: &[[f32; 3]],
+    positions: &(impl Values<3> + Sync + ?Sized),
     out: &mut VertexData<T>,
 ) {
     out.limit
@@ -179,7 +179,7 @@ pub fn vertex_pass<T: Real>(
 pub fn vertex_pass_seq<T: Real>(
     topo: &PrepTopology,
     consts: &ValenceTable<T>,
-    positions: &[[f32; 3]],
+    positions: &(impl Values<3> + Sync + ?Sized),
     out: &mut VertexData<T>,
 ) {
     for v in 0..topo.num_vertices {

@@ -144,9 +144,13 @@ pub(crate) fn child_level_tags(
 /// All faces of a refined level, holes included and tagged, with its remaining sharpness and
 /// options: a mesh that, read back as a base level, refines as the level itself would.
 /// Contrast [`super::level_mesh`], which leaves holes out and keeps no tags (for display).
-pub fn tagged_level_mesh(t: &Topology, positions: Vec<[f32; 3]>, tags: LevelTags) -> Mesh {
+pub fn tagged_level_mesh(
+    t: &Topology,
+    positions: impl Into<crate::mesh::Positions>,
+    tags: LevelTags,
+) -> Mesh {
     let mut m = Mesh {
-        positions,
+        positions: positions.into(),
         face_counts: (0..t.num_faces())
             .map(|f| t.face_offsets[f + 1] - t.face_offsets[f])
             .collect(),

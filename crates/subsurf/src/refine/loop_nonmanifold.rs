@@ -191,7 +191,7 @@ mod tests {
     use crate::options::Scheme;
 
     fn loop_topology(num_vertices: usize, faces: &[[u32; 3]]) -> Topology {
-        let positions = (0..num_vertices)
+        let positions: Vec<[f32; 3]> = (0..num_vertices)
             .map(|i| [i as f32, (i * i % 7) as f32, (i % 3) as f32])
             .collect();
         let mut mesh = Mesh::from_faces(positions, faces);

@@ -315,6 +315,42 @@ impl<W> LevelStencils<W> {
     }
 }
 
+impl<W: Real> LevelStencils<W> {
+    /// One refinement step of `N`-component values in `W` (face points, then the children
+    /// of vertices and the edge points over the parents and face points), each row the plain
+    /// weighted sum, in parallel: the double-precision path of [`super::Refiner::refine_f64`].
+    pub(crate) fn apply_real<const N: usize>(&self, src: &[[W; N]]) -> Vec<[W; N]> {
+        fn rows<W: Real, const N: usize>(
+            t: &StencilTable<W>,
+            x: impl Fn(usize) -> [W; N] + Sync,
+        ) -> Vec<[W; N]> {
+            use rayon::prelude::*;
+            (0..t.num_rows())
+                .into_par_iter()
+                .with_min_len(1024)
+                .map(|r| {
+                    let mut acc = [W::ZERO; N];
+                    for j in t.offsets[r] as usize..t.offsets[r + 1] as usize {
+                        let (v, w) = (x(t.indices[j] as usize), t.weights[j]);
+                        for c in 0..N {
+                            acc[c] += w * v[c];
+                        }
+                    }
+                    acc
+                })
+                .collect()
+        }
+        let p = self.num_parent_vertices;
+        let faces = rows(&self.face, |k| src[k]);
+        let input = |k: usize| if k < p { src[k] } else { faces[k - p] };
+        let mut out = rows(&self.vertex, input);
+        let edges = rows(&self.edge, input);
+        out.extend_from_slice(&faces);
+        out.extend_from_slice(&edges);
+        out
+    }
+}
+
 impl LevelStencils {
     /// Applies one refinement step to `N`-component values, in parallel.
     pub fn apply<const N: usize>(&self, src: &[[f32; N]], dst: &mut [[f32; N]]) {
@@ -574,28 +610,38 @@ impl<'a> LevelRows<'a> {
 /// Stencils moving each vertex of `t` to its limit position (OpenSubdiv
 /// `PrimvarRefiner::Limit`): the smooth, crease or corner limit mask of its rule.
 pub fn limit_stencils(t: &Topology) -> StencilTable {
+    limit_stencils_real(t)
+}
+
+/// [`limit_stencils`] with weights of any [`Real`] type (`f64`: the limit masks in double
+/// precision).
+pub(crate) fn limit_stencils_real<W: Real>(t: &Topology) -> StencilTable<W> {
     let bilinear = t.options.scheme == Scheme::Bilinear;
-    build_rows(t.num_vertices(), t.num_vertices(), |v, b, s| {
-        let edges = t.vertex_edges(v);
-        if edges.is_empty() || bilinear {
-            b.add(v as u32, 1.0);
-            return;
-        }
-        s.pe.clear();
-        s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
-        let faces = t.vertex_faces(v);
-        limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
-        for (i, (&f, &k)) in faces.iter().zip(t.vertex_faces_local(v)).enumerate() {
-            if let Some(&w) = s.mask.faces.get(i) {
-                let fv = t.face_vertices(f as usize);
-                b.add(fv[(k as usize + 2) % fv.len()], w);
+    build_rows(
+        t.num_vertices(),
+        t.num_vertices(),
+        |v, b, s: &mut Scratch<W>| {
+            let edges = t.vertex_edges(v);
+            if edges.is_empty() || bilinear {
+                b.add(v as u32, W::ONE);
+                return;
             }
-        }
-        for (i, &e) in edges.iter().enumerate() {
-            if let Some(&w) = s.mask.edges.get(i) {
-                b.add(t.other_vertex(e as usize, v as u32), w);
+            s.pe.clear();
+            s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
+            let faces = t.vertex_faces(v);
+            limit_mask(t.vert_rule[v], &s.pe, faces.len(), &mut s.mask);
+            for (i, (&f, &k)) in faces.iter().zip(t.vertex_faces_local(v)).enumerate() {
+                if let Some(&w) = s.mask.faces.get(i) {
+                    let fv = t.face_vertices(f as usize);
+                    b.add(fv[(k as usize + 2) % fv.len()], w);
+                }
             }
-        }
-        b.add(v as u32, s.mask.vertex);
-    })
+            for (i, &e) in edges.iter().enumerate() {
+                if let Some(&w) = s.mask.edges.get(i) {
+                    b.add(t.other_vertex(e as usize, v as u32), w);
+                }
+            }
+            b.add(v as u32, s.mask.vertex);
+        },
+    )
 }

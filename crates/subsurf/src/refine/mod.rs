@@ -62,7 +62,7 @@ pub use stencil::StencilTable;
 pub use uv::refine_uvs_linear;
 
 use crate::error::{Error, MeshError, Result};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Positions};
 use crate::options::Scheme;
 use crate::topology::Topology;
 use crate::util::budget::{check, human, saturate};
@@ -365,6 +365,68 @@ impl Refiner {
         cur
     }
 
+    /// Vertex data of the last level in `f64`: every step's masks evaluated in double
+    /// precision (OpenSubdiv's `PrimvarRefinerReal<double>`) and applied to `base` as it is
+    /// held (a mesh's [`crate::mesh::Positions`] give the values as read, without rounding).
+    /// Builds the double-precision tables of every step on each call (the per-frame `f32`
+    /// path, [`Refiner::refine_positions`], keeps its tables); refuses a Loop refiner, whose
+    /// masks are `f32`, and data with the wrong number of values.
+    pub fn refine_f64<const N: usize>(
+        &self,
+        base: &(impl crate::real::VertexData<N> + ?Sized),
+    ) -> Result<Vec<[f64; N]>> {
+        if self.levels[0].options.scheme == Scheme::Loop {
+            return Err(Error::Unsupported(
+                "double-precision refinement of a Loop mesh (its masks are f32)".into(),
+            ));
+        }
+        let n = self.levels[0].num_vertices();
+        if base.num_vertices() != n {
+            return Err(Error::Internal(format!(
+                "{} values given for {n} base vertices",
+                base.num_vertices()
+            )));
+        }
+        let mut cur: Vec<[f64; N]> = (0..n).map(|i| base.vertex_f64(i)).collect();
+        for k in 0..self.max_level() {
+            let (parent, child) = (self.full_level(k), self.full_level(k + 1));
+            let s = level_stencils_real::<f64>(&parent, &child);
+            cur = s.apply_real(&cur);
+        }
+        Ok(cur)
+    }
+
+    /// Moves last-level vertex data to the limit surface in `f64` (the limit masks in double
+    /// precision; the tables are built on each call). Refuses a Loop refiner, as
+    /// [`Refiner::refine_f64`] does.
+    pub fn limit_f64<const N: usize>(&self, last: &[[f64; N]]) -> Result<Vec<[f64; N]>> {
+        if self.levels[0].options.scheme == Scheme::Loop {
+            return Err(Error::Unsupported(
+                "the double-precision limit of a Loop mesh (its masks are f32)".into(),
+            ));
+        }
+        let t = masks::limit_stencils_real::<f64>(&self.full_level(self.max_level()));
+        if last.len() != t.num_rows() {
+            return Err(Error::Internal(format!(
+                "{} values given for {} last-level vertices",
+                last.len(),
+                t.num_rows()
+            )));
+        }
+        Ok((0..t.num_rows())
+            .map(|r| {
+                let mut acc = [0.0f64; N];
+                for j in t.offsets[r] as usize..t.offsets[r + 1] as usize {
+                    let (v, w) = (last[t.indices[j] as usize], t.weights[j]);
+                    for c in 0..N {
+                        acc[c] += w * v[c];
+                    }
+                }
+                acc
+            })
+            .collect())
+    }
+
     /// The per-level tables composed into one table from base vertices to the last level.
     pub fn stencil_table(&self) -> StencilTable {
         let n = self.levels[0].num_vertices();
@@ -452,7 +514,7 @@ impl Refiner {
     }
 
     /// The faces of `level` that are not holes, as a [`Mesh`] with the given positions.
-    pub fn to_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Mesh {
+    pub fn to_mesh(&self, level: usize, positions: impl Into<Positions>) -> Mesh {
         level_mesh(&self.levels[level], positions)
     }
 
@@ -460,7 +522,8 @@ impl Refiner {
     /// and the options, as a [`Mesh`] that refines again as the level itself would
     /// ([`tagged_level_mesh`]): what a refined file is written from. A lean last level's
     /// sharpness is derived from its parent.
-    pub fn to_tagged_mesh(&self, level: usize, positions: Vec<[f32; 3]>) -> Result<Mesh> {
+    pub fn to_tagged_mesh(&self, level: usize, positions: impl Into<Positions>) -> Result<Mesh> {
+        let positions = positions.into();
         let t = self.levels.get(level).ok_or_else(|| {
             Error::Unsupported(format!(
                 "level {level} of a refiner of {} levels",
@@ -492,9 +555,9 @@ impl Refiner {
 
 /// The faces of a refined level (full or lean) that are not holes, as a [`Mesh`] with the given
 /// positions: what [`refine_once`] returns, ready to write.
-pub fn level_mesh(t: &Topology, positions: Vec<[f32; 3]>) -> Mesh {
+pub fn level_mesh(t: &Topology, positions: impl Into<Positions>) -> Mesh {
     let mut m = Mesh {
-        positions,
+        positions: positions.into(),
         options: t.options,
         ..Default::default()
     };

@@ -711,7 +711,7 @@ mod tests {
             assert_eq!(plan.num_exceptions(), 0);
             assert_eq!(plan.vertex_odd, (0..8).collect::<Vec<u32>>());
         }
-        assert_plans_match_tables(&r, &p, m.positions.clone());
+        assert_plans_match_tables(&r, &p, m.positions.to_vec());
     }
 
     /// Applies every step's plan (those classified from the stored tables, `p`, and those

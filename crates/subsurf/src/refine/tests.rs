@@ -34,7 +34,7 @@ fn height(i: i64, j: i64) -> f32 {
 
 fn wavy_grid(n: usize) -> Mesh {
     let mut m = shapes::grid(n, n);
-    for p in &mut m.positions {
+    for p in m.positions.as_f32_mut() {
         p[2] = height(p[0] as i64, p[1] as i64);
     }
     m

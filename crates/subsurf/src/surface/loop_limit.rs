@@ -80,7 +80,7 @@ pub fn loop_limit(
             .chunks_exact(3)
             .map(|t| [t[0], t[1], t[2]])
             .collect(),
-        positions: out.positions,
+        positions: out.positions.into_f32(),
         normals,
         triangle_class,
         ..Default::default()

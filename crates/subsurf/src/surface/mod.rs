@@ -32,7 +32,7 @@ mod triangulate;
 pub use adaptive::{adaptive_surface, tessellate as tessellate_adaptive, Adaptive};
 pub use backend::{Backend, Cpu, PrepOutput};
 pub use loop_limit::MAX_LOOP_SAMPLES;
-pub use refine_mesh::refine_mesh;
+pub use refine_mesh::{refine_mesh, refine_mesh_f64};
 pub use refined::{corner_uvs, crease_classes};
 pub use triangulate::{newell, triangulate, unit, Fans};
 

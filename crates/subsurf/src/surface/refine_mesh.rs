@@ -6,7 +6,7 @@
 use super::{Backend, SurfaceError};
 use crate::options::FVarLinearInterpolation;
 use crate::refine::{refine_once_mesh, RefineOptions};
-use crate::{Error, Mesh, Refiner, Topology};
+use crate::{Error, Mesh, Positions, Refiner, Topology};
 
 /// `mesh` refined `level` steps on `backend`, its last level (positions and UVs) moved to the
 /// limit when `limit`. UVs refine in `uv_mode` (the mesh's own mode when `None`) and the
@@ -45,11 +45,48 @@ pub fn refine_mesh(
     };
     let refiner = Refiner::with_options(topo, level, options)?;
     let positions = backend.refine(&refiner, &mesh.positions, limit)?;
-    let mut out = refiner.to_tagged_mesh(level, positions)?;
+    let out = refiner.to_tagged_mesh(level, positions)?;
+    with_uvs(mesh, &refiner, out, limit, uv_mode, backend)
+}
+
+/// [`refine_mesh`] in double precision, on the CPU: the masks of every step (and the limit
+/// masks) in `f64`, applied to the positions as the mesh holds them (a file's digits, without
+/// rounding); the result holds its positions in `f64` ([`crate::mesh::Positions::from_f64`]).
+/// UVs refine as [`refine_mesh`] refines them. Loop meshes are refused (their masks are
+/// `f32`).
+pub fn refine_mesh_f64(
+    mesh: &Mesh,
+    level: usize,
+    limit: bool,
+    uv_mode: Option<FVarLinearInterpolation>,
+) -> Result<Mesh, SurfaceError> {
+    let topo = Topology::new(mesh)?;
+    let options = RefineOptions {
+        full_topology_in_last_level: limit || mesh.uvs.is_some(),
+    };
+    let refiner = Refiner::with_options(topo, level, options)?;
+    let mut positions = refiner.refine_f64(&mesh.positions)?;
+    if limit {
+        positions = refiner.limit_f64(&positions)?;
+    }
+    let out = refiner.to_tagged_mesh(level, Positions::from_f64(positions))?;
+    with_uvs(mesh, &refiner, out, limit, uv_mode, &super::Cpu)
+}
+
+/// `out` with `mesh`'s UVs refined on `backend` (in `uv_mode`, the mesh's own mode when
+/// `None`), moved to their limit when `limit`; `out` itself when the mesh has none.
+fn with_uvs(
+    mesh: &Mesh,
+    refiner: &Refiner,
+    mut out: Mesh,
+    limit: bool,
+    uv_mode: Option<FVarLinearInterpolation>,
+    backend: &dyn Backend,
+) -> Result<Mesh, SurfaceError> {
     if let Some(fv) = &mesh.uvs {
         let mode = uv_mode.unwrap_or(mesh.options.uv_interpolation);
         let fvar = refiner.fvar_refinement(&fv.indices, fv.values.len(), mode)?;
-        let last = backend.refine_uvs(&refiner, &fvar, &fv.values, limit)?;
+        let last = backend.refine_uvs(refiner, &fvar, &fv.values, limit)?;
         if last.indices.len() != out.face_indices.len() {
             return Err(Error::Internal(format!(
                 "{} refined UV indices for {} face corners",

@@ -433,7 +433,7 @@ impl AdaptiveTessellation {
     /// A triangle mesh of the tessellation.
     pub fn to_mesh(&self) -> crate::Mesh {
         crate::Mesh {
-            positions: self.positions.clone(),
+            positions: self.positions.clone().into(),
             face_counts: vec![3; self.triangles.len()],
             face_indices: self.triangles.iter().flatten().copied().collect(),
             ..Default::default()

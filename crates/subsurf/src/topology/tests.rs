@@ -128,7 +128,7 @@ fn bad_input_is_named() {
         }))
     ));
     let mut m = shapes::cube();
-    m.positions[3][1] = f32::NAN;
+    m.positions.as_f32_mut()[3][1] = f32::NAN;
     assert!(matches!(
         Topology::new(&m),
         Err(Error::Mesh(MeshError::NonFiniteCoordinate {

@@ -71,7 +71,10 @@ pub fn capped_prism(n: usize) -> Mesh {
         f.push([w(t, i), w(b, i), w(bm, i), w(m, i)]);
         f.push([w(m, i), w(bm, i), w(b, i + 1), w(t, i + 1)]);
     }
-    Mesh::from_faces(v.iter().map(|p| p.map(|x| x as f32)).collect(), &f)
+    Mesh::from_faces(
+        v.iter().map(|p| p.map(|x| x as f32)).collect::<Vec<_>>(),
+        &f,
+    )
 }
 
 /// Vertices of the once-split icosahedron on the unit sphere (42 points, as `verify_prep.py`).
@@ -183,13 +186,13 @@ pub const MIXED40: [[u32; 4]; 40] = [
 
 /// The mixed 40-quad mesh (valences 3–6 with adjacent extraordinary vertices).
 pub fn mixed40() -> Mesh {
-    let p = icosphere1().iter().map(|p| p.map(|x| x as f32)).collect();
+    let p: Vec<[f32; 3]> = icosphere1().iter().map(|p| p.map(|x| x as f32)).collect();
     Mesh::from_faces(p, &MIXED40)
 }
 
 /// Deterministic non-symmetric perturbation, as `verify_prep.py`'s `wobble`.
 pub fn wobble(mut m: Mesh, a: f64) -> Mesh {
-    for (i, p) in m.positions.iter_mut().enumerate() {
+    for (i, p) in m.positions.as_f32_mut().iter_mut().enumerate() {
         for (k, off) in [0.0, 1.7, 3.1].into_iter().enumerate() {
             p[k] = (p[k] as f64 + a * (12.9898 * i as f64 + off).sin()) as f32;
         }
@@ -199,7 +202,7 @@ pub fn wobble(mut m: Mesh, a: f64) -> Mesh {
 
 /// Icosahedron split into quads: valences 5 (original), 4 (edge midpoints), 3 (centres).
 pub fn quad_icosahedron() -> Mesh {
-    let v = icosphere1()[..12]
+    let v: Vec<[f32; 3]> = icosphere1()[..12]
         .iter()
         .map(|p| p.map(|x| x as f32))
         .collect();

@@ -146,6 +146,18 @@ impl PrimReader<'_> {
         })
     }
 
+    /// Points (`point3f[]`, `float3[]`, `half3[]`, or `point3d[]`/`double3[]`, kept in
+    /// `f64`).
+    pub fn points(&self, name: &str) -> Result<Option<crate::mesh::Positions>> {
+        use crate::mesh::Positions;
+        Ok(match self.value(name)? {
+            Some(Value::Vec3dVec(v)) => Some(Positions::from_f64(
+                v.iter().map(|p| [p.x, p.y, p.z]).collect(),
+            )),
+            _ => self.vec3s(name)?.map(Positions::from_f32),
+        })
+    }
+
     /// An array of 2-vectors (`texCoord2f[]`, `float2[]`, `double2[]`, `half2[]`).
     pub fn vec2s(&self, name: &str) -> Result<Option<Vec<[f32; 2]>>> {
         Ok(match self.value(name)? {

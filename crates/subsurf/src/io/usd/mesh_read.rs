@@ -28,7 +28,7 @@ pub(super) struct ReadMesh {
 /// Reads the mesh prim `r.prim`.
 pub(super) fn read_mesh(r: &PrimReader) -> Result<ReadMesh> {
     let positions = r
-        .vec3s("points")?
+        .points("points")?
         .ok_or_else(|| r.error("points", "no points authored"))?;
     let face_counts = r.ints("faceVertexCounts")?.unwrap_or_default();
     let mut counts = Vec::with_capacity(face_counts.len());

@@ -159,18 +159,27 @@ fn ints(v: &[u32]) -> Value {
 
 /// Writes `mesh` into the prim at `prim` (which must have a spec): as a cage with its tags
 /// and options, or, when `refined`, as a polygon mesh.
-pub(super) fn write_mesh(data: &mut sdf::Data, prim: &sdf::Path, mesh: &Mesh, refined: bool) {
+/// With `f64_points`, positions held in `f64` are written as `point3d[]` (the schema's type is
+/// `point3f[]`).
+pub(super) fn write_mesh(
+    data: &mut sdf::Data,
+    prim: &sdf::Path,
+    mesh: &Mesh,
+    refined: bool,
+    f64_points: bool,
+) {
     clear(data, prim);
-    let points: Vec<gf::Vec3f> = mesh.positions.iter().map(|&p| p.into()).collect();
-    set(
-        data,
-        prim,
-        "points",
-        "point3f[]",
-        false,
-        Value::Vec3fVec(points),
-        &[],
-    );
+    let (ty, points) = match mesh.positions.as_f64() {
+        Some(v) if f64_points => (
+            "point3d[]",
+            Value::Vec3dVec(v.iter().map(|&[x, y, z]| gf::Vec3d { x, y, z }).collect()),
+        ),
+        _ => (
+            "point3f[]",
+            Value::Vec3fVec(mesh.positions.iter().map(|&p| p.into()).collect()),
+        ),
+    };
+    set(data, prim, "points", ty, false, points, &[]);
     let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [0.0; 3]));
     let extent = vec![gf::Vec3f::from(lo), gf::Vec3f::from(hi)];
     set(

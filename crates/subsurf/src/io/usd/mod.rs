@@ -138,6 +138,12 @@ impl Stage {
 
     /// A stage of one mesh prim, `/Mesh` (the default prim), written as a cage.
     pub fn from_mesh(mesh: &Mesh) -> Stage {
+        Stage::from_mesh_with(mesh, &crate::io::WriteOptions::default())
+    }
+
+    /// [`Stage::from_mesh`] with options: with [`crate::io::WriteOptions::f64`] positions
+    /// held in `f64` are written as `point3d[]`.
+    pub fn from_mesh_with(mesh: &Mesh, options: &crate::io::WriteOptions) -> Stage {
         let mut data = sdf::Data::new();
         let root = data.create_spec(sdf::Path::abs_root(), SpecType::PseudoRoot);
         root.add(FieldKey::DefaultPrim.as_str(), Value::token("Mesh"));
@@ -154,7 +160,7 @@ impl Stage {
             Value::Specifier(sdf::Specifier::Def),
         );
         prim.add(FieldKey::TypeName.as_str(), Value::token("Mesh"));
-        mesh_write::write_mesh(&mut data, &path, mesh, false);
+        mesh_write::write_mesh(&mut data, &path, mesh, false, options.f64);
         Stage {
             data,
             file: "<memory>".into(),
@@ -293,6 +299,18 @@ impl Stage {
     /// Replaces the mesh of the prim at `path`: as a cage with its tags and options, or, when
     /// `refined`, as a polygon mesh (`subdivisionScheme = "none"`, holes kept).
     pub fn set_mesh(&mut self, path: &str, mesh: &Mesh, refined: bool) -> Result<()> {
+        self.set_mesh_with(path, mesh, refined, &crate::io::WriteOptions::default())
+    }
+
+    /// [`Stage::set_mesh`] with options: with [`crate::io::WriteOptions::f64`] positions held
+    /// in `f64` are written as `point3d[]`.
+    pub fn set_mesh_with(
+        &mut self,
+        path: &str,
+        mesh: &Mesh,
+        refined: bool,
+        options: &crate::io::WriteOptions,
+    ) -> Result<()> {
         crate::io::check_writable(mesh)?;
         let p = spec_path(&self.file, path)?;
         if self.data.spec_type(&p) != Some(SpecType::Prim) {
@@ -303,7 +321,7 @@ impl Stage {
                 reason: "no prim here".into(),
             });
         }
-        mesh_write::write_mesh(&mut self.data, &p, mesh, refined);
+        mesh_write::write_mesh(&mut self.data, &p, mesh, refined, options.f64);
         Ok(())
     }
 
@@ -352,7 +370,17 @@ pub fn read(bytes: &[u8], file: &str) -> Result<Mesh> {
 
 /// Writes `mesh` as a one-prim stage (see [`Stage::from_mesh`]).
 pub fn write(mesh: &Mesh, format: UsdFormat, w: &mut impl std::io::Write) -> Result<()> {
+    write_with(mesh, format, &crate::io::WriteOptions::default(), w)
+}
+
+/// [`write`] with options ([`Stage::from_mesh_with`]).
+pub fn write_with(
+    mesh: &Mesh,
+    format: UsdFormat,
+    options: &crate::io::WriteOptions,
+    w: &mut impl std::io::Write,
+) -> Result<()> {
     crate::io::check_writable(mesh)?;
-    w.write_all(&Stage::from_mesh(mesh).to_bytes(format)?)?;
+    w.write_all(&Stage::from_mesh_with(mesh, options).to_bytes(format)?)?;
     Ok(())
 }

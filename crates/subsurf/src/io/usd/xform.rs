@@ -31,19 +31,16 @@ pub fn mul(a: &Matrix, b: &Matrix) -> Matrix {
     m
 }
 
-/// A point transformed by `m` (row vector times matrix, divided by w when it is not 1).
-pub fn transform_point(m: &Matrix, p: [f32; 3]) -> [f32; 3] {
-    let v = [p[0] as f64, p[1] as f64, p[2] as f64, 1.0];
+/// A point transformed by `m` (row vector times matrix, divided by w when it is not 1),
+/// computed in `f64` and rounded to `R` once.
+pub fn transform_point<R: crate::Real>(m: &Matrix, p: [R; 3]) -> [R; 3] {
+    let v = [p[0].to_f64(), p[1].to_f64(), p[2].to_f64(), 1.0];
     let mut out = [0.0f64; 4];
     for (j, o) in out.iter_mut().enumerate() {
         *o = (0..4).map(|k| v[k] * m[k][j]).sum();
     }
     let w = if out[3] != 0.0 { out[3] } else { 1.0 };
-    [
-        (out[0] / w) as f32,
-        (out[1] / w) as f32,
-        (out[2] / w) as f32,
-    ]
+    [0, 1, 2].map(|k| R::from_f64(out[k] / w))
 }
 
 fn translate(t: [f64; 3]) -> Matrix {
