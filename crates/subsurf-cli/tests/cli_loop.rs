@@ -116,7 +116,7 @@ fn limit_writes_the_loop_limit_surface_watertight() {
     let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
     let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
     assert_eq!(got.face_indices, want.face_indices);
-    assert_eq!(got.positions, want.positions);
+    assert_eq!(*got.positions, *want.positions);
     let mut edges = std::collections::HashMap::new();
     for t in got.face_indices.chunks(3) {
         for k in 0..3 {

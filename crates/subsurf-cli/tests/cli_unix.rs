@@ -98,7 +98,7 @@ fn dash_reads_standard_input_and_writes_standard_output() {
             _ => subsurf::io::obj::read(std::str::from_utf8(&out.stdout).unwrap()).unwrap(),
         };
         assert_eq!(got.face_indices, want.face_indices, "{format}");
-        assert_eq!(got.positions, want.positions, "{format}");
+        assert_eq!(*got.positions, *want.positions, "{format}");
         assert!(stderr(&out).contains("standard output"));
     }
     // glTF to standard output: a GLB header.

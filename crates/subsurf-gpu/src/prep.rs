@@ -254,7 +254,7 @@ struct ChunkBuffers {
 /// let mut gpu = GpuPrep::new(&ctx, cpu.topology())?;
 /// let grid = gpu.grid(&ctx, 5)?; // 5 samples per patch side, shared along edges
 /// for frame in 0..2 {
-///     cube.positions[0][2] += 0.25 * frame as f32; // animate one vertex
+///     cube.positions.as_f32_mut()[0][2] += 0.25 * frame as f32; // animate one vertex
 ///     cpu.update(&cube.positions)?;
 ///     gpu.update(&ctx, &cube.positions)?;
 ///     gpu.eval_grid(&ctx, &grid)?;

@@ -25,7 +25,7 @@ use crate::ops::{check_tess, tess_out};
 enum Kind {
     Quad {
         /// The base positions the surface's points were made from.
-        positions: Mutex<Vec<[f32; 3]>>,
+        positions: Mutex<subsurf::Positions>,
         /// The patch table (with its kept levels, for sharpness edits) and its points.
         surface: RwLock<Arc<LimitSurface>>,
         num_ptex_faces: usize,
@@ -159,7 +159,7 @@ impl PyLimit {
                 // A copy only while an evaluation still holds the surface.
                 let s = Arc::make_mut(&mut s);
                 s.set_positions(&p);
-                *pos = p;
+                *pos = p.into();
                 Ok::<_, PyErr>(())
             })?,
             Kind::Loop {
@@ -299,7 +299,7 @@ impl PyLimit {
             let pos = positions.lock().map_err(|_| None)?;
             let mut s = surface.write().map_err(|_| None)?;
             let s = Arc::make_mut(&mut s);
-            s.apply_sharpness(&edits, &pos).map_err(Some)
+            s.apply_sharpness(&edits, &*pos).map_err(Some)
         });
         match outcome {
             Ok(EditOutcome::Unchanged) => Ok("unchanged"),
@@ -334,7 +334,7 @@ impl PyLimit {
                     .chunks_exact(3)
                     .map(|c| [c[0], c[1], c[2]])
                     .collect();
-                tess_out(py, mesh.positions, normals, tris)
+                tess_out(py, mesh.positions.into_f32(), normals, tris)
             }
         }
     }

@@ -5,7 +5,7 @@ use std::sync::Arc;
 use numpy::{PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::prelude::*;
 use subsurf::OptionValue;
-use subsurf::{Corner, Crease, FaceVarying, Mesh, Topology};
+use subsurf::{Corner, Crease, FaceVarying, Mesh, Positions, Topology};
 
 use crate::arrays::{out1, out2, rows, vec1};
 use crate::errors::{lib_error, mesh_error, value_error};
@@ -15,6 +15,10 @@ use crate::errors::{lib_error, mesh_error, value_error};
 #[derive(Debug, Clone)]
 pub struct PyMesh {
     pub inner: Arc<Mesh>,
+    /// Whether Python sees the positions as float64: given as a float64 array (or refined
+    /// from one). A mesh read from a file is float32 to Python, though it keeps the file's
+    /// digits for writing.
+    pub f64: bool,
 }
 
 /// An option value from its name (`docs/vocabulary.md`), a `ValueError` listing the accepted
@@ -102,7 +106,7 @@ impl PyMesh {
     #[allow(clippy::too_many_arguments)]
     fn new(
         py: Python<'_>,
-        positions: PyReadonlyArray2<'_, f32>,
+        positions: &Bound<'_, PyAny>,
         counts: PyReadonlyArray1<'_, u32>,
         indices: PyReadonlyArray1<'_, u32>,
         crease_pairs: PyReadonlyArray2<'_, u32>,
@@ -118,7 +122,14 @@ impl PyMesh {
         triangle_subdivision: &str,
         uv_interpolation: &str,
     ) -> PyResult<Self> {
-        let positions = rows::<3, f32>(&positions, "positions")?;
+        // float64 in stays float64 (the Python layer passes float64 arrays through).
+        let positions = match positions.extract::<PyReadonlyArray2<'_, f64>>() {
+            Ok(a) => Positions::from_f64(rows::<3, f64>(&a, "positions")?),
+            Err(_) => {
+                let a = positions.extract::<PyReadonlyArray2<'_, f32>>()?;
+                Positions::from_f32(rows::<3, f32>(&a, "positions")?)
+            }
+        };
         let face_counts = vec1(&counts, "face counts")?;
         let face_indices = vec1(&indices, "face indices")?;
         let cp = rows::<2, u32>(&crease_pairs, "creases")?;
@@ -186,6 +197,7 @@ impl PyMesh {
         )?;
         validate(py, &mesh)?;
         Ok(PyMesh {
+            f64: mesh.positions.is_f64(),
             inner: Arc::new(mesh),
         })
     }
@@ -200,6 +212,7 @@ impl PyMesh {
         validate(py, &mesh)?;
         Ok(PyMesh {
             inner: Arc::new(mesh),
+            f64: false,
         })
     }
 
@@ -221,7 +234,10 @@ impl PyMesh {
         }
         let m = self.inner.clone();
         let p = path.clone();
-        let options = subsurf::io::WriteOptions { keep_holes };
+        let options = subsurf::io::WriteOptions {
+            keep_holes,
+            ..Default::default()
+        };
         py.detach(move || subsurf::io::write_path_with(&p, &m, normals.as_deref(), options))
             .map_err(|e| lib_error(py, e, Some(&path)))
     }
@@ -233,12 +249,18 @@ impl PyMesh {
         } else {
             Arc::new(self.inner.without_holes())
         };
-        PyMesh { inner }
+        PyMesh {
+            inner,
+            f64: self.f64,
+        }
     }
 
     #[getter]
     fn positions(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        out2(py, self.inner.positions.clone())
+        match self.inner.positions.as_f64().filter(|_| self.f64) {
+            Some(v) => out2(py, v.to_vec()),
+            None => out2(py, self.inner.positions.to_vec()),
+        }
     }
     #[getter]
     fn face_counts(&self, py: Python<'_>) -> Py<PyAny> {

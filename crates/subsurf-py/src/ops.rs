@@ -79,11 +79,21 @@ pub fn refine(
     check_level(level)?;
     let b = self::backend(py, backend)?;
     let m = mesh.inner.clone();
+    // float64 positions given from Python refine in double precision on the CPU (Loop masks
+    // are float32).
+    let wide = mesh.f64
+        && m.positions.is_f64()
+        && backend == "cpu"
+        && m.options.scheme != subsurf::Scheme::Loop;
     let out = py
-        .detach(move || surface::refine_mesh(&m, level, limit, None, b))
+        .detach(move || match wide {
+            true => surface::refine_mesh_f64(&m, level, limit, None),
+            false => surface::refine_mesh(&m, level, limit, None, b),
+        })
         .map_err(|e| surface_error(py, e))?;
     Ok(PyMesh {
         inner: Arc::new(out),
+        f64: wide,
     })
 }
 
@@ -200,6 +210,48 @@ impl PyRefiner {
         self.run(py, values, false, self.mesh.positions.len())
     }
 
+    /// float64 data in double precision: every step's masks in f64
+    /// (`Refiner::refine_f64`), float64 out.
+    fn refine_f64(&self, py: Python<'_>, values: PyReadonlyArray2<'_, f64>) -> PyResult<Py<PyAny>> {
+        let s = values.shape().to_vec();
+        let n_expected = self.mesh.positions.len();
+        if s[0] != n_expected || s[1] == 0 {
+            return Err(value_error(format!(
+                "values: expected shape ({n_expected}, d) with d >= 1, got {s:?}"
+            )));
+        }
+        let flat = values
+            .as_slice()
+            .map_err(|_| value_error("values: not C-contiguous"))?;
+        let (r, d) = (&self.refiner, s[1]);
+        // Column groups of up to 3 values, gathered back into rows.
+        let out = py.detach(|| -> subsurf::Result<Vec<f64>> {
+            let mut cols: Vec<(usize, Vec<f64>)> = Vec::new();
+            let mut k = 0;
+            while k < d {
+                let w = (d - k).min(3);
+                let part: Vec<[f64; 3]> = flat
+                    .chunks_exact(d)
+                    .map(|row| std::array::from_fn(|c| if c < w { row[k + c] } else { 0.0 }))
+                    .collect();
+                cols.push((w, r.refine_f64(&part)?.into_flattened()));
+                k += w;
+            }
+            let m = r.last().num_vertices();
+            let mut out = Vec::with_capacity(m * d);
+            for i in 0..m {
+                for (w, c) in &cols {
+                    out.extend_from_slice(&c[3 * i..3 * i + w]);
+                }
+            }
+            Ok(out)
+        });
+        let out = out.map_err(|e| lib_error(py, e, None))?;
+        let a = numpy::ndarray::Array2::from_shape_vec((out.len() / d, d), out)
+            .map_err(|e| value_error(e.to_string()))?;
+        Ok(numpy::IntoPyArray::into_pyarray(a, py).into_any().unbind())
+    }
+
     fn limit(&self, py: Python<'_>, values: PyReadonlyArray2<'_, f32>) -> PyResult<Py<PyAny>> {
         self.run(py, values, true, self.refiner.last().num_vertices())
     }
@@ -248,7 +300,10 @@ impl PyRefiner {
             .refiner
             .to_tagged_mesh(self.level, p)
             .map_err(|e| lib_error(py, e, None))?;
-        Ok(PyMesh { inner: Arc::new(m) })
+        Ok(PyMesh {
+            inner: Arc::new(m),
+            f64: false,
+        })
     }
 
     /// (offsets, indices, weights): CSR rows from the base vertices to the last level.

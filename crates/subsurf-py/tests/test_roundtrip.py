@@ -14,7 +14,9 @@ def test_face_layouts_agree():
     b = subsurf.Mesh(pts, (np.array([4, 3]), np.array([0, 1, 2, 3, 1, 4, 2])))
     c = subsurf.Mesh(pts.astype(np.float32), np.array([[0, 1, 2, 3]]))
     assert np.array_equal(a.face_counts, b.face_counts) and np.array_equal(a.face_indices, b.face_indices)
-    assert a.positions.dtype == np.float32 and np.array_equal(a.positions, pts.astype(np.float32))
+    # float64 in stays float64 (as given); float32 in stays float32.
+    assert a.positions.dtype == np.float64 and np.array_equal(a.positions, pts)
+    assert c.positions.dtype == np.float32 and np.array_equal(c.positions, pts.astype(np.float32))
     assert c.num_faces == 1 and c.num_vertices == 5
     assert a.faces() == [[0, 1, 2, 3], [1, 4, 2]]
 

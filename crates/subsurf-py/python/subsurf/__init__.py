@@ -3,7 +3,9 @@ surfaces and the p-rep, with numpy arrays in and out.
 
 Every computation releases the GIL; objects are immutable (``LimitSurface.update`` swaps its
 state atomically) and safe to share between threads. Floating-point work is done in float32
-(the library's precision) except ``Prep``, which is built in float64.
+(the library's precision) except where positions are float64: a ``Mesh`` keeps float64
+positions as given, ``refine`` and ``Refiner.refine`` then work in float64 (Catmull-Clark and
+bilinear meshes, on the CPU), and ``Prep`` is always built in float64.
 """
 
 from __future__ import annotations
@@ -62,8 +64,9 @@ def _keywords(f: Any) -> Any:
     return checked
 
 
-def _floats(a: Any, cols: int, what: str) -> _np.ndarray:
-    """(n, cols) float32, C-contiguous; no copy when it already is."""
+def _floats(a: Any, cols: int, what: str, keep_f64: bool = False) -> _np.ndarray:
+    """(n, cols) float32 (float64 kept with ``keep_f64``), C-contiguous; no copy when it
+    already is."""
     try:
         arr = _np.asarray(a)
     except Exception as e:  # ragged lists and the like
@@ -80,6 +83,8 @@ def _floats(a: Any, cols: int, what: str) -> _np.ndarray:
         big = _np.abs(arr[_np.isfinite(arr)])
         if big.size and big.max() > _np.finfo(_np.float32).max:
             raise MeshError(f"{what}: a value overflows float32", face=None, corner=None, vertex=None)
+    if keep_f64 and arr.dtype == _np.float64:
+        return _np.ascontiguousarray(arr)
     return _np.ascontiguousarray(arr, dtype=_np.float32)
 
 
@@ -161,7 +166,9 @@ class Mesh:
 
     Parameters
     ----------
-    positions : (n, 3) float array of vertex positions (float32 or float64; computed in float32)
+    positions : (n, 3) float array of vertex positions: float64 is kept as given (``refine``
+        then works in float64), other types become float32. A mesh read from a file is
+        float32 here (its writes keep the file's digits)
     faces : (m, k) integer array, list of index lists, or ``(counts, indices)`` as USD stores them
     creases : (c, 2) vertex pairs with ``crease_sharpness`` (c,) or one value for all, or one
         (c, 3) array; sharpness 10 or more is infinitely sharp
@@ -188,7 +195,7 @@ class Mesh:
                  uvs: Any = None, uv_indices: Any = None, scheme: str = "catmark",
                  boundary: str = "edge-only", crease_method: str = "uniform",
                  triangle_subdivision: str = "catmark", uv_interpolation: str = "linear") -> None:
-        p = _floats(positions, 3, "positions")
+        p = _floats(positions, 3, "positions", keep_f64=True)
         counts, idx = _faces(faces)
         cp, cs = _tags(creases, crease_sharpness, 2, "creases")
         cv, csh = _tags(corners, corner_sharpness, 1, "corners")
@@ -209,7 +216,8 @@ class Mesh:
         obj._m = m
         return obj
 
-    positions = property(lambda self: self._m.positions, doc="(n, 3) float32 vertex positions")
+    positions = property(lambda self: self._m.positions,
+                         doc="(n, 3) vertex positions: float64 when given as float64, else float32")
 
     @property
     def points(self) -> Any:
@@ -319,7 +327,8 @@ def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu")
     per-corner indices. ``Mesh.write`` leaves the hole faces out unless ``keep_holes=True``
     (as ``subsurf refine`` does without and with ``--keep-holes``); ``without_holes()``
     gives the faces a viewer should draw. Same numbers and faces as
-    ``subsurf --keep-holes refine`` writes to OBJ."""
+    ``subsurf --keep-holes refine`` writes to OBJ. A mesh given float64 positions (not Loop) is
+    refined in float64 on the CPU, as ``subsurf refine --f64``, and the result is float64."""
     return Mesh._wrap(_subsurf.refine(_mesh(mesh), _int(level, "level"), bool(limit), backend))
 
 
@@ -327,7 +336,8 @@ class Refiner:
     """Refinement tables of ``mesh`` to ``level``, built once and applied to any per-vertex
     data (positions per animation frame, colours, weights).
 
-    ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32.
+    ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32 (float64 data of a
+    Catmull-Clark or bilinear mesh: float64, every step's masks in double precision).
     ``limit(values)``: (n_last, d) last-level data -> its limit.
     ``refine_uvs(uvs, uv_indices=None)``: -> (values, per-corner indices) of the last level.
     ``mesh(positions)``: the refined ``Mesh`` with these positions.
@@ -349,10 +359,15 @@ class Refiner:
 
     @_keywords
     def refine(self, values: Any) -> _np.ndarray:
-        """(n_base, d) float data -> (n_last, d) float32."""
+        """(n_base, d) float data -> (n_last, d) float32; float64 data of a Catmull-Clark or
+        bilinear mesh stays float64 (masks in double precision)."""
         v = _np.asarray(values)
         one = v.ndim == 1
-        return self._r.refine(_floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values"))
+        arr = _floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values",
+                      keep_f64=self._mesh.options["scheme"] != "loop")
+        if arr.dtype == _np.float64:
+            return self._r.refine_f64(arr)
+        return self._r.refine(arr)
 
     @_keywords
     def limit(self, values: Any) -> _np.ndarray:
