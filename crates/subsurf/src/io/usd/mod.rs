@@ -373,7 +373,7 @@ pub fn write(mesh: &Mesh, format: UsdFormat, w: &mut impl std::io::Write) -> Res
     write_with(mesh, format, &crate::io::WriteOptions::default(), w)
 }
 
-/// [`write`] with options ([`Stage::from_mesh_with`]).
+/// [`write()`] with options ([`Stage::from_mesh_with`]).
 pub fn write_with(
     mesh: &Mesh,
     format: UsdFormat,
