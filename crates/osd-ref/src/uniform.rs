@@ -106,7 +106,7 @@ impl OsdRefiner {
         Ok(sizes)
     }
 
-    fn check_coarse(&self, positions: &[[f32; 3]]) -> Result<()> {
+    fn check_coarse<T>(&self, positions: &[T]) -> Result<()> {
         if positions.len() != self.num_vertices[0] {
             return Err(Error::Invalid(format!(
                 "{} positions for {} coarse vertices",
@@ -144,13 +144,7 @@ impl OsdRefiner {
     /// The last level in double precision (`PrimvarRefinerReal<double>`) from `f64` coarse
     /// positions (a subsurf mesh's [`subsurf::Positions::to_f64`]).
     pub fn interpolate_f64(&self, positions: &[[f64; 3]]) -> Result<Vec<[f64; 3]>> {
-        if positions.len() != self.num_vertices[0] {
-            return Err(Error::Invalid(format!(
-                "{} positions for {} coarse vertices",
-                positions.len(),
-                self.num_vertices[0]
-            )));
-        }
+        self.check_coarse(positions)?;
         let mut out = vec![[0.0f64; 3]; self.num_vertices(self.max_level)];
         // SAFETY: `positions` holds level 0 and `out` the last level, in packed doubles.
         check(unsafe {

@@ -163,6 +163,23 @@ fn apply_any(r: &Refiner, flat: &[f32], n: usize, d: usize, limit: bool) -> Vec<
     out
 }
 
+/// `(n, d)` of `values` and its data, read in place: `n_expected` rows, `d >= 1`, C-contiguous.
+fn value_rows<'a, T: numpy::Element>(
+    values: &'a PyReadonlyArray2<'_, T>,
+    n_expected: usize,
+) -> PyResult<(usize, usize, &'a [T])> {
+    let s = values.shape();
+    if s[0] != n_expected || s[1] == 0 {
+        return Err(value_error(format!(
+            "values: expected shape ({n_expected}, d) with d >= 1, got {s:?}"
+        )));
+    }
+    let flat = values
+        .as_slice()
+        .map_err(|_| value_error("values: not C-contiguous"))?;
+    Ok((s[0], s[1], flat))
+}
+
 impl PyRefiner {
     fn run(
         &self,
@@ -171,17 +188,8 @@ impl PyRefiner {
         limit: bool,
         n_expected: usize,
     ) -> PyResult<Py<PyAny>> {
-        let s = values.shape().to_vec();
-        if s[0] != n_expected || s[1] == 0 {
-            return Err(value_error(format!(
-                "values: expected shape ({n_expected}, d) with d >= 1, got {s:?}"
-            )));
-        }
-        let flat = values
-            .as_slice()
-            .map_err(|_| value_error("values: not C-contiguous"))?;
+        let (n, d, flat) = value_rows(&values, n_expected)?;
         let r = &self.refiner;
-        let (n, d) = (s[0], s[1]);
         let out = py.detach(|| apply_any(r, flat, n, d, limit));
         let m = out.len() / d;
         let a = numpy::ndarray::Array2::from_shape_vec((m, d), out)
@@ -213,17 +221,8 @@ impl PyRefiner {
     /// float64 data in double precision: every step's masks in f64
     /// (`Refiner::refine_f64`), float64 out.
     fn refine_f64(&self, py: Python<'_>, values: PyReadonlyArray2<'_, f64>) -> PyResult<Py<PyAny>> {
-        let s = values.shape().to_vec();
-        let n_expected = self.mesh.positions.len();
-        if s[0] != n_expected || s[1] == 0 {
-            return Err(value_error(format!(
-                "values: expected shape ({n_expected}, d) with d >= 1, got {s:?}"
-            )));
-        }
-        let flat = values
-            .as_slice()
-            .map_err(|_| value_error("values: not C-contiguous"))?;
-        let (r, d) = (&self.refiner, s[1]);
+        let (_, d, flat) = value_rows(&values, self.mesh.positions.len())?;
+        let r = &self.refiner;
         // Column groups of up to 3 values, gathered back into rows.
         let out = py.detach(|| -> subsurf::Result<Vec<f64>> {
             let mut cols: Vec<(usize, Vec<f64>)> = Vec::new();

@@ -320,26 +320,6 @@ impl<W: Real> LevelStencils<W> {
     /// of vertices and the edge points over the parents and face points), each row the plain
     /// weighted sum, in parallel: the double-precision path of [`super::Refiner::refine_f64`].
     pub(crate) fn apply_real<const N: usize>(&self, src: &[[W; N]]) -> Vec<[W; N]> {
-        fn rows<W: Real, const N: usize>(
-            t: &StencilTable<W>,
-            x: impl Fn(usize) -> [W; N] + Sync,
-        ) -> Vec<[W; N]> {
-            use rayon::prelude::*;
-            (0..t.num_rows())
-                .into_par_iter()
-                .with_min_len(1024)
-                .map(|r| {
-                    let mut acc = [W::ZERO; N];
-                    for j in t.offsets[r] as usize..t.offsets[r + 1] as usize {
-                        let (v, w) = (x(t.indices[j] as usize), t.weights[j]);
-                        for c in 0..N {
-                            acc[c] += w * v[c];
-                        }
-                    }
-                    acc
-                })
-                .collect()
-        }
         let p = self.num_parent_vertices;
         let faces = rows(&self.face, |k| src[k]);
         let input = |k: usize| if k < p { src[k] } else { faces[k - p] };
@@ -349,6 +329,30 @@ impl<W: Real> LevelStencils<W> {
         out.extend_from_slice(&edges);
         out
     }
+}
+
+/// Every row of `t` as the plain weighted sum of its inputs, input `k` read as `x(k)`, in
+/// parallel: the double-precision path ([`LevelStencils::apply_real`],
+/// [`super::Refiner::limit_f64`]).
+pub(crate) fn rows<W: Real, const N: usize>(
+    t: &StencilTable<W>,
+    x: impl Fn(usize) -> [W; N] + Sync,
+) -> Vec<[W; N]> {
+    use rayon::prelude::*;
+    (0..t.num_rows())
+        .into_par_iter()
+        .with_min_len(1024)
+        .map(|r| {
+            let mut acc = [W::ZERO; N];
+            for j in t.offsets[r] as usize..t.offsets[r + 1] as usize {
+                let (v, w) = (x(t.indices[j] as usize), t.weights[j]);
+                for c in 0..N {
+                    acc[c] += w * v[c];
+                }
+            }
+            acc
+        })
+        .collect()
 }
 
 impl LevelStencils {

@@ -413,18 +413,7 @@ impl Refiner {
                 t.num_rows()
             )));
         }
-        Ok((0..t.num_rows())
-            .map(|r| {
-                let mut acc = [0.0f64; N];
-                for j in t.offsets[r] as usize..t.offsets[r + 1] as usize {
-                    let (v, w) = (last[t.indices[j] as usize], t.weights[j]);
-                    for c in 0..N {
-                        acc[c] += w * v[c];
-                    }
-                }
-                acc
-            })
-            .collect())
+        Ok(masks::rows(&t, |k| last[k]))
     }
 
     /// The per-level tables composed into one table from base vertices to the last level.
