@@ -2,8 +2,10 @@
 //! (`Far::PatchTable` with Gregory end caps + `PatchMap`, refined and evaluated in double
 //! precision on a triangular grid of every face): every `loop_*` regression shape at isolation
 //! levels 1–4, positions within 1e-5 of the bounding-box diagonal and normals within 1e-3 rad,
-//! on the regular box-spline patches and on the Gregory-triangle end caps, checked separately.
-//! Every sample must evaluate. The worst figures over all shapes are printed.
+//! on the regular box-spline patches and on the Gregory-triangle end caps, checked separately;
+//! with the points refined in double precision (`LoopLimit::new_f64`), within 1e-12 of the
+//! diagonal and 1e-9 rad. Every sample must evaluate. The worst figures over all shapes are
+//! printed.
 
 #[macro_use]
 mod common;
@@ -37,9 +39,31 @@ struct Worst {
     n_at: String,
 }
 
+/// The precision of our points and the tolerances it is held to: position (of the
+/// diagonal) and normal (rad).
+#[derive(Clone, Copy)]
+struct Bounds {
+    f64: bool,
+    p: f64,
+    n: f64,
+}
+
+/// Points refined in `f32`.
+const F32: Bounds = Bounds {
+    f64: false,
+    p: 1e-5,
+    n: 1e-3,
+};
+/// Points refined in `f64`.
+const F64: Bounds = Bounds {
+    f64: true,
+    p: 1e-12,
+    n: 1e-9,
+};
+
 impl Worst {
-    fn differs(&self) -> bool {
-        self.p > 1e-5 || self.n > 1e-3
+    fn differs(&self, b: Bounds) -> bool {
+        self.p > b.p || self.n > b.n
     }
 
     fn merge(&mut self, w: &Worst, name: &str) {
@@ -53,16 +77,21 @@ impl Worst {
     }
 }
 
-/// Compares every `loop_*` shape at `level`: the worst figures on regular patches and on end
-/// caps over all shapes, and a line per shape and patch kind outside the tolerances.
-fn compare_at(level: u32) -> (Worst, Worst, Vec<String>) {
+/// Compares every `loop_*` shape at `level`, its points refined in `f64` when the bounds say:
+/// the worst figures on regular patches and on end caps over all shapes, and a line
+/// per shape and patch kind outside the bounds.
+fn compare_at(level: u32, bounds: Bounds) -> (Worst, Worst, Vec<String>) {
     let mut failures = Vec::new();
     let (mut all_reg, mut all_cap) = (Worst::default(), Worst::default());
     for name in common::shape_names(&["loop_"]) {
         let mesh = common::load_shape(&name);
         let topo = Topology::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let ours =
-            LoopLimit::new(&topo, &mesh.positions, level).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let ours = if bounds.f64 {
+            LoopLimit::new_f64(&topo, &mesh.positions, level)
+        } else {
+            LoopLimit::new(&topo, &mesh.positions, level)
+        }
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
         let mut osd = OsdMesh::from(&mesh);
         osd.uvs = None;
         let o = PatchOptions {
@@ -102,7 +131,7 @@ fn compare_at(level: u32) -> (Worst, Worst, Vec<String>) {
             ("regular patches", &reg, &mut all_reg),
             ("end caps", &cap, &mut all_cap),
         ] {
-            if w.differs() {
+            if w.differs(bounds) {
                 failures.push(format!(
                     "{name} isolation {level} {kind}: position {:e}, normal {:e} rad",
                     w.p, w.n
@@ -117,9 +146,19 @@ fn compare_at(level: u32) -> (Worst, Worst, Vec<String>) {
 #[test]
 fn limit_surface_matches_opensubdiv_on_every_loop_shape() {
     require_osd!();
+    check_every_level(F32);
+}
+
+#[test]
+fn f64_limit_surface_matches_opensubdiv_f64_on_every_loop_shape() {
+    require_osd!();
+    check_every_level(F64);
+}
+
+fn check_every_level(bounds: Bounds) {
     let mut failures = Vec::new();
     for level in 1..=4 {
-        let (reg, cap, f) = compare_at(level);
+        let (reg, cap, f) = compare_at(level, bounds);
         for (kind, w) in [("regular", &reg), ("end caps", &cap)] {
             eprintln!(
                 "isolation {level} {kind}: {} samples, position {:.1e} ({}), normal {:.1e} rad ({})",

@@ -1,5 +1,5 @@
 //! Double-precision uniform refinement against OpenSubdiv 3.5's `PrimvarRefinerReal<double>`
-//! from the file's own digits: every `catmark_*` and `bilinear_*` regression shape, levels 1–3
+//! from the file's own digits: every `catmark_*`, `bilinear_*` and `loop_*` regression shape, levels 1–3
 //! (2 for large shapes), every vertex within 1e-13 of the bounding-box diagonal, and the
 //! `f32` path far from that on a mesh far from the origin.
 
@@ -31,7 +31,8 @@ fn refine_f64_matches_opensubdiv_double_on_every_shape() {
     require_osd!();
     let mut worst = (0.0f64, String::new());
     let mut checked = 0;
-    for name in common::shape_names(&["catmark_", "bilinear_"]) {
+    let mut loops = 0;
+    for name in common::shape_names(&["catmark_", "bilinear_", "loop_"]) {
         let mesh = common::load_shape(&name);
         if Topology::new(&mesh).is_err() {
             continue;
@@ -45,9 +46,11 @@ fn refine_f64_matches_opensubdiv_double_on_every_shape() {
             }
         }
         checked += 1;
+        loops += name.starts_with("loop_") as usize;
     }
     eprintln!("worst: {:e} ({})", worst.0, worst.1);
     assert!(checked >= 50, "only {checked} shapes");
+    assert!(loops >= 5, "only {loops} Loop shapes");
 }
 
 /// A mesh a million units away: double precision from the file's digits stays within a few

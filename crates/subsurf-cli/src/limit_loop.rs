@@ -10,8 +10,12 @@ use subsurf::Mesh;
 use crate::cmd_limit::{surface_backend, LimitArgs};
 use crate::common::{shown, write_mesh};
 
-/// Tessellates the Loop limit surface of `mesh` as `a` asks.
-pub fn run(a: &LimitArgs, mesh: Mesh) -> anyhow::Result<()> {
+/// Tessellates the Loop limit surface of `mesh` as `a` asks (`--f64`: its points refined in
+/// `f64` from the file's values, as the library does for a mesh holding `f64` positions).
+pub fn run(a: &LimitArgs, mut mesh: Mesh) -> anyhow::Result<()> {
+    if a.surface.f64 && !mesh.positions.is_f64() {
+        mesh.positions = subsurf::Positions::from_f64(mesh.positions.to_f64().into_owned());
+    }
     anyhow::ensure!(
         !a.adaptive.any(),
         "adaptive tessellation rates are implemented for the Catmull-Clark limit surface only; \

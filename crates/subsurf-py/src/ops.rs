@@ -79,12 +79,8 @@ pub fn refine(
     check_level(level)?;
     let b = self::backend(py, backend)?;
     let m = mesh.inner.clone();
-    // float64 positions given from Python refine in double precision on the CPU (Loop masks
-    // are float32).
-    let wide = mesh.f64
-        && m.positions.is_f64()
-        && backend == "cpu"
-        && m.options.scheme != subsurf::Scheme::Loop;
+    // float64 positions given from Python refine in double precision on the CPU.
+    let wide = mesh.f64 && m.positions.is_f64() && backend == "cpu";
     let out = py
         .detach(move || match wide {
             true => surface::refine_mesh_f64(&m, level, limit, None),

@@ -327,7 +327,7 @@ def refine(mesh: Mesh, level: int, *, limit: bool = False, backend: str = "cpu")
     per-corner indices. ``Mesh.write`` leaves the hole faces out unless ``keep_holes=True``
     (as ``subsurf refine`` does without and with ``--keep-holes``); ``without_holes()``
     gives the faces a viewer should draw. Same numbers and faces as
-    ``subsurf --keep-holes refine`` writes to OBJ. A mesh given float64 positions (not Loop) is
+    ``subsurf --keep-holes refine`` writes to OBJ. A mesh given float64 positions is
     refined in float64 on the CPU, as ``subsurf refine --f64``, and the result is float64."""
     return Mesh._wrap(_subsurf.refine(_mesh(mesh), _int(level, "level"), bool(limit), backend))
 
@@ -336,8 +336,8 @@ class Refiner:
     """Refinement tables of ``mesh`` to ``level``, built once and applied to any per-vertex
     data (positions per animation frame, colours, weights).
 
-    ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32 (float64 data of a
-    Catmull-Clark or bilinear mesh: float64, every step's masks in double precision).
+    ``refine(values)``: (n, d) base-vertex data -> (n_last, d) float32 (float64 data:
+    float64, every step's masks in double precision).
     ``limit(values)``: (n_last, d) last-level data -> its limit.
     ``refine_uvs(uvs, uv_indices=None)``: -> (values, per-corner indices) of the last level.
     ``mesh(positions)``: the refined ``Mesh`` with these positions.
@@ -359,12 +359,12 @@ class Refiner:
 
     @_keywords
     def refine(self, values: Any) -> _np.ndarray:
-        """(n_base, d) float data -> (n_last, d) float32; float64 data of a Catmull-Clark or
-        bilinear mesh stays float64 (masks in double precision)."""
+        """(n_base, d) float data -> (n_last, d) float32; float64 data stays float64 (masks in
+        double precision)."""
         v = _np.asarray(values)
         one = v.ndim == 1
         arr = _floats(v.reshape(-1, 1) if one else v, v.shape[1] if v.ndim == 2 else 1, "values",
-                      keep_f64=self._mesh.options["scheme"] != "loop")
+                      keep_f64=True)
         if arr.dtype == _np.float64:
             return self._r.refine_f64(arr)
         return self._r.refine(arr)

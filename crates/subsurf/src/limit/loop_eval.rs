@@ -25,7 +25,8 @@ use super::loop_patches::{loop_leaves, LoopLeaf};
 use super::patch_map::PatchMap;
 use crate::error::{Error, Result};
 use crate::patch::{tri_patch_weights, PatchParam, PatchParamFields, TriPatchKind};
-use crate::refine::loop_level_stencils;
+use crate::real::{Real, VertexData};
+use crate::refine::{loop_level_stencils, loop_level_stencils_real};
 use crate::topology::tags;
 use crate::topology::Topology;
 
@@ -157,23 +158,56 @@ pub fn tri_boundary_mask(t: &Topology, f: usize) -> u8 {
 }
 
 impl LoopLimit {
-    /// Isolates `base` to `isolation_level` (`loop_leaves`), refines `positions` through
-    /// the levels and gathers the points of every regular patch.
-    pub fn new(base: &Topology, positions: &[[f32; 3]], isolation_level: u32) -> Result<Self> {
-        if positions.len() != base.num_vertices() {
+    /// Isolates `base` to `isolation_level` (`loop_leaves`), refines `positions` (rounded to
+    /// `f32`) through the levels in `f32` and gathers the points of every patch.
+    pub fn new(
+        base: &Topology,
+        positions: &(impl VertexData<3> + ?Sized),
+        isolation_level: u32,
+    ) -> Result<Self> {
+        Self::build::<f32>(base, positions, isolation_level, |p, c, src| {
+            let s = loop_level_stencils(p, c);
+            let mut dst = vec![[0.0f32; 3]; s.num_rows()];
+            s.apply(src, &mut dst);
+            dst
+        })
+    }
+
+    /// [`LoopLimit::new`] in double precision: `positions` as they are held (a file's
+    /// digits, without rounding), refined through the levels with the masks in `f64`
+    /// (OpenSubdiv's `PrimvarRefinerReal<double>`).
+    pub fn new_f64(
+        base: &Topology,
+        positions: &(impl VertexData<3> + ?Sized),
+        isolation_level: u32,
+    ) -> Result<Self> {
+        Self::build::<f64>(base, positions, isolation_level, |p, c, src| {
+            loop_level_stencils_real::<f64>(p, c).apply_real(src)
+        })
+    }
+
+    /// The patches, the level points refined in `R` by `step(parent, child, parent points)`.
+    fn build<R: Real>(
+        base: &Topology,
+        positions: &(impl VertexData<3> + ?Sized),
+        isolation_level: u32,
+        step: impl Fn(&Topology, &Topology, &[[R; 3]]) -> Vec<[R; 3]>,
+    ) -> Result<Self> {
+        if positions.num_vertices() != base.num_vertices() {
             return Err(Error::Unsupported(format!(
                 "{} positions for {} vertices",
-                positions.len(),
+                positions.num_vertices(),
                 base.num_vertices()
             )));
         }
         let l = loop_leaves(base, isolation_level)?;
-        let mut points = vec![positions.to_vec()];
+        let first: Vec<[R; 3]> = (0..base.num_vertices())
+            .map(|i| positions.vertex::<R>(i))
+            .collect();
+        let mut points = vec![first];
         for d in 1..l.levels.len() {
-            let s = loop_level_stencils(&l.levels[d - 1], &l.levels[d]);
-            let mut dst = vec![[0.0f32; 3]; s.num_rows()];
-            s.apply(&points[d - 1], &mut dst);
-            points.push(dst);
+            let next = step(&l.levels[d - 1], &l.levels[d], &points[d - 1]);
+            points.push(next);
         }
         let mut patches = Vec::with_capacity(l.leaves.len());
         let mut offsets = vec![0u32; base.num_faces() + 1];
@@ -192,7 +226,11 @@ impl LoopLimit {
         })
     }
 
-    fn patch(levels: &[Topology], points: &[Vec<[f32; 3]>], leaf: &LoopLeaf) -> Result<LoopPatch> {
+    fn patch<R: Real>(
+        levels: &[Topology],
+        points: &[Vec<[R; 3]>],
+        leaf: &LoopLeaf,
+    ) -> Result<LoopPatch> {
         let t = &levels[leaf.depth];
         let f = leaf.face as usize;
         let boundary = if leaf.regular {
@@ -213,7 +251,7 @@ impl LoopLimit {
         let pts = if leaf.regular {
             gather_box_spline_points(t, f)
                 .iter()
-                .map(|&i| level[i as usize].map(f64::from))
+                .map(|&i| level[i as usize].map(R::to_f64))
                 .collect()
         } else {
             gregory_tri_points(t, f)
@@ -223,7 +261,7 @@ impl LoopLimit {
                     for &(i, w) in r {
                         let q = level[i as usize];
                         for c in 0..3 {
-                            x[c] += w * q[c] as f64;
+                            x[c] += w * q[c].to_f64();
                         }
                     }
                     x

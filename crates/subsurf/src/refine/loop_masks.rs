@@ -9,6 +9,7 @@ use super::last_level::ChildSharpness;
 use super::level::child_end_at_vertex;
 use super::masks::{build_rows, LevelStencils, Scratch};
 use super::stencil::StencilTable;
+use crate::real::Real;
 use crate::rules::r#loop::{edge_mask, limit_mask, smooth_weights, vertex_mask};
 use crate::topology::tags::rule;
 use crate::topology::Topology;
@@ -25,12 +26,29 @@ pub fn loop_level_stencils(p: &Topology, c: &Topology) -> LevelStencils {
 /// [`loop_level_stencils`] from what the rows read of the child: its sharpness and rules
 /// (stored in a full child, or derived from `p` for a lean last level).
 pub(crate) fn loop_level_stencils_with(p: &Topology, c: ChildSharpness<'_>) -> LevelStencils {
-    let nv = p.num_vertices();
     let (vertex, edge) = if super::loop_rings::is_manifold(p) {
         manifold_tables(p, c, None)
     } else {
         merged_tables(p, c)
     };
+    loop_level(p, vertex, edge)
+}
+
+/// [`loop_level_stencils`] with weights in `W` (OpenSubdiv's `PrimvarRefinerReal<W>`): the
+/// masks evaluated in `W`, repeated inputs of a row merged ([`merged_tables`]); for `f32`,
+/// the same rows as [`loop_level_stencils`].
+pub fn loop_level_stencils_real<W: Real>(p: &Topology, c: &Topology) -> LevelStencils<W> {
+    let (vertex, edge) = merged_tables(p, ChildSharpness::of_child(p, c));
+    loop_level(p, vertex, edge)
+}
+
+/// A Loop step's stencils: no face points.
+fn loop_level<W: Real>(
+    p: &Topology,
+    vertex: StencilTable<W>,
+    edge: StencilTable<W>,
+) -> LevelStencils<W> {
+    let nv = p.num_vertices();
     LevelStencils {
         num_parent_vertices: nv,
         face: StencilTable {
@@ -86,7 +104,7 @@ pub(super) fn manifold_tables(
             }
             let n = pe.len();
             if smooth_vertex(p, v) {
-                let (vw, ew) = smooth_weights(n);
+                let (vw, ew) = smooth_weights::<f32>(n);
                 for ((&e, i), w) in pe.iter().zip(&mut idx[..n]).zip(&mut wts[..n]) {
                     (*i, *w) = (p.other_vertex(e as usize, v as u32), ew);
                 }
@@ -115,13 +133,13 @@ pub(super) fn manifold_tables(
         } else {
             rule::SMOOTH
         };
-        let m = edge_mask(s, child_rule, nfaces);
+        let m = edge_mask::<f32>(s, child_rule, nfaces);
         let o0 = opposite(p, e, 0);
         let o1 = if nfaces == 2 { opposite(p, e, 1) } else { o0 };
         let o1 = if o1 != o0 { o1 } else { u32::MAX };
         (m, [o0, o1], nfaces == 2 && o1 == u32::MAX)
     };
-    let smooth2 = edge_mask(0.0, rule::SMOOTH, 2);
+    let smooth2 = edge_mask::<f32>(0.0, rule::SMOOTH, 2);
     let edge = write_rows(
         only.map_or(ne, |o| o.1.len()),
         nv,
@@ -266,28 +284,31 @@ where
 
 /// The vertex and edge tables of a step, repeated inputs of a row merged in `f64`: what a
 /// non-manifold level needs, where a row can meet one vertex twice.
-fn merged_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, StencilTable) {
+fn merged_tables<W: Real>(
+    p: &Topology,
+    c: ChildSharpness<'_>,
+) -> (StencilTable<W>, StencilTable<W>) {
     let (nv, ne) = (p.num_vertices(), p.num_edges());
-    let vertex = build_rows(nv, nv, |v, b, s: &mut Scratch| {
+    let vertex = build_rows(nv, nv, |v, b, s: &mut Scratch<W>| {
         if p.vertex_edges(v).is_empty() {
-            b.add(v as u32, 1.0);
+            b.add(v as u32, W::ONE);
             return;
         }
         let mask = loop_vertex_mask(p, c, v, s);
         for (&e, &w) in p.vertex_edges(v).iter().zip(&mask.edges) {
-            if w != 0.0 {
+            if w != W::ZERO {
                 b.add(p.other_vertex(e as usize, v as u32), w);
             }
         }
         b.add(v as u32, mask.vertex);
     });
-    let edge = build_rows(ne, nv, |e, b, _| {
+    let edge = build_rows(ne, nv, |e, b, _: &mut Scratch<W>| {
         let ev = p.edge_verts[e];
         let faces = p.edge_faces(e);
-        let m = edge_mask(p.edge_sharpness[e], c.rule(nv + e), faces.len());
+        let m = edge_mask::<W>(p.edge_sharpness[e], c.rule(nv + e), faces.len());
         b.add(ev[0], m.vertex);
         b.add(ev[1], m.vertex);
-        if m.opposite != 0.0 {
+        if m.opposite != W::ZERO {
             for (&f, &k) in faces.iter().zip(p.edge_faces_local(e)) {
                 let fv = p.face_vertices(f as usize);
                 b.add(fv[(k as usize + 2) % fv.len()], m.opposite);
@@ -300,12 +321,12 @@ fn merged_tables(p: &Topology, c: ChildSharpness<'_>) -> (StencilTable, StencilT
 /// The Loop vertex-point mask of parent vertex `v` of the triangle level `p` (edge weights in
 /// ring order, applying to the far end of each edge; no face weights), from the sharpness and
 /// rules of `p` and its child `c`. `v` must have edges.
-pub(super) fn loop_vertex_mask<'s>(
+pub(super) fn loop_vertex_mask<'s, W: Real>(
     p: &Topology,
     c: ChildSharpness<'_>,
     v: usize,
-    s: &'s mut Scratch,
-) -> &'s crate::rules::catmark::VertexMask {
+    s: &'s mut Scratch<W>,
+) -> &'s crate::rules::catmark::VertexMask<W> {
     let pe = p.vertex_edges(v);
     let nfaces = p.vertex_faces(v).len();
     let pr = p.vert_rule[v];
@@ -341,22 +362,31 @@ pub(super) fn loop_vertex_mask<'s>(
 /// Stencils moving each vertex of the Loop level `t` to its limit position (OpenSubdiv
 /// `PrimvarRefiner::Limit`): the smooth, crease or corner limit mask of its rule.
 pub fn loop_limit_stencils(t: &Topology) -> StencilTable {
-    build_rows(t.num_vertices(), t.num_vertices(), |v, b, s| {
-        let edges = t.vertex_edges(v);
-        if edges.is_empty() {
-            b.add(v as u32, 1.0);
-            return;
-        }
-        s.pe.clear();
-        s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
-        limit_mask(t.vert_rule[v], &s.pe, t.vertex_faces(v).len(), &mut s.mask);
-        for (&e, &w) in edges.iter().zip(&s.mask.edges) {
-            if w != 0.0 {
-                b.add(t.other_vertex(e as usize, v as u32), w);
+    loop_limit_stencils_real(t)
+}
+
+/// [`loop_limit_stencils`] with weights in `W`.
+pub(crate) fn loop_limit_stencils_real<W: Real>(t: &Topology) -> StencilTable<W> {
+    build_rows(
+        t.num_vertices(),
+        t.num_vertices(),
+        |v, b, s: &mut Scratch<W>| {
+            let edges = t.vertex_edges(v);
+            if edges.is_empty() {
+                b.add(v as u32, W::ONE);
+                return;
             }
-        }
-        b.add(v as u32, s.mask.vertex);
-    })
+            s.pe.clear();
+            s.pe.extend(edges.iter().map(|&e| t.edge_sharpness[e as usize]));
+            limit_mask(t.vert_rule[v], &s.pe, t.vertex_faces(v).len(), &mut s.mask);
+            for (&e, &w) in edges.iter().zip(&s.mask.edges) {
+                if w != W::ZERO {
+                    b.add(t.other_vertex(e as usize, v as u32), w);
+                }
+            }
+            b.add(v as u32, s.mask.vertex);
+        },
+    )
 }
 
 impl super::Refiner {

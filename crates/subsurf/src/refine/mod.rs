@@ -51,7 +51,7 @@ use last_level::{refine_face_lists, ChildSharpness, ChildSharpnessBuf};
 pub use level::refine_topology;
 pub use level_tags::{level_tags, tagged_level_mesh, LevelTags};
 pub(crate) use loop_level::{check_triangles, refine_tri_topology};
-pub(crate) use loop_masks::{loop_level_stencils, loop_limit_stencils};
+pub(crate) use loop_masks::{loop_level_stencils, loop_level_stencils_real, loop_limit_stencils};
 pub use masks::{level_stencils, LevelStencils};
 pub(crate) use masks::{level_stencils_real, limit_stencils};
 use masks::{level_stencils_with, LevelRows};
@@ -369,17 +369,12 @@ impl Refiner {
     /// precision (OpenSubdiv's `PrimvarRefinerReal<double>`) and applied to `base` as it is
     /// held (a mesh's [`crate::mesh::Positions`] give the values as read, without rounding).
     /// Builds the double-precision tables of every step on each call (the per-frame `f32`
-    /// path, [`Refiner::refine_positions`], keeps its tables); refuses a Loop refiner, whose
-    /// masks are `f32`, and data with the wrong number of values.
+    /// path, [`Refiner::refine_positions`], keeps its tables); refuses data with the wrong
+    /// number of values.
     pub fn refine_f64<const N: usize>(
         &self,
         base: &(impl crate::real::VertexData<N> + ?Sized),
     ) -> Result<Vec<[f64; N]>> {
-        if self.levels[0].options.scheme == Scheme::Loop {
-            return Err(Error::Unsupported(
-                "double-precision refinement of a Loop mesh (its masks are f32)".into(),
-            ));
-        }
         let n = self.levels[0].num_vertices();
         if base.num_vertices() != n {
             return Err(Error::Internal(format!(
@@ -390,22 +385,25 @@ impl Refiner {
         let mut cur: Vec<[f64; N]> = (0..n).map(|i| base.vertex_f64(i)).collect();
         for k in 0..self.max_level() {
             let (parent, child) = (self.full_level(k), self.full_level(k + 1));
-            let s = level_stencils_real::<f64>(&parent, &child);
+            let s = if self.levels[0].options.scheme == Scheme::Loop {
+                loop_masks::loop_level_stencils_real::<f64>(&parent, &child)
+            } else {
+                level_stencils_real::<f64>(&parent, &child)
+            };
             cur = s.apply_real(&cur);
         }
         Ok(cur)
     }
 
     /// Moves last-level vertex data to the limit surface in `f64` (the limit masks in double
-    /// precision; the tables are built on each call). Refuses a Loop refiner, as
-    /// [`Refiner::refine_f64`] does.
+    /// precision; the tables are built on each call).
     pub fn limit_f64<const N: usize>(&self, last: &[[f64; N]]) -> Result<Vec<[f64; N]>> {
-        if self.levels[0].options.scheme == Scheme::Loop {
-            return Err(Error::Unsupported(
-                "the double-precision limit of a Loop mesh (its masks are f32)".into(),
-            ));
-        }
-        let t = masks::limit_stencils_real::<f64>(&self.full_level(self.max_level()));
+        let top = self.full_level(self.max_level());
+        let t = if self.levels[0].options.scheme == Scheme::Loop {
+            loop_masks::loop_limit_stencils_real::<f64>(&top)
+        } else {
+            masks::limit_stencils_real::<f64>(&top)
+        };
         if last.len() != t.num_rows() {
             return Err(Error::Internal(format!(
                 "{} values given for {} last-level vertices",

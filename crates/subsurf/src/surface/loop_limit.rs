@@ -30,7 +30,9 @@ pub(super) fn loop_patch_class(p: &LoopPatch, colors: Colors) -> u8 {
 
 /// The Loop limit surface of `mesh` with `samples` per base edge (`2..=1025`), isolated to
 /// `options.isolation_level` (single-crease patches are quad patches: the option is not
-/// used), tessellated on `backend`.
+/// used), tessellated on `backend`. The patch points are refined in `f64` from positions the
+/// mesh holds in `f64` ([`crate::mesh::Positions::is_f64`]; [`LoopLimit::new_f64`]), else in
+/// `f32`.
 pub fn loop_limit(
     mesh: &Mesh,
     samples: usize,
@@ -45,7 +47,11 @@ pub fn loop_limit(
         .into());
     }
     let topo = Topology::new(mesh)?;
-    let limit = LoopLimit::new(&topo, &mesh.positions, options.isolation_level)?;
+    let limit = if mesh.positions.is_f64() {
+        LoopLimit::new_f64(&topo, &mesh.positions, options.isolation_level)?
+    } else {
+        LoopLimit::new(&topo, &mesh.positions, options.isolation_level)?
+    };
     let segments = samples - 1;
     let tess = backend.loop_limit(&limit, &topo, segments)?;
     let centres = triangle_centres(&topo, segments);
@@ -122,7 +128,9 @@ mod tests {
         let mesh = icosahedron();
         let s = build(&mesh, &options(9, 3, Colors::None), &Cpu).unwrap();
         let topo = Topology::new(&mesh).unwrap();
-        let limit = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+        // The file's digits are not all `f32` values: the points are refined in `f64`.
+        assert!(mesh.positions.is_f64());
+        let limit = LoopLimit::new_f64(&topo, &mesh.positions, 3).unwrap();
         let (want, normals) = limit.tessellate(&topo, 8).unwrap().to_mesh();
         assert_eq!(s.positions, want.positions);
         assert_eq!(s.normals, normals);

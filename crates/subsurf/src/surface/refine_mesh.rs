@@ -52,8 +52,7 @@ pub fn refine_mesh(
 /// [`refine_mesh`] in double precision, on the CPU: the masks of every step (and the limit
 /// masks) in `f64`, applied to the positions as the mesh holds them (a file's digits, without
 /// rounding); the result holds its positions in `f64` ([`crate::mesh::Positions::from_f64`]).
-/// UVs refine as [`refine_mesh`] refines them. Loop meshes are refused (their masks are
-/// `f32`).
+/// UVs refine as [`refine_mesh`] refines them.
 pub fn refine_mesh_f64(
     mesh: &Mesh,
     level: usize,
