@@ -139,3 +139,74 @@ fn f64_flags_write_the_double_precision_surface() {
         "{err}"
     );
 }
+
+/// `eval --f64` on every Catmull-Clark and Loop regression shape prints the library's
+/// double-precision surface from the file's values, digit for digit: the `f64` patch table
+/// (`PatchTable::<f64>`, within 1e-12 of OpenSubdiv's double evaluation: the library's
+/// `limit_f64` test) and the Loop patches refined in `f64` (`LoopLimit::new_f64`, within
+/// 1e-12: osd-ref's `limit_loop` test).
+#[test]
+fn eval_f64_prints_the_double_precision_surface_of_every_shape() {
+    let dir = repo("testdata/shapes");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .filter_map(|e| {
+            let name = e.unwrap().file_name().into_string().unwrap();
+            let stem = name.strip_suffix(".obj")?;
+            (stem.starts_with("catmark_") || stem.starts_with("loop_")).then(|| stem.to_string())
+        })
+        .collect();
+    names.sort();
+    let (mut quads, mut loops) = (0, 0);
+    for name in &names {
+        let mesh = subsurf::io::read_path(shape(name)).unwrap();
+        let Ok(t) = Topology::new(&mesh) else {
+            continue;
+        };
+        let out_path = tmp(&format!("{name}_f64.txt"));
+        run_ok(
+            bin()
+                .arg("eval")
+                .arg(shape(name))
+                .args(["--tess", "2", "--isolation", "3", "--f64", "-o"])
+                .arg(&out_path),
+        );
+        let text = std::fs::read_to_string(&out_path).unwrap();
+        let rows = text.lines().map(|l| {
+            let x: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            assert_eq!(x.len(), 12, "{name}: {l}");
+            x
+        });
+        if mesh.options.scheme == subsurf::Scheme::Loop {
+            let s = subsurf::limit::LoopLimit::new_f64(&t, &mesh.positions, 3).unwrap();
+            let mut n = 0;
+            for x in rows {
+                let r = s.eval(x[0] as usize, x[1], x[2]).unwrap();
+                assert_eq!(&x[3..], &[r.p, r.du, r.dv].concat()[..], "{name}");
+                n += 1;
+            }
+            // Faces without a limit (holes, boundaries of `none` interpolation) print none.
+            assert!(n > 0 && n <= t.num_faces() * 3, "{name}: {n}");
+            loops += 1;
+        } else {
+            let o = PatchOptions {
+                isolation_level: 3,
+                ..Default::default()
+            };
+            let s = LimitSurface::new(
+                PatchTable::<f64>::build_real(&t, &o).unwrap(),
+                &mesh.positions,
+            );
+            let mut n = 0;
+            for x in rows {
+                let r = s.eval(x[0] as usize, x[1], x[2]).unwrap();
+                assert_eq!(&x[3..], &[r.p, r.du, r.dv].concat()[..], "{name}");
+                n += 1;
+            }
+            assert!(n > 0 && n <= s.table().num_ptex_faces() * 4, "{name}: {n}");
+            quads += 1;
+        }
+        let _ = std::fs::remove_file(&out_path);
+    }
+    assert!(quads >= 50 && loops >= 5, "{quads} catmark, {loops} Loop shapes");
+}
