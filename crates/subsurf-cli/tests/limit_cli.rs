@@ -208,5 +208,8 @@ fn eval_f64_prints_the_double_precision_surface_of_every_shape() {
         }
         let _ = std::fs::remove_file(&out_path);
     }
-    assert!(quads >= 50 && loops >= 5, "{quads} catmark, {loops} Loop shapes");
+    assert!(
+        quads >= 50 && loops >= 5,
+        "{quads} catmark, {loops} Loop shapes"
+    );
 }

@@ -2,7 +2,9 @@
 //! Catmull-Clark or bilinear mesh gets the patch table (`PatchTable` + `LimitSurface`, ptex
 //! faces, unit-square parameters, float32), whose crease and corner sharpness can be edited
 //! live (`PatchTable::apply_sharpness`); a Loop mesh the Loop limit surface (`LoopLimit`,
-//! base triangles, `u, v >= 0, u + v <= 1`, evaluated in float64).
+//! base triangles, `u, v >= 0, u + v <= 1`, evaluated in float64). A mesh given float64
+//! positions gets the double-precision surface (`PatchTable::<f64>`, Loop points refined in
+//! f64): its samples are float64.
 //!
 //! Writers (`update`, `set_sharpness`) release the GIL, then take the positions' lock and the
 //! surface's write lock, and release both before they need the GIL again: a reader waiting for
@@ -21,13 +23,29 @@ use crate::errors::{lib_error, value_error};
 use crate::mesh::PyMesh;
 use crate::ops::{check_tess, tess_out};
 
+/// The patch table (with its kept levels, for sharpness edits) and its points, in float32 or
+/// float64.
+enum Quads {
+    F32(RwLock<Arc<LimitSurface>>),
+    F64(RwLock<Arc<LimitSurface<f64>>>),
+}
+
+/// `$body` with `$s` the surface's lock, whichever precision it has.
+macro_rules! each {
+    ($q:expr, $s:ident => $body:expr) => {
+        match $q {
+            Quads::F32($s) => $body,
+            Quads::F64($s) => $body,
+        }
+    };
+}
+
 /// What the surface is built from: a patch table or the Loop patches.
 enum Kind {
     Quad {
         /// The base positions the surface's points were made from.
         positions: Mutex<subsurf::Positions>,
-        /// The patch table (with its kept levels, for sharpness edits) and its points.
-        surface: RwLock<Arc<LimitSurface>>,
+        surface: Quads,
         num_ptex_faces: usize,
     },
     Loop {
@@ -42,6 +60,8 @@ enum Kind {
 pub struct PyLimit {
     kind: Kind,
     num_vertices: usize,
+    /// Built in double precision (from float64 positions): samples and updates are float64.
+    f64: bool,
 }
 
 fn poisoned<T>(_: T) -> PyErr {
@@ -52,7 +72,7 @@ fn read<T>(lock: &RwLock<Arc<T>>) -> PyResult<Arc<T>> {
     lock.read().map(|s| s.clone()).map_err(poisoned)
 }
 
-fn build(m: &Mesh, isolation: u32, editable: bool) -> subsurf::Result<Kind> {
+fn build(m: &Mesh, isolation: u32, editable: bool, f64: bool) -> subsurf::Result<Kind> {
     let topo = Topology::new(m)?;
     if m.options.scheme == Scheme::Loop {
         if editable {
@@ -62,7 +82,10 @@ fn build(m: &Mesh, isolation: u32, editable: bool) -> subsurf::Result<Kind> {
                     .into(),
             ));
         }
-        let limit = LoopLimit::new(&topo, &m.positions, isolation)?;
+        let limit = match f64 {
+            true => LoopLimit::new_f64(&topo, &m.positions, isolation)?,
+            false => LoopLimit::new(&topo, &m.positions, isolation)?,
+        };
         return Ok(Kind::Loop {
             topo: Arc::new(topo),
             isolation,
@@ -73,17 +96,50 @@ fn build(m: &Mesh, isolation: u32, editable: bool) -> subsurf::Result<Kind> {
         isolation_level: isolation,
         ..Default::default()
     };
-    let table = match editable {
-        true => PatchTable::build_editable(&topo, &options)?,
-        false => PatchTable::build(&topo, &options)?,
+    let (surface, num_ptex_faces) = if f64 {
+        let table = match editable {
+            true => PatchTable::<f64>::build_editable_real(&topo, &options)?,
+            false => PatchTable::<f64>::build_real(&topo, &options)?,
+        };
+        let n = table.num_ptex_faces();
+        let s = LimitSurface::new(table, &m.positions);
+        (Quads::F64(RwLock::new(Arc::new(s))), n)
+    } else {
+        let table = match editable {
+            true => PatchTable::build_editable(&topo, &options)?,
+            false => PatchTable::build(&topo, &options)?,
+        };
+        let n = table.num_ptex_faces();
+        let s = LimitSurface::new(table, &m.positions);
+        (Quads::F32(RwLock::new(Arc::new(s))), n)
     };
-    let num_ptex_faces = table.num_ptex_faces();
-    let surface = LimitSurface::new(table, &m.positions);
     Ok(Kind::Quad {
         positions: Mutex::new(m.positions.clone()),
-        surface: RwLock::new(Arc::new(surface)),
+        surface,
         num_ptex_faces,
     })
+}
+
+/// The samples of a ptex-face surface at `q`, as three (n, 3) arrays in its precision.
+fn eval_quads<R: subsurf::Real + numpy::Element>(
+    py: Python<'_>,
+    s: &RwLock<Arc<LimitSurface<R>>>,
+    q: &[(u32, f64, f64)],
+) -> PyResult<Arrays3> {
+    let s = read(s)?;
+    let q: Vec<(u32, R, R)> = q
+        .iter()
+        .map(|&(f, u, v)| (f, R::from_f64(u), R::from_f64(v)))
+        .collect();
+    let r = py.detach(move || {
+        split(
+            s.eval_batch(&q)
+                .into_iter()
+                .map(|x| x.map(|l| [l.p, l.du, l.dv])),
+            R::from_f64(f64::NAN),
+        )
+    });
+    out3x(py, r)
 }
 
 /// Points, `du` and `dv` of a batch, one row each per query.
@@ -110,6 +166,55 @@ fn out3x<T: numpy::Element>(py: Python<'_>, (p, du, dv): Columns<T>) -> PyResult
     Ok((out2(py, p)?, out2(py, du)?, out2(py, dv)?))
 }
 
+/// The surface's points made again from `p` (checked: one finite row per vertex).
+fn set_points(this: &PyLimit, py: Python<'_>, p: subsurf::Positions) -> PyResult<()> {
+    if p.len() != this.num_vertices {
+        return Err(value_error(format!(
+            "positions: {} rows for {} vertices",
+            p.len(),
+            this.num_vertices
+        )));
+    }
+    if let Some(v) = (0..p.len()).position(|i| p.get_f64(i).iter().any(|x| !x.is_finite())) {
+        return Err(crate::errors::mesh_error(
+            py,
+            &subsurf::MeshError::NonFiniteCoordinate {
+                vertex: v,
+                value: f32::NAN,
+            },
+        ));
+    }
+    match &this.kind {
+        Kind::Quad {
+            positions, surface, ..
+        } => py.detach(|| {
+            let mut pos = positions.lock().map_err(poisoned)?;
+            each!(surface, surface => {
+                let mut s = surface.write().map_err(poisoned)?;
+                // A copy only while an evaluation still holds the surface.
+                Arc::make_mut(&mut s).set_positions(&p);
+            });
+            *pos = p;
+            Ok::<_, PyErr>(())
+        })?,
+        Kind::Loop {
+            topo,
+            isolation,
+            surface,
+        } => {
+            let (t, iso, wide) = (topo.clone(), *isolation, this.f64);
+            let s = py
+                .detach(move || match wide {
+                    true => LoopLimit::new_f64(&t, &p, iso),
+                    false => LoopLimit::new(&t, &p, iso),
+                })
+                .map_err(|e| lib_error(py, e, None))?;
+            *surface.write().map_err(poisoned)? = Arc::new(s);
+        }
+    }
+    Ok(())
+}
+
 #[pymethods]
 impl PyLimit {
     #[new]
@@ -122,63 +227,38 @@ impl PyLimit {
             )));
         }
         let m = mesh.inner.clone();
+        let f64 = mesh.f64 && m.positions.is_f64();
         let kind = py
-            .detach(move || build(&m, isolation, editable))
+            .detach(move || build(&m, isolation, editable, f64))
             .map_err(|e| lib_error(py, e, None))?;
         Ok(PyLimit {
             kind,
             num_vertices: mesh.inner.positions.len(),
+            f64,
         })
+    }
+
+    /// Whether the surface is double precision (built from float64 positions).
+    #[getter]
+    fn f64(&self) -> bool {
+        self.f64
     }
 
     /// New control points (same count), e.g. after a deformation.
     fn update(&self, py: Python<'_>, positions: PyReadonlyArray2<'_, f32>) -> PyResult<()> {
         let p = rows::<3, f32>(&positions, "positions")?;
-        if p.len() != self.num_vertices {
-            return Err(value_error(format!(
-                "positions: {} rows for {} vertices",
-                p.len(),
-                self.num_vertices
-            )));
-        }
-        if let Some(v) = p.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
-            return Err(crate::errors::mesh_error(
-                py,
-                &subsurf::MeshError::NonFiniteCoordinate {
-                    vertex: v,
-                    value: f32::NAN,
-                },
-            ));
-        }
-        match &self.kind {
-            Kind::Quad {
-                positions, surface, ..
-            } => py.detach(|| {
-                let mut pos = positions.lock().map_err(poisoned)?;
-                let mut s = surface.write().map_err(poisoned)?;
-                // A copy only while an evaluation still holds the surface.
-                let s = Arc::make_mut(&mut s);
-                s.set_positions(&p);
-                *pos = p.into();
-                Ok::<_, PyErr>(())
-            })?,
-            Kind::Loop {
-                topo,
-                isolation,
-                surface,
-            } => {
-                let (t, iso) = (topo.clone(), *isolation);
-                let s = py
-                    .detach(move || LoopLimit::new(&t, &p, iso))
-                    .map_err(|e| lib_error(py, e, None))?;
-                *surface.write().map_err(poisoned)? = Arc::new(s);
-            }
-        }
-        Ok(())
+        set_points(self, py, subsurf::Positions::from(p))
+    }
+
+    /// New control points in float64 (a double-precision surface keeps them unrounded).
+    fn update_f64(&self, py: Python<'_>, positions: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let p = rows::<3, f64>(&positions, "positions")?;
+        set_points(self, py, subsurf::Positions::from_f64(p))
     }
 
     /// (positions, du, dv) at faces `faces` and parameters `u`, `v`: ptex faces and `[0, 1]²`
-    /// (float32 results) or Loop base triangles and `u, v >= 0, u + v <= 1` (float64).
+    /// (float32 results, float64 for a double-precision surface) or Loop base triangles and
+    /// `u, v >= 0, u + v <= 1` (float64).
     fn evaluate(
         &self,
         py: Python<'_>,
@@ -214,18 +294,7 @@ impl PyLimit {
                     subsurf::limit::check_square(k, f as u64, u, v, count)
                         .map_err(|e| value_error(e.to_string()))?;
                 }
-                let s = read(surface)?;
-                let q: Vec<(u32, f32, f32)> =
-                    q.iter().map(|&(f, u, v)| (f, u as f32, v as f32)).collect();
-                let r = py.detach(move || {
-                    split(
-                        s.eval_batch(&q)
-                            .into_iter()
-                            .map(|x| x.map(|l| [l.p, l.du, l.dv])),
-                        f32::NAN,
-                    )
-                });
-                out3x(py, r)
+                each!(surface, s => eval_quads(py, s, &q))
             }
             Kind::Loop { surface, .. } => {
                 let s = read(surface)?;
@@ -297,9 +366,10 @@ impl PyLimit {
         };
         let outcome = py.detach(|| {
             let pos = positions.lock().map_err(|_| None)?;
-            let mut s = surface.write().map_err(|_| None)?;
-            let s = Arc::make_mut(&mut s);
-            s.apply_sharpness(&edits, &*pos).map_err(Some)
+            each!(surface, surface => {
+                let mut s = surface.write().map_err(|_| None)?;
+                Arc::make_mut(&mut s).apply_sharpness(&edits, &*pos).map_err(Some)
+            })
         });
         match outcome {
             Ok(EditOutcome::Unchanged) => Ok("unchanged"),
@@ -311,18 +381,33 @@ impl PyLimit {
     }
 
     /// Watertight tessellation with `tess` samples per side of every ptex face or Loop
-    /// triangle.
+    /// triangle (positions and normals float64 for a double-precision surface).
     fn tessellate(&self, py: Python<'_>, tess: usize) -> PyResult<Arrays3> {
         check_tess(tess)?;
         let n = tess;
         match &self.kind {
-            Kind::Quad { surface, .. } => {
+            Kind::Quad {
+                surface: Quads::F32(surface),
+                ..
+            } => {
                 let s = read(surface)?;
                 let t = py
                     .detach(move || s.tessellate(n))
                     .map_err(|e| lib_error(py, e, None))?;
                 let tris = t.triangles();
                 tess_out(py, t.positions, t.normals, tris)
+            }
+            Kind::Quad {
+                surface: Quads::F64(surface),
+                ..
+            } => {
+                let s = read(surface)?;
+                let (plan, points) = py
+                    .detach(move || s.tessellate_real(n))
+                    .map_err(|e| lib_error(py, e, None))?;
+                let positions = points.iter().map(|e| e.p).collect();
+                let normals = points.iter().map(|e| e.n).collect();
+                tess_out(py, positions, normals, plan.triangles())
             }
             Kind::Loop { topo, surface, .. } => {
                 let (s, t) = (read(surface)?, topo.clone());
@@ -334,7 +419,12 @@ impl PyLimit {
                     .chunks_exact(3)
                     .map(|c| [c[0], c[1], c[2]])
                     .collect();
-                tess_out(py, mesh.positions.into_f32(), normals, tris)
+                if self.f64 {
+                    let normals = normals.iter().map(|n| n.map(f64::from)).collect();
+                    tess_out(py, mesh.positions.to_f64().into_owned(), normals, tris)
+                } else {
+                    tess_out(py, mesh.positions.into_f32(), normals, tris)
+                }
             }
         }
     }

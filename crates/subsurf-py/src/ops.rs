@@ -322,10 +322,10 @@ impl PyRefiner {
     }
 }
 
-pub(crate) fn tess_out(
+pub(crate) fn tess_out<T: numpy::Element>(
     py: Python<'_>,
-    positions: Vec<[f32; 3]>,
-    normals: Vec<[f32; 3]>,
+    positions: Vec<[T; 3]>,
+    normals: Vec<[T; 3]>,
     triangles: Vec<[u32; 3]>,
 ) -> PyResult<(Py<PyAny>, Py<PyAny>, Py<PyAny>)> {
     Ok((

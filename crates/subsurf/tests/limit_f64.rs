@@ -59,7 +59,7 @@ fn osd_like_eval(s: &LimitSurface<f64>, f: usize, u: f64, v: f64) -> Option<Limi
             r.dv[c] += w.dv[k] * d;
         }
     }
-    (0..3).for_each(|c| r.p[c] += x0[c]);
+    (0..3).for_each(|c| r.p[c] += x0[c] + s.origin()[c]);
     Some(r)
 }
 
@@ -190,4 +190,88 @@ fn f64_table_has_the_f32_tables_patches() {
             }
         }
     }
+}
+
+/// Worst normal angle (rad) of the `f32` surface of `mesh` on base positions `ours` against
+/// OpenSubdiv's double-precision evaluation of the mesh's own (`f64`) positions, isolation 4,
+/// where the tangent plane is not degenerate.
+fn f32_normal_error(name: &str, mesh: &Mesh, ours: &subsurf::Positions) -> f64 {
+    // Without single-crease patches, which OpenSubdiv 3.5 evaluates as B-spline patches
+    // (`osd_like_eval`).
+    let o = OsdPatchOptions {
+        isolation_level: 4,
+        use_single_crease: false,
+        use_inf_sharp: false,
+        end_cap: EndCap::Gregory,
+    };
+    let osd = osd_ref::eval_limit_grid_f64(&OsdMesh::from(mesh), 5, &o)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let options = PatchOptions {
+        isolation_level: 4,
+        single_crease: false,
+        cap_crease_sharpness: true,
+    };
+    let s = LimitSurface::new(
+        PatchTable::build(&Topology::new(mesh).unwrap(), &options).unwrap(),
+        ours,
+    );
+    let mut worst = 0.0f64;
+    for o in &osd {
+        let r = s.eval(o.face as usize, o.u, o.v).unwrap();
+        let want = cross(o.du, o.dv);
+        let scale = dot(o.du, o.du).max(dot(o.dv, o.dv));
+        if dot(want, want).sqrt() > DEGENERATE * scale {
+            worst = worst.max(angle(r.n.map(f64::from), want));
+        }
+    }
+    worst
+}
+
+/// A mesh far from the origin (10⁶ of its diagonals out, in `f64`): the `f32` surface keeps
+/// its points relative to a local origin, so its normals stay within 1e-3 rad of OpenSubdiv's
+/// double evaluation, on the car and on every catmark shape; from the same positions rounded
+/// to `f32` first (the shape lost before the surface sees it) they do not.
+#[test]
+fn f32_normals_of_a_far_mesh_match_opensubdiv_f64() {
+    if !osd_or_skip("f32_normals_of_a_far_mesh_match_opensubdiv_f64") {
+        return;
+    }
+    let far = |m: &Mesh| {
+        let d = f64::from(subsurf::mesh::bbox_diagonal(&m.positions)).max(1e-3);
+        let t = [1e6 * d + 1.0 / 3.0, -0.25e6 * d, 0.5e6 * d];
+        let p = m.positions.to_f64();
+        Mesh {
+            positions: subsurf::Positions::from_f64(
+                p.iter()
+                    .map(|p| [p[0] + t[0], p[1] + t[1], p[2] + t[2]])
+                    .collect(),
+            ),
+            ..m.clone()
+        }
+    };
+    let (mut worst, mut failures) = ((0.0f64, String::new()), Vec::new());
+    for name in shape_names() {
+        let mesh = far(&load_shape(&name));
+        if Topology::new(&mesh).is_err() || mesh.num_faces() > 3000 {
+            continue;
+        }
+        assert!(mesh.positions.is_f64(), "{name}");
+        let e = f32_normal_error(&name, &mesh, &mesh.positions);
+        if e > worst.0 {
+            worst = (e, name.clone());
+        }
+        if e > 1e-3 {
+            failures.push(format!("{name}: {e:e} rad"));
+        }
+    }
+    eprintln!("worst normal: {:e} rad ({})", worst.0, worst.1);
+    assert!(failures.is_empty(), "{failures:#?}");
+    let car = far(&load_shape("catmark_car"));
+    let table = PatchTable::build(&Topology::new(&car).unwrap(), &PatchOptions::default());
+    let s = LimitSurface::new(table.unwrap(), &car.positions);
+    assert_ne!(s.origin(), [0.0; 3]);
+    let rounded = subsurf::Positions::from(car.positions.to_vec());
+    let lost = f32_normal_error("catmark_car (rounded)", &car, &rounded);
+    eprintln!("positions rounded to f32 first: {lost:e} rad");
+    assert!(lost > 1e-2, "{lost:e}");
 }

@@ -99,6 +99,8 @@ fn osd_like_eval(s: &LimitSurface, f: usize, u: f32, v: f32) -> Option<LimitPoin
             r.dv[c] += w.dv[k] * x[c];
         }
     }
+    // The points are relative to the surface's local origin.
+    (0..3).for_each(|c| r.p[c] += s.origin()[c] as f32);
     Some(r)
 }
 

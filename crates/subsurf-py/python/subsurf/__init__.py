@@ -407,7 +407,9 @@ class LimitSurface:
     over ptex faces (one per quad, one per n-gon corner), parameters in [0, 1]^2, float32.
     A Loop mesh: quartic box-spline patches and Gregory-triangle end caps over its base
     triangles, parameters ``u, v >= 0, u + v <= 1``, evaluated in float64 (``domain`` says
-    which: ``"square"`` or ``"triangle"``).
+    which: ``"square"`` or ``"triangle"``). A mesh given float64 positions gets the
+    double-precision surface (``f64`` is true): masks, patch points and evaluation in float64,
+    from the positions as given, and float64 results from ``evaluate`` and ``tessellate``.
 
     ``evaluate(faces, u, v)`` -> (positions, du, dv), each (k, 3), NaN at holes.
     ``tessellate(tess)`` -> (positions, normals, triangles), ``tess`` samples per face side.
@@ -438,6 +440,11 @@ class LimitSurface:
         """``"square"`` (ptex faces, [0, 1]^2) or ``"triangle"`` (Loop, u + v <= 1)."""
         return self._s.domain
 
+    @property
+    def f64(self) -> bool:
+        """Whether the surface is double precision (built from float64 positions)."""
+        return self._s.f64
+
     @_keywords
     def evaluate(self, faces: Any, u: Any, v: Any) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
         """Positions and first derivatives at (face, u, v), vectorized."""
@@ -448,14 +455,20 @@ class LimitSurface:
 
     @_keywords
     def tessellate(self, tess: int = 8) -> Tuple[_np.ndarray, _np.ndarray, _np.ndarray]:
-        """Watertight (positions (p, 3) float32, unit normals (p, 3), triangles (t, 3) uint32),
-        ``tess`` samples per side of every ptex face (Loop: of every base triangle)."""
+        """Watertight (positions (p, 3) float32 (float64 when ``f64``), unit normals (p, 3),
+        triangles (t, 3) uint32), ``tess`` samples per side of every ptex face (Loop: of every
+        base triangle)."""
         return self._s.tessellate(_int(tess, "tess"))
 
     @_keywords
     def update(self, positions: Any) -> None:
-        """Replaces the control points (the patch table is kept)."""
-        self._s.update(_floats(positions, 3, "positions"))
+        """Replaces the control points (the patch table is kept; a double-precision surface
+        takes them in float64)."""
+        if self._s.f64:
+            arr = _floats(positions, 3, "positions", keep_f64=True)
+            self._s.update_f64(_np.ascontiguousarray(arr, dtype=_np.float64))
+        else:
+            self._s.update(_floats(positions, 3, "positions"))
 
     @_keywords
     def set_sharpness(self, creases: Any = None, crease_sharpness: Any = None, *,

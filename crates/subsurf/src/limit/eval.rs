@@ -16,6 +16,20 @@
 //! digits (normal errors of 3·10⁻³ rad on faces 10⁻³ of their distance from the origin
 //! whose edges are 4° apart); with `x_k − x_0` (exact in `f32` for nearby points, Sterbenz
 //! 1974) the rounding is relative to the patch.
+//!
+//! # Local origin
+//!
+//! A mesh far from the origin relative to its size (georeferenced or architectural
+//! coordinates: a car 10⁶ units out) loses its shape when its positions are rounded to `f32`
+//! (a 4-unit car moves by up to 3·10⁻² there). The surface then keeps its points relative to
+//! a local origin ([`LimitSurface::origin`]: the bounding-box centre, rounded to `R`), formed
+//! from the positions as given (`f64` when held so, [`crate::mesh::Positions`]) minus the
+//! origin before any rounding, so its derivatives and normals keep the accuracy of a mesh at
+//! the origin; evaluated positions are the origin plus the patch's sum, rounded once. A mesh
+//! within 1024 bounding-box diagonals of the origin ([`FAR`]), where rounding its positions
+//! to `f32` moves them by less than 6·10⁻⁵ of its size, keeps the origin `0` and its points
+//! as given (so do the GPU uploads, which read the base positions: a far mesh evaluated on
+//! the GPU has the accuracy of its `f32` world coordinates).
 
 use rayon::prelude::*;
 
@@ -44,8 +58,10 @@ pub struct LimitPoint<R = f32> {
 pub struct LimitSurface<R = f32> {
     /// The patches.
     pub(crate) table: PatchTable<R>,
-    /// The flat point array ([`PatchTable::points`]).
+    /// The flat point array ([`PatchTable::points`]), relative to `origin`.
     pub(crate) points: Vec<[R; 3]>,
+    /// The local origin (see the module documentation), exactly an `R` value.
+    pub(crate) origin: [f64; 3],
 }
 
 impl<R> LimitSurface<R> {
@@ -54,10 +70,62 @@ impl<R> LimitSurface<R> {
         &self.table
     }
 
-    /// The flat point array ([`PatchTable::points`]).
+    /// The flat point array ([`PatchTable::points`]), relative to [`LimitSurface::origin`].
     pub fn points(&self) -> &[[R; 3]] {
         &self.points
     }
+
+    /// The local origin the points are relative to: `[0, 0, 0]` for a mesh within 1024 of
+    /// its bounding-box diagonals of the origin, else its bounding-box centre rounded to `R`
+    /// (see the module documentation).
+    pub fn origin(&self) -> [f64; 3] {
+        self.origin
+    }
+}
+
+/// Base positions minus a local origin, in `f64` before the one rounding to `R`.
+struct Shifted<'a, V: ?Sized> {
+    base: &'a V,
+    origin: [f64; 3],
+}
+
+impl<V: VertexData<3> + ?Sized> VertexData<3> for Shifted<'_, V> {
+    fn num_vertices(&self) -> usize {
+        self.base.num_vertices()
+    }
+    fn vertex<R: Real>(&self, i: usize) -> [R; 3] {
+        let x = self.base.vertex_f64(i);
+        std::array::from_fn(|c| R::from_f64(x[c] - self.origin[c]))
+    }
+}
+
+/// Distance from the origin, in bounding-box diagonals, past which a surface takes a local
+/// origin (see the module documentation).
+pub(crate) const FAR: f64 = 1024.0;
+
+/// The local origin of `positions` for points in `R`: zero within [`FAR`] bounding-box
+/// diagonals of the origin (or for no finite positions), else the bounding-box centre
+/// rounded to `R`.
+fn local_origin<R: Real>(positions: &(impl VertexData<3> + ?Sized)) -> [f64; 3] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for i in 0..positions.num_vertices() {
+        let x = positions.vertex_f64(i);
+        if x.iter().all(|c| c.is_finite()) {
+            for c in 0..3 {
+                lo[c] = lo[c].min(x[c]);
+                hi[c] = hi[c].max(x[c]);
+            }
+        }
+    }
+    if lo[0] > hi[0] {
+        return [0.0; 3];
+    }
+    let centre: [f64; 3] = std::array::from_fn(|c| 0.5 * (lo[c] + hi[c]));
+    let diag = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+    if centre.iter().all(|c| c.abs() <= FAR * diag) {
+        return [0.0; 3];
+    }
+    centre.map(|c| R::from_f64(c).to_f64())
 }
 
 use crate::util::vec3::cross;
@@ -69,15 +137,29 @@ fn unit<R: Real>(a: [R; 3]) -> Option<[R; 3]> {
 impl<R: Real> LimitSurface<R> {
     /// Builds the points of `table` for base positions `positions` (`f32` or `f64` values,
     /// or a mesh's [`crate::mesh::Positions`], read at the precision they were given).
+    /// A mesh far from the origin gets a local origin ([`LimitSurface::origin`]).
     pub fn new(table: PatchTable<R>, positions: &(impl VertexData<3> + ?Sized)) -> LimitSurface<R> {
-        let points = table.points(positions);
-        LimitSurface { table, points }
+        let origin = local_origin::<R>(positions);
+        let mut s = LimitSurface {
+            table,
+            points: Vec::new(),
+            origin,
+        };
+        s.set_positions(positions);
+        s
     }
 
     /// Moves the base vertices: the patch points are formed again from `positions` (one per
-    /// base vertex); the table is kept.
+    /// base vertex), relative to the surface's origin (kept); the table is kept.
     pub fn set_positions(&mut self, positions: &(impl VertexData<3> + ?Sized)) {
-        self.points = self.table.points(positions);
+        self.points = if self.origin == [0.0; 3] {
+            self.table.points(positions)
+        } else {
+            self.table.points(&Shifted {
+                base: positions,
+                origin: self.origin,
+            })
+        };
     }
 
     /// Edits creases ([`PatchTable::apply_sharpness`]) and, where the table changed, forms
@@ -240,10 +322,17 @@ impl<R: Real> LastPatch<R> {
         for (d, &cv) in self.d.iter_mut().zip(cvs) {
             *d = R::V3::load(&surface.points, cv as usize).sub(x0);
         }
+        // The first point in the surface's coordinates: the origin added once, here.
+        let x0 = if surface.origin == [0.0; 3] {
+            x0
+        } else {
+            let o = [surface.origin.map(R::from_f64)];
+            x0.add(R::V3::load(&o, 0))
+        };
         (self.patch, self.x0, self.n) = (p, x0, cvs.len());
     }
 
-    /// The held patch's first point.
+    /// The held patch's first point (in the surface's coordinates, the origin added).
     #[inline(always)]
     pub(crate) fn x0(&self) -> R::V3 {
         self.x0

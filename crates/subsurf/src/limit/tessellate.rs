@@ -14,7 +14,7 @@
 
 use rayon::prelude::*;
 
-use super::eval::LimitSurface;
+use super::eval::{LimitPoint, LimitSurface};
 use super::patch_map::EMPTY;
 use super::table::PatchTable;
 use crate::error::{Error, Result};
@@ -208,13 +208,15 @@ impl<R: Real> PatchTable<R> {
 const TESSELLATION_BYTES_PER_SAMPLE: f64 = 140.0;
 
 impl<R: Real> LimitSurface<R> {
-    /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the
-    /// grids into one watertight mesh (see the module documentation and
-    /// [`PatchTable::tessellation_plan`]). A double-precision surface is evaluated in `f64`
-    /// at the plan's parameters and rounded to `f32` once, at the end.
-    pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
+    /// The samples of [`LimitSurface::tessellate`] before any rounding: the plan and the
+    /// point (position, derivatives, unit normal in `R`) of each of its queries, for callers
+    /// that keep a double-precision surface's samples in `f64`.
+    pub fn tessellate_real(
+        &self,
+        samples_per_side: usize,
+    ) -> Result<(TessellationPlan, Vec<LimitPoint<R>>)> {
         let plan = self.table.tessellation_plan(samples_per_side)?;
-        let evaluated: Vec<_> = plan
+        let evaluated = plan
             .queries
             .par_iter()
             .map(|&(f, u, v)| {
@@ -222,6 +224,15 @@ impl<R: Real> LimitSurface<R> {
                 r.unwrap_or_default()
             })
             .collect();
+        Ok((plan, evaluated))
+    }
+
+    /// Samples every non-hole ptex face on an `N × N` grid (`u, v = i/(N−1)`) and joins the
+    /// grids into one watertight mesh (see the module documentation and
+    /// [`PatchTable::tessellation_plan`]). A double-precision surface is evaluated in `f64`
+    /// at the plan's parameters and rounded to `f32` once, at the end.
+    pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
+        let (plan, evaluated) = self.tessellate_real(samples_per_side)?;
         let narrow = |x: [R; 3]| x.map(|c| c.to_f64() as f32);
         Ok(Tessellation {
             samples_per_side: plan.samples_per_side,
