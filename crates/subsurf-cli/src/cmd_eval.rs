@@ -100,14 +100,15 @@ pub fn run(a: &EvalArgs) -> anyhow::Result<()> {
 }
 
 /// `eval` on a Loop mesh: the library's Loop limit surface evaluated in f64 on the CPU (its
-/// points refined in f32, or with `--f64` in f64 from the file's values), or in f32 by the
-/// GPU's `loop_eval` (`--backend gpu`).
+/// points refined in f64 from the file's values with `--f64` or where the file holds digits
+/// `f32` cannot, as the library's Loop limit method refines them, else in f32), or in f32 by
+/// the GPU's `loop_eval` (`--backend gpu`).
 fn run_loop(a: &EvalArgs, mesh: Mesh) -> anyhow::Result<()> {
     let topo = Topology::new(&mesh)?;
     let surface = if a.surface.f64 {
         LoopLimit::new_f64(&topo, &mesh.positions, a.surface.isolation)
     } else {
-        LoopLimit::new(&topo, &mesh.positions, a.surface.isolation)
+        LoopLimit::at_precision(&topo, &mesh.positions, a.surface.isolation)
     }
     .context("building the Loop limit patches")?;
     let queries: Vec<(u32, f64, f64)> = match &a.at {

@@ -113,9 +113,7 @@ fn limit_writes_the_loop_limit_surface_watertight() {
     let got = subsurf::io::read_path(&path).unwrap();
     let mesh = subsurf::io::read_path(&input).unwrap();
     let topo = Topology::new(&mesh).unwrap();
-    // The file's digits are not all `f32` values: the library refines in `f64`.
-    assert!(mesh.positions.is_f64());
-    let surface = LoopLimit::new_f64(&topo, &mesh.positions, 3).unwrap();
+    let surface = LoopLimit::at_precision(&topo, &mesh.positions, 3).unwrap();
     let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
     assert_eq!(got.face_indices, want.face_indices);
     assert_eq!(*got.positions, *want.positions);
@@ -175,7 +173,7 @@ fn eval_writes_the_loop_limit_samples() {
     std::fs::copy(&input, &renamed).unwrap();
     let mesh = subsurf::io::read_path(&input).unwrap();
     let topo = Topology::new(&mesh).unwrap();
-    let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+    let surface = LoopLimit::at_precision(&topo, &mesh.positions, 3).unwrap();
     let mut outputs = Vec::new();
     for (path, scheme) in [(&input, None), (&renamed, Some("loop"))] {
         let out = tmp("loop_eval.txt");
@@ -232,7 +230,7 @@ fn eval_at_queries_and_refuses_those_off_the_triangles() {
     let input = repo("testdata/shapes/loop_xord_boundary.obj");
     let mesh = subsurf::io::read_path(&input).unwrap();
     let topo = Topology::new(&mesh).unwrap();
-    let surface = LoopLimit::new(&topo, &mesh.positions, 4).unwrap();
+    let surface = LoopLimit::at_precision(&topo, &mesh.positions, 4).unwrap();
     let queries = tmp("loop_queries.txt");
     let nf = topo.num_faces();
     std::fs::write(
@@ -383,7 +381,7 @@ fn limit_on_the_gpu_and_what_the_loop_surface_cannot_do() {
         let got = subsurf::io::read_path(&path).unwrap();
         let mesh = subsurf::io::read_path(&input).unwrap();
         let topo = Topology::new(&mesh).unwrap();
-        let surface = LoopLimit::new(&topo, &mesh.positions, 3).unwrap();
+        let surface = LoopLimit::at_precision(&topo, &mesh.positions, 3).unwrap();
         let (want, _) = surface.tessellate(&topo, 4).unwrap().to_mesh();
         assert_eq!(got.face_indices, want.face_indices);
         assert_eq!(got.positions.len(), want.positions.len());

@@ -82,10 +82,9 @@ fn build(m: &Mesh, isolation: u32, editable: bool, f64: bool) -> subsurf::Result
                     .into(),
             ));
         }
-        let limit = match f64 {
-            true => LoopLimit::new_f64(&topo, &m.positions, isolation)?,
-            false => LoopLimit::new(&topo, &m.positions, isolation)?,
-        };
+        // The points in f64 wherever the positions are held in f64, as the library's Loop
+        // limit method refines them (`surface::build`, `subsurf limit`).
+        let limit = LoopLimit::at_precision(&topo, &m.positions, isolation)?;
         return Ok(Kind::Loop {
             topo: Arc::new(topo),
             isolation,
@@ -202,12 +201,9 @@ fn set_points(this: &PyLimit, py: Python<'_>, p: subsurf::Positions) -> PyResult
             isolation,
             surface,
         } => {
-            let (t, iso, wide) = (topo.clone(), *isolation, this.f64);
+            let (t, iso) = (topo.clone(), *isolation);
             let s = py
-                .detach(move || match wide {
-                    true => LoopLimit::new_f64(&t, &p, iso),
-                    false => LoopLimit::new(&t, &p, iso),
-                })
+                .detach(move || LoopLimit::at_precision(&t, &p, iso))
                 .map_err(|e| lib_error(py, e, None))?;
             *surface.write().map_err(poisoned)? = Arc::new(s);
         }
@@ -411,18 +407,22 @@ impl PyLimit {
             }
             Kind::Loop { topo, surface, .. } => {
                 let (s, t) = (read(surface)?, topo.clone());
-                let (mesh, normals) = py
-                    .detach(move || s.tessellate(&t, n - 1).map(|x| x.to_mesh()))
+                let tess = py
+                    .detach(move || s.tessellate(&t, n - 1))
                     .map_err(|e| lib_error(py, e, None))?;
-                let tris = mesh
-                    .face_indices
-                    .chunks_exact(3)
-                    .map(|c| [c[0], c[1], c[2]])
-                    .collect();
+                let tris = |m: &Mesh| {
+                    m.face_indices
+                        .chunks_exact(3)
+                        .map(|c| [c[0], c[1], c[2]])
+                        .collect()
+                };
                 if self.f64 {
-                    let normals = normals.iter().map(|n| n.map(f64::from)).collect();
+                    let (mesh, normals) = tess.to_mesh_f64();
+                    let tris = tris(&mesh);
                     tess_out(py, mesh.positions.to_f64().into_owned(), normals, tris)
                 } else {
+                    let (mesh, normals) = tess.to_mesh();
+                    let tris = tris(&mesh);
                     tess_out(py, mesh.positions.into_f32(), normals, tris)
                 }
             }

@@ -56,3 +56,59 @@ def test_refine_in_float64_against_float32_and_the_cli(cli, tmp_path):
     assert float(vertices(py_out)[0].split()[1]) == out.positions[0][0]
     # float32 data through the same refiner stays float32.
     assert r.refine(p.astype(np.float32)).dtype == np.float32
+
+
+def _eval_rows(path):
+    """The CLI's `eval` output: (faces, u, v, (n, 9) positions and derivatives)."""
+    rows = np.array([[float(x) for x in l.split()] for l in path.read_text().splitlines()])
+    return rows[:, 0].astype(np.uint32), rows[:, 1], rows[:, 2], rows[:, 3:]
+
+
+def _octahedron():
+    """Triangles far from the origin, coordinates float32 cannot hold."""
+    p = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], float)
+    p = p * np.e + np.array([2e6, 1.0 / 3.0, -7e5])
+    tris = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]]
+    return p, tris
+
+
+def test_limit_surface_in_float64_equals_the_clis_eval_f64(cli, tmp_path):
+    for name, (p, faces), scheme in [("cube", _wide_cube(), "catmark"),
+                                     ("octahedron", _octahedron(), "loop")]:
+        mesh = subsurf.Mesh(p, faces, scheme=scheme)
+        s = subsurf.LimitSurface(mesh, isolation=3)
+        assert s.f64
+        src, out = tmp_path / f"{name}.obj", tmp_path / f"{name}.txt"
+        mesh.write(str(src))
+        cli("eval", src, "--scheme", scheme, "--tess", 3, "--isolation", 3, "--f64", "-o", out)
+        f, u, v, want = _eval_rows(out)
+        pos, du, dv = s.evaluate(f, u, v)
+        assert pos.dtype == du.dtype == np.float64
+        # The same double-precision surface from the same float64 values: digit for digit
+        # (the CLI prints every digit of its float64 results).
+        assert np.array_equal(np.hstack([pos, du, dv]), want), name
+        # The float32 surface of the same positions is off by their float32 rounding.
+        s32 = subsurf.LimitSurface(subsurf.Mesh(p.astype(np.float32), faces, scheme=scheme),
+                                   isolation=3)
+        assert not s32.f64
+        gap = np.abs(s32.evaluate(f, u, v)[0].astype(np.float64) - pos).max()
+        assert 1e-3 < gap < 0.5, (name, gap)
+
+
+def test_float64_tessellation_and_update_stay_float64():
+    for (p, faces), scheme in [(_wide_cube(), "catmark"), (_octahedron(), "loop")]:
+        s = subsurf.LimitSurface(subsurf.Mesh(p, faces, scheme=scheme), isolation=3)
+        pos, normals, tris = s.tessellate(4)
+        assert pos.dtype == np.float64 and normals.dtype == np.float64
+        # The same surface translated to the origin, in float64: the shift comes back to
+        # float64 rounding of a million-unit coordinate.
+        shift = p.mean(axis=0)
+        near = subsurf.LimitSurface(subsurf.Mesh(p - shift, faces, scheme=scheme), isolation=3)
+        npos, _, ntris = near.tessellate(4)
+        assert np.array_equal(tris, ntris)
+        assert np.abs(pos - shift - npos).max() < 1e-8, scheme
+        # update in float64: moving every control point by (1/3, 0, 0) moves the surface by
+        # that, unrounded to float32.
+        s.update(p + np.array([1.0 / 3.0, 0.0, 0.0]))
+        moved, _, _ = s.tessellate(4)
+        assert np.abs(moved - pos - np.array([1.0 / 3.0, 0.0, 0.0])).max() < 1e-8, scheme

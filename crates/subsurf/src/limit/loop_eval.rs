@@ -186,6 +186,20 @@ impl LoopLimit {
         })
     }
 
+    /// [`LoopLimit::new_f64`] where `positions` are held in `f64` (digits of a file that `f32`
+    /// cannot hold, float64 arrays: [`crate::mesh::Positions::is_f64`]), else
+    /// [`LoopLimit::new`]: the precision every front end refines a mesh's Loop points in.
+    pub fn at_precision(
+        base: &Topology,
+        positions: &crate::mesh::Positions,
+        isolation_level: u32,
+    ) -> Result<Self> {
+        match positions.is_f64() {
+            true => Self::new_f64(base, positions, isolation_level),
+            false => Self::new(base, positions, isolation_level),
+        }
+    }
+
     /// The patches, the level points refined in `R` by `step(parent, child, parent points)`.
     fn build<R: Real>(
         base: &Topology,

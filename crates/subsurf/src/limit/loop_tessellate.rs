@@ -190,27 +190,49 @@ impl TriTessellation {
     /// samples a triangle uses (the samples of hole faces are never evaluated), in sample
     /// order.
     pub fn to_mesh(&self) -> (crate::Mesh, Vec<[f32; 3]>) {
+        let (mut mesh, kept) = self.compact();
+        mesh.positions = kept
+            .iter()
+            .map(|&i| self.positions[i].map(|c| c as f32))
+            .collect();
+        let normals = kept
+            .iter()
+            .map(|&i| self.normals[i].map(|x| x as f32))
+            .collect();
+        (mesh, normals)
+    }
+
+    /// [`TriTessellation::to_mesh`] in `f64`: the mesh holds its positions in `f64`
+    /// ([`crate::mesh::Positions::from_f64`]), with the unit normals in `f64`.
+    pub fn to_mesh_f64(&self) -> (crate::Mesh, Vec<[f64; 3]>) {
+        let (mut mesh, kept) = self.compact();
+        mesh.positions =
+            crate::mesh::Positions::from_f64(kept.iter().map(|&i| self.positions[i]).collect());
+        (mesh, kept.iter().map(|&i| self.normals[i]).collect())
+    }
+
+    /// The triangles renumbered over the samples they use, and those samples in order.
+    fn compact(&self) -> (crate::Mesh, Vec<usize>) {
         let mut new_index = vec![u32::MAX; self.positions.len()];
         for t in &self.triangles {
             for &v in t {
                 new_index[v as usize] = 0;
             }
         }
-        let mut mesh = crate::Mesh::default();
-        let mut normals = Vec::new();
+        let mut kept = Vec::new();
         for (i, slot) in new_index.iter_mut().enumerate() {
             if *slot == 0 {
-                *slot = mesh.positions.len() as u32;
-                mesh.positions.push(self.positions[i]);
-                normals.push(self.normals[i].map(|x| x as f32));
+                *slot = kept.len() as u32;
+                kept.push(i);
             }
         }
+        let mut mesh = crate::Mesh::default();
         for t in &self.triangles {
             mesh.face_counts.push(3);
             mesh.face_indices
                 .extend(t.iter().map(|&v| new_index[v as usize]));
         }
-        (mesh, normals)
+        (mesh, kept)
     }
 }
 

@@ -31,8 +31,7 @@ pub(super) fn loop_patch_class(p: &LoopPatch, colors: Colors) -> u8 {
 /// The Loop limit surface of `mesh` with `samples` per base edge (`2..=1025`), isolated to
 /// `options.isolation_level` (single-crease patches are quad patches: the option is not
 /// used), tessellated on `backend`. The patch points are refined in `f64` from positions the
-/// mesh holds in `f64` ([`crate::mesh::Positions::is_f64`]; [`LoopLimit::new_f64`]), else in
-/// `f32`.
+/// mesh holds in `f64`, else in `f32` ([`LoopLimit::at_precision`]).
 pub fn loop_limit(
     mesh: &Mesh,
     samples: usize,
@@ -47,11 +46,7 @@ pub fn loop_limit(
         .into());
     }
     let topo = Topology::new(mesh)?;
-    let limit = if mesh.positions.is_f64() {
-        LoopLimit::new_f64(&topo, &mesh.positions, options.isolation_level)?
-    } else {
-        LoopLimit::new(&topo, &mesh.positions, options.isolation_level)?
-    };
+    let limit = LoopLimit::at_precision(&topo, &mesh.positions, options.isolation_level)?;
     let segments = samples - 1;
     let tess = backend.loop_limit(&limit, &topo, segments)?;
     let centres = triangle_centres(&topo, segments);
@@ -130,7 +125,7 @@ mod tests {
         let topo = Topology::new(&mesh).unwrap();
         // The file's digits are not all `f32` values: the points are refined in `f64`.
         assert!(mesh.positions.is_f64());
-        let limit = LoopLimit::new_f64(&topo, &mesh.positions, 3).unwrap();
+        let limit = LoopLimit::at_precision(&topo, &mesh.positions, 3).unwrap();
         let (want, normals) = limit.tessellate(&topo, 8).unwrap().to_mesh();
         assert_eq!(s.positions, want.positions);
         assert_eq!(s.normals, normals);
