@@ -32,7 +32,7 @@ pub struct SurfaceArgs {
     #[arg(long, value_parser = option_parser::<Backend>(), default_value_t = Backend::Cpu)]
     pub backend: Backend,
     /// Double precision: refinement masks, end-cap points and evaluation in f64 (CPU only;
-    /// `eval` prints f64 values, `limit` rounds the f64 surface to f32 once, when writing).
+    /// `eval` prints f64 values, `limit` writes f64 positions).
     #[arg(long)]
     pub f64: bool,
 }
@@ -97,6 +97,7 @@ pub struct LimitArgs {
 
 pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
     check_mesh_output(&a.output)?;
+    crate::common::set_f64_output(a.surface.f64);
     let mesh = a.surface.scheme.read(&a.surface.input)?;
     if mesh.options.scheme == subsurf::Scheme::Loop {
         return crate::limit_loop::run(a, mesh);
@@ -108,11 +109,16 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
         );
         return run_adaptive(a, mesh);
     }
+    // With --f64, the samples' f64 positions, written as the mesh holds them.
+    let mut wide = None;
     let (tess, c, patches, ptex) = if a.surface.f64 {
         let (mesh, table) = a.surface.table_for::<f64>(mesh)?;
         let (c, p, x) = (table.counts(), table.num_patches(), table.num_ptex_faces());
         let surface = subsurf::limit::LimitSurface::new(table, &mesh.positions);
-        (surface.tessellate(a.tess)?, c, p, x)
+        let (plan, points) = surface.tessellate_real(a.tess)?;
+        wide = Some(points.iter().map(|e| e.p).collect::<Vec<_>>());
+        let tess = subsurf::limit::Tessellation::from_points(plan, &points);
+        (tess, c, p, x)
     } else {
         let (mesh, table) = a.surface.table_for(mesh)?;
         let backend = surface_backend(a.surface.backend)?;
@@ -124,7 +130,10 @@ pub fn run(a: &LimitArgs) -> anyhow::Result<()> {
             table.num_ptex_faces(),
         )
     };
-    let out = tess.to_mesh(a.quads);
+    let mut out = tess.to_mesh(a.quads);
+    if let Some(p) = wide {
+        out.positions = subsurf::Positions::from_f64(p);
+    }
     write_mesh(&a.output, &out, Some(&tess.normals))?;
     crate::say!(
         "{} patches ({} regular, {} single-crease, {} Gregory) on {} ptex faces; \

@@ -125,6 +125,27 @@ fn f64_flags_write_the_double_precision_surface() {
     let m = subsurf::io::read_path(&obj).unwrap();
     let want = s.tessellate(3).unwrap();
     assert_eq!(m.positions, want.positions);
+    // The positions are written in f64: every digit of the f64 samples comes back.
+    let (_, points) = s.tessellate_real(3).unwrap();
+    let wide: Vec<[f64; 3]> = points.iter().map(|e| e.p).collect();
+    assert_eq!(m.positions.as_f64(), Some(&wide[..]));
+    // A Loop mesh too: its points refined in f64, its positions written in f64.
+    let loop_obj = tmp("loop_f64.obj");
+    run_ok(
+        bin()
+            .arg("limit")
+            .arg(shape("loop_pole8"))
+            .args(["--tess", "4", "--isolation", "3", "--f64", "-o"])
+            .arg(&loop_obj),
+    );
+    let mesh = subsurf::io::read_path(shape("loop_pole8")).unwrap();
+    let t = Topology::new(&mesh).unwrap();
+    let limit = subsurf::limit::LoopLimit::new_f64(&t, &mesh.positions, 3).unwrap();
+    let (want, _) = limit.tessellate(&t, 3).unwrap().to_mesh_f64();
+    let got = subsurf::io::read_path(&loop_obj).unwrap();
+    assert_eq!(got.face_indices, want.face_indices);
+    assert_eq!(got.positions.to_f64(), want.positions.to_f64());
+    assert!(got.positions.is_f64());
     let out = bin()
         .arg("limit")
         .arg(shape("catmark_chaikin1"))

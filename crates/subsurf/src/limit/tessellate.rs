@@ -35,6 +35,18 @@ pub struct Tessellation {
 }
 
 impl Tessellation {
+    /// The tessellation of `plan` with the points evaluated at its queries
+    /// ([`LimitSurface::tessellate_real`]), positions and normals rounded to `f32` once.
+    pub fn from_points<R: Real>(plan: TessellationPlan, points: &[LimitPoint<R>]) -> Tessellation {
+        let narrow = |x: [R; 3]| x.map(|c| c.to_f64() as f32);
+        Tessellation {
+            samples_per_side: plan.samples_per_side,
+            positions: points.iter().map(|e| narrow(e.p)).collect(),
+            normals: points.iter().map(|e| narrow(e.n)).collect(),
+            quads: plan.quads,
+        }
+    }
+
     /// The triangles: each quad split along its `(i,j)–(i+1,j+1)` diagonal; triangles with a
     /// repeated vertex (degenerate cells) are dropped.
     pub fn triangles(&self) -> Vec<[u32; 3]> {
@@ -233,13 +245,7 @@ impl<R: Real> LimitSurface<R> {
     /// at the plan's parameters and rounded to `f32` once, at the end.
     pub fn tessellate(&self, samples_per_side: usize) -> Result<Tessellation> {
         let (plan, evaluated) = self.tessellate_real(samples_per_side)?;
-        let narrow = |x: [R; 3]| x.map(|c| c.to_f64() as f32);
-        Ok(Tessellation {
-            samples_per_side: plan.samples_per_side,
-            positions: evaluated.iter().map(|e| narrow(e.p)).collect(),
-            normals: evaluated.iter().map(|e| narrow(e.n)).collect(),
-            quads: plan.quads,
-        })
+        Ok(Tessellation::from_points(plan, &evaluated))
     }
 }
 
