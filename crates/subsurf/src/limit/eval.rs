@@ -62,6 +62,8 @@ pub struct LimitSurface<R = f32> {
     pub(crate) points: Vec<[R; 3]>,
     /// The local origin (see the module documentation), exactly an `R` value.
     pub(crate) origin: [f64; 3],
+    /// The origin in `R` where it is not zero: what each patch load adds to its first point.
+    pub(crate) shift: Option<[R; 3]>,
 }
 
 impl<R> LimitSurface<R> {
@@ -140,10 +142,12 @@ impl<R: Real> LimitSurface<R> {
     /// A mesh far from the origin gets a local origin ([`LimitSurface::origin`]).
     pub fn new(table: PatchTable<R>, positions: &(impl VertexData<3> + ?Sized)) -> LimitSurface<R> {
         let origin = local_origin::<R>(positions);
+        let shift = (origin != [0.0; 3]).then(|| origin.map(R::from_f64));
         let mut s = LimitSurface {
             table,
             points: Vec::new(),
             origin,
+            shift,
         };
         s.set_positions(positions);
         s
@@ -152,7 +156,7 @@ impl<R: Real> LimitSurface<R> {
     /// Moves the base vertices: the patch points are formed again from `positions` (one per
     /// base vertex), relative to the surface's origin (kept); the table is kept.
     pub fn set_positions(&mut self, positions: &(impl VertexData<3> + ?Sized)) {
-        self.points = if self.origin == [0.0; 3] {
+        self.points = if self.shift.is_none() {
             self.table.points(positions)
         } else {
             self.table.points(&Shifted {
@@ -323,11 +327,9 @@ impl<R: Real> LastPatch<R> {
             *d = R::V3::load(&surface.points, cv as usize).sub(x0);
         }
         // The first point in the surface's coordinates: the origin added once, here.
-        let x0 = if surface.origin == [0.0; 3] {
-            x0
-        } else {
-            let o = [surface.origin.map(R::from_f64)];
-            x0.add(R::V3::load(&o, 0))
+        let x0 = match &surface.shift {
+            None => x0,
+            Some(o) => x0.add(R::V3::load(std::slice::from_ref(o), 0)),
         };
         (self.patch, self.x0, self.n) = (p, x0, cvs.len());
     }
