@@ -10,9 +10,15 @@
 //! `1e-3` or `1e-2` (up to 3x).
 //!
 //! So after planning, before anything is evaluated for output, every triangle is measured:
-//! the midpoints of its edges and its centroid against the surface at the same ptex
-//! parameters (each edge inside a ptex face once, from the side whose first vertex index is
-//! the smaller). The rates of every base face where one misses are raised (every edge and the
+//! its distance across from the surface it spans, along its unit normal (a drift of the
+//! parametrization along the surface is no error a renderer or a distance check sees). The
+//! surface at the midpoints of its edges, less the chords' midpoints, gives the second
+//! derivative across each edge, `n·D²S[eᵢⱼ, eᵢⱼ]` for the edge `eᵢⱼ` in ptex parameters (the
+//! twist included where an edge runs across both parameters), and the distance to second
+//! order is the largest of `½ Σ λᵢλⱼ |n·D²S[eᵢⱼ, eᵢⱼ]|` over the triangle; the centroid is
+//! measured along the normal too. Along the surface's boundary, where no neighbouring
+//! triangle covers what a chord cuts off inside the tangent plane, the surface's whole
+//! offset across the chord at its midpoint counts. The rates of every base face where one misses are raised (every edge and the
 //! interior, by the square root of the excess — chord error falls as the square of the
 //! spacing — at least 1.25x; by the excess itself when the face misses again, as across a
 //! bend narrower than its triangles the error falls only linearly) and the faces whose
@@ -39,7 +45,7 @@ const SEEN: usize = 64;
 /// At most this many plans.
 pub const ROUNDS: usize = 8;
 
-/// Which side of its ptex face a `(u, v)` lies on: bit 0 `v = 0`, 1 `u = 1`, 2 `v = 1`,
+/// Which sides of its ptex face a `(u, v)` lies on: bit 0 `v = 0`, 1 `u = 1`, 2 `v = 1`,
 /// 3 `u = 0`.
 fn sides(c: [f32; 2]) -> u8 {
     u8::from(c[1] == 0.0)
@@ -48,16 +54,112 @@ fn sides(c: [f32; 2]) -> u8 {
         | u8::from(c[0] == 0.0) << 3
 }
 
-fn dist(a: [f32; 3], b: [f32; 3]) -> f64 {
-    (0..3)
-        .map(|k| f64::from(a[k] - b[k]).powi(2))
-        .sum::<f64>()
-        .sqrt()
+/// Per ptex face, its sides (bits as [`sides`]) on the boundary of the surface: on a base
+/// edge whose other faces are holes, or that has none. A quad's side `k` is its edge `k`; a
+/// sub-face `k` of an n-gon has half of the face's edge `k` at `v = 0` and half of edge
+/// `k − 1` at `u = 0`.
+fn open_sides(surface: &LimitSurface) -> Vec<u8> {
+    let table = &surface.table;
+    let t = &table.base;
+    let mut out = vec![0u8; table.num_ptex_faces()];
+    for f in 0..t.num_faces() {
+        if t.face_is_hole[f] {
+            continue;
+        }
+        let open = |e: u32| {
+            t.edge_faces(e as usize)
+                .iter()
+                .all(|&g| g as usize == f || t.face_is_hole[g as usize])
+        };
+        let fe = t.face_edges(f);
+        let first = table.ptex_offsets[f] as usize;
+        if fe.len() == 4 {
+            out[first] = (0..4).fold(0, |m, k| m | u8::from(open(fe[k])) << k);
+        } else {
+            let n = fe.len();
+            for k in 0..n {
+                let prev = fe[(k + n - 1) % n];
+                out[first + k] = u8::from(open(fe[k])) | u8::from(open(prev)) << 3;
+            }
+        }
+    }
+    out
 }
 
-/// Per base face, the largest distance (world units) between the flat triangles of `p` and
-/// the surface at their edge midpoints and centroids, over the faces flagged in `only` (all
-/// when `None`; the others read zero).
+/// The offset `off` of the surface from the chord `a b`'s midpoint, less its part along the
+/// chord: how far the surface lies across it.
+fn sag(a: [f32; 3], b: [f32; 3], off: [f64; 3]) -> f64 {
+    let d = sub(b.map(f64::from), a.map(f64::from));
+    let len2 = dot(d, d);
+    let along = if len2 > 0.0 { dot(off, d) / len2 } else { 0.0 };
+    let r = [0, 1, 2].map(|k| off[k] - along * d[k]);
+    dot(r, r).sqrt()
+}
+
+/// The distance across a flat triangle `x` from the surface it spans, along the triangle's
+/// unit normal `n`, to second order: with `eᵢⱼ` its edges in ptex parameters,
+/// `S − L ≈ −½ Σᵢ<ⱼ λᵢλⱼ D²S[eᵢⱼ, eᵢⱼ]` over the barycentric `λ` (exact for a quadratic
+/// surface, the twist `S_uv` included along the edges that run across both parameters), so
+/// the distance is at most `½ Σᵢ<ⱼ λᵢλⱼ aᵢⱼ` with `aᵢⱼ = |n·D²S[eᵢⱼ, eᵢⱼ]|`, whose largest
+/// value over the triangle this returns; `aᵢⱼ` is read from `off[i]`, the surface at edge
+/// `i → i + 1`'s midpoint less the chord's midpoint (`n·off = −aᵢⱼ/8`, to second order). The
+/// surface at the centroid less the triangle's (`centroid`, where evaluated) is measured along
+/// `n` as well, for bending past second order. A degenerate triangle (no normal) counts the
+/// full distances.
+fn across(x: [[f32; 3]; 3], off: [[f64; 3]; 3], centroid: Option<[f64; 3]>) -> f64 {
+    let wide = |p: [f32; 3]| p.map(f64::from);
+    let (a, b, c) = (wide(x[0]), wide(x[1]), wide(x[2]));
+    let (u, v) = (sub(b, a), sub(c, a));
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let len = dot(n, n).sqrt();
+    if len <= 0.0 || !len.is_finite() {
+        let norm = |d: [f64; 3]| dot(d, d).sqrt();
+        let edges = off.iter().map(|&d| norm(d)).fold(0.0, f64::max);
+        return edges.max(centroid.map_or(0.0, norm));
+    }
+    let n = n.map(|k| k / len);
+    let [p, q, r] = off.map(|d| 8.0 * dot(n, d).abs());
+    let at_centroid = centroid.map_or(0.0, |d| dot(n, d).abs());
+    at_centroid.max(largest_bending(p, q, r))
+}
+
+/// The largest of `½ (λ₀λ₁ p + λ₁λ₂ q + λ₂λ₀ r)` over the barycentric `λ` (`p, q, r ≥ 0`, the
+/// edges 0–1, 1–2, 2–0): on an edge `max / 8` at its midpoint; inside, where the gradient is
+/// normal to the simplex, `λ ∝ y` with `y₀ = (p + r − q) / 2pr` (and its rotations),
+/// `1 / (4 Σ y)`, when every `y` is positive.
+fn largest_bending(p: f64, q: f64, r: f64) -> f64 {
+    let edge = p.max(q).max(r) / 8.0;
+    if !(p > 0.0 && q > 0.0 && r > 0.0) {
+        return edge;
+    }
+    let y = [
+        (p + r - q) / (2.0 * p * r),
+        (p + q - r) / (2.0 * p * q),
+        (q + r - p) / (2.0 * q * r),
+    ];
+    if y.iter().all(|&y| y > 0.0) {
+        edge.max(1.0 / (4.0 * (y[0] + y[1] + y[2])))
+    } else {
+        edge
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Per base face, the largest distance (world units) across its flat triangles of `p` from
+/// the surface, along each triangle's unit normal (module documentation: second order from
+/// the edge midpoints, and the centroid), over the faces flagged in `only` (all when `None`;
+/// the others read zero).
 pub fn chord_errors(
     surface: &LimitSurface,
     p: &AdaptivePlan,
@@ -88,6 +190,7 @@ fn chord_errors_at(
             &evaluated
         }
     };
+    let open = open_sides(surface);
     let found: Vec<(u32, f64)> = p
         .triangles
         .par_chunks(CHUNK)
@@ -124,28 +227,38 @@ fn chord_errors_at(
                 };
                 // Written out: the array adaptor was not always inlined around this closure.
                 let x = [corner(0), corner(1), corner(2)];
-                let mut w = 0.0f64;
-                for i in 0..3 {
+                // Per edge `i → i + 1`: the surface at its midpoint against the chord's
+                // midpoint.
+                let mut off = [[0.0f64; 3]; 3];
+                for (i, off) in off.iter_mut().enumerate() {
                     let j = (i + 1) % 3;
-                    // An edge inside the ptex face is measured from one of its two
-                    // triangles; one along its side from each (its twin lies in another
-                    // ptex face).
-                    if tri[i] > tri[j] && sides(c[i]) & sides(c[j]) == 0 {
-                        continue;
-                    }
                     if let Some(m) = at(0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1])) {
-                        w = w.max(dist([0, 1, 2].map(|q| 0.5 * (x[i][q] + x[j][q])), m));
+                        *off = [0, 1, 2].map(|q| {
+                            f64::from(m[q]) - 0.5 * (f64::from(x[i][q]) + f64::from(x[j][q]))
+                        });
                     }
                 }
                 let g = at(
                     (c[0][0] + c[1][0] + c[2][0]) / 3.0,
                     (c[0][1] + c[1][1] + c[2][1]) / 3.0,
                 );
-                if let Some(g) = g {
-                    w = w.max(dist(
-                        [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0),
-                        g,
-                    ));
+                let centroid = g.map(|g| {
+                    [0, 1, 2].map(|q| {
+                        f64::from(g[q])
+                            - (f64::from(x[0][q]) + f64::from(x[1][q]) + f64::from(x[2][q])) / 3.0
+                    })
+                });
+                let mut w = across(x, off, centroid);
+                // Along the surface's boundary no neighbour covers what a chord cuts off
+                // inside the tangent plane: there the whole offset across the chord counts.
+                let open = open[ptex as usize];
+                if open != 0 {
+                    for i in 0..3 {
+                        let j = (i + 1) % 3;
+                        if sides(c[i]) & sides(c[j]) & open != 0 {
+                            w = w.max(sag(x[i], x[j], off[i]));
+                        }
+                    }
                 }
                 found.push((face_of_ptex[ptex as usize], w));
             }
@@ -196,8 +309,8 @@ fn evaluate_joined(
 }
 
 /// A tessellation of `surface` at `rates`, with the rates of base faces whose triangles miss
-/// `tolerance` (a fraction of the points' bounding-box diagonal) at an edge midpoint or
-/// centroid raised until they meet it (module documentation): the rates used, the
+/// `tolerance` (a fraction of the points' bounding-box diagonal) across a triangle
+/// ([`chord_errors`]) raised until they meet it (module documentation): the rates used, the
 /// tessellation and, per triangle, its ptex face and corners' `(u, v)`. Refuses what [`plan`]
 /// refuses, naming `origin`.
 pub fn tessellate_within_tolerance(
