@@ -16,8 +16,9 @@ use subsurf::Topology;
 
 type Uv = (u32, [[f32; 2]; 3]);
 
-/// The worst distance across the flat triangles (corners at `corner(tri, k)`) from
-/// `surface(ptex, u, v)`, along each triangle's unit normal: the second-order distance
+/// The worst distance across the flat triangles (corners at `corner(tri, k)`, their surface
+/// normals `normal(tri, k)`) from `surface(ptex, u, v)`, along the surface's unit normal (at
+/// a midpoint or the centroid, the mean of the corners' normals): the second-order distance
 /// `½ Σ λᵢλⱼ |n·D²S[eᵢⱼ, eᵢⱼ]|` (`n·D²S[eᵢⱼ, eᵢⱼ]` from the surface at the edge midpoints,
 /// `8 n·(S(mᵢⱼ) − (xᵢ + xⱼ)/2)`), its largest value found on a fine barycentric grid, and
 /// the centroid's distance along the normal; along the mesh's boundary, the surface's whole
@@ -26,6 +27,7 @@ fn worst(
     triangles: &[[u32; 3]],
     uv: &[Uv],
     corner: &dyn Fn(usize, usize) -> [f64; 3],
+    normal: &dyn Fn(usize, usize) -> [f64; 3],
     surface: &dyn Fn(u32, f32, f32) -> [f64; 3],
 ) -> f64 {
     const GRID: usize = 60;
@@ -41,10 +43,19 @@ fn worst(
     for (n, (tri, (ptex, c))) in triangles.iter().zip(uv).enumerate() {
         let x = [0, 1, 2].map(|k| corner(n, k));
         let sub = |a: [f64; 3], b: [f64; 3]| [0, 1, 2].map(|q| a[q] - b[q]);
-        let normal = cross(sub(x[1], x[0]), sub(x[2], x[0]));
-        let len = dot(normal, normal).sqrt();
-        assert!(len > 0.0, "a degenerate triangle");
-        let normal = normal.map(|q| q / len);
+        let unit = |d: [f64; 3]| {
+            let len = dot(d, d).sqrt();
+            assert!(len > 0.0, "a degenerate triangle or normal");
+            d.map(|q| q / len)
+        };
+        let nk = [0, 1, 2].map(|k| normal(n, k));
+        let mean = |ks: &[usize]| {
+            unit(
+                ks.iter()
+                    .fold([0.0; 3], |s, &k| [0, 1, 2].map(|q| s[q] + nk[k][q])),
+            )
+        };
+        unit(cross(sub(x[1], x[0]), sub(x[2], x[0])));
         let a = [0, 1, 2].map(|i| {
             let j = (i + 1) % 3;
             let m = surface(*ptex, 0.5 * (c[i][0] + c[j][0]), 0.5 * (c[i][1] + c[j][1]));
@@ -58,7 +69,7 @@ fn worst(
                 let r = [0, 1, 2].map(|q| off[q] - along * d[q]);
                 w = w.max(dot(r, r).sqrt());
             }
-            8.0 * dot(normal, off).abs()
+            8.0 * dot(mean(&[i, j]), off).abs()
         });
         for i in 0..=GRID {
             for j in 0..=GRID - i {
@@ -73,7 +84,7 @@ fn worst(
             (c[0][1] + c[1][1] + c[2][1]) / 3.0,
         );
         let centre = [0, 1, 2].map(|q| (x[0][q] + x[1][q] + x[2][q]) / 3.0);
-        w = w.max(dot(normal, sub(g, centre)).abs());
+        w = w.max(dot(mean(&[0, 1, 2]), sub(g, centre)).abs());
     }
     w
 }
@@ -104,6 +115,8 @@ fn every_triangle_meets_the_tolerance() {
             panic!("{chords:?}")
         };
         let budget = f64::from(budget) * diag;
+        let own_normal =
+            |ptex: u32, u: f32, v: f32| s.eval(ptex as usize, u, v).unwrap().n.map(f64::from);
         let own = |ptex: u32, u: f32, v: f32| {
             s.eval_position(ptex as usize, u, v).unwrap().map(f64::from)
         };
@@ -118,6 +131,10 @@ fn every_triangle_meets_the_tolerance() {
             &|n, k| {
                 let c = p.triangle_uv[n].1[k];
                 own(p.triangle_uv[n].0, c[0], c[1])
+            },
+            &|n, k| {
+                let c = p.triangle_uv[n].1[k];
+                own_normal(p.triangle_uv[n].0, c[0], c[1])
             },
             &own,
         );
@@ -139,6 +156,10 @@ fn every_triangle_meets_the_tolerance() {
             &|n, k| {
                 let c = uv[n].1[k];
                 own(uv[n].0, c[0], c[1])
+            },
+            &|n, k| {
+                let c = uv[n].1[k];
+                own_normal(uv[n].0, c[0], c[1])
             },
             &own,
         );

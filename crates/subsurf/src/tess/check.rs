@@ -96,35 +96,54 @@ fn sag(a: [f32; 3], b: [f32; 3], off: [f64; 3]) -> f64 {
     dot(r, r).sqrt()
 }
 
-/// The distance across a flat triangle `x` from the surface it spans, along the triangle's
-/// unit normal `n`, to second order: with `eᵢⱼ` its edges in ptex parameters,
-/// `S − L ≈ −½ Σᵢ<ⱼ λᵢλⱼ D²S[eᵢⱼ, eᵢⱼ]` over the barycentric `λ` (exact for a quadratic
-/// surface, the twist `S_uv` included along the edges that run across both parameters), so
-/// the distance is at most `½ Σᵢ<ⱼ λᵢλⱼ aᵢⱼ` with `aᵢⱼ = |n·D²S[eᵢⱼ, eᵢⱼ]|`, whose largest
-/// value over the triangle this returns; `aᵢⱼ` is read from `off[i]`, the surface at edge
-/// `i → i + 1`'s midpoint less the chord's midpoint (`n·off = −aᵢⱼ/8`, to second order). The
-/// surface at the centroid less the triangle's (`centroid`, where evaluated) is measured along
-/// `n` as well, for bending past second order. A degenerate triangle (no normal) counts the
-/// full distances.
-fn across(x: [[f32; 3]; 3], off: [[f64; 3]; 3], centroid: Option<[f64; 3]>) -> f64 {
+/// The distance across a flat triangle `x` (its corners' surface normals `nrm`) from the
+/// surface it spans, along the surface's unit normal, to second order: with `eᵢⱼ` its edges in
+/// ptex parameters, `S − L ≈ −½ Σᵢ<ⱼ λᵢλⱼ D²S[eᵢⱼ, eᵢⱼ]` over the barycentric `λ` (exact for a
+/// quadratic surface, the twist `S_uv` included along the edges that run across both
+/// parameters), so the distance is at most `½ Σᵢ<ⱼ λᵢλⱼ aᵢⱼ` with `aᵢⱼ = |n·D²S[eᵢⱼ, eᵢⱼ]|`,
+/// whose largest value over the triangle this returns. `aᵢⱼ` is read from `off[i]`, the
+/// surface at edge `i → i + 1`'s midpoint less the chord's midpoint: `n·off = −aᵢⱼ/8` to
+/// second order, with `n` the normal there (the mean of the edge's corner normals; the
+/// triangle's where they cancel). The surface at the centroid less the triangle's
+/// (`centroid`, where evaluated) is measured along the normal there as well, for bending
+/// past second order. Along the surface's normal, not the triangle's: a drift of the
+/// parametrization along a surface that a coarse triangle tilts against is no distance. A
+/// degenerate triangle (no normal) counts the full distances.
+fn across(
+    x: [[f32; 3]; 3],
+    nrm: [[f32; 3]; 3],
+    off: [[f64; 3]; 3],
+    centroid: Option<[f64; 3]>,
+) -> f64 {
     let wide = |p: [f32; 3]| p.map(f64::from);
     let (a, b, c) = (wide(x[0]), wide(x[1]), wide(x[2]));
     let (u, v) = (sub(b, a), sub(c, a));
-    let n = [
+    let flat = unit([
         u[1] * v[2] - u[2] * v[1],
         u[2] * v[0] - u[0] * v[2],
         u[0] * v[1] - u[1] * v[0],
-    ];
-    let len = dot(n, n).sqrt();
-    if len <= 0.0 || !len.is_finite() {
+    ]);
+    let Some(flat) = flat else {
         let norm = |d: [f64; 3]| dot(d, d).sqrt();
         let edges = off.iter().map(|&d| norm(d)).fold(0.0, f64::max);
         return edges.max(centroid.map_or(0.0, norm));
-    }
-    let n = n.map(|k| k / len);
-    let [p, q, r] = off.map(|d| 8.0 * dot(n, d).abs());
-    let at_centroid = centroid.map_or(0.0, |d| dot(n, d).abs());
+    };
+    let n = nrm.map(wide);
+    let mean = |ks: &[usize]| {
+        let s = ks
+            .iter()
+            .fold([0.0; 3], |s, &k| [0, 1, 2].map(|q| s[q] + n[k][q]));
+        unit(s).unwrap_or(flat)
+    };
+    let [p, q, r] = [0, 1, 2].map(|i| 8.0 * dot(mean(&[i, (i + 1) % 3]), off[i]).abs());
+    let at_centroid = centroid.map_or(0.0, |d| dot(mean(&[0, 1, 2]), d).abs());
     at_centroid.max(largest_bending(p, q, r))
+}
+
+/// `d` over its length; `None` for a zero or non-finite length.
+fn unit(d: [f64; 3]) -> Option<[f64; 3]> {
+    let len = dot(d, d).sqrt();
+    (len > 0.0 && len.is_finite()).then(|| d.map(|k| k / len))
 }
 
 /// The largest of `½ (λ₀λ₁ p + λ₁λ₂ q + λ₂λ₀ r)` over the barycentric `λ` (`p, q, r ≥ 0`, the
@@ -169,25 +188,25 @@ pub fn chord_errors(
     chord_errors_at(surface, p, face_of_ptex, only, None)
 }
 
-/// [`chord_errors`], the samples' positions given (`known`: the output's, one per query of
-/// `p`) or evaluated here.
+/// [`chord_errors`], the samples' positions and normals given (`known`: the output's, one
+/// per query of `p`) or evaluated here.
 fn chord_errors_at(
     surface: &LimitSurface,
     p: &AdaptivePlan,
     face_of_ptex: &[u32],
     only: Option<&[bool]>,
-    known: Option<&[[f32; 3]]>,
+    known: Option<(&[[f32; 3]], &[[f32; 3]])>,
 ) -> Vec<f64> {
     let nf = surface.table.base.num_faces();
     let measured = |ptex: u32| only.is_none_or(|o| o[face_of_ptex[ptex as usize] as usize]);
-    // The positions of the samples the measured triangles join, as the output will have
-    // them (a sample shared by two ptex faces is evaluated from the first, as `eval_plan`).
+    // The positions and normals of the samples, as the output will have them (a sample
+    // shared by two ptex faces is evaluated from the first, as `eval_plan`).
     let evaluated;
-    let positions: &[[f32; 3]] = match known {
+    let (positions, normals) = match known {
         Some(known) => known,
         None => {
-            evaluated = evaluate_joined(surface, p, only.is_none(), measured);
-            &evaluated
+            evaluated = surface.eval_queries(&p.queries);
+            (&evaluated.0[..], &evaluated.1[..])
         }
     };
     let open = open_sides(surface);
@@ -248,7 +267,8 @@ fn chord_errors_at(
                             - (f64::from(x[0][q]) + f64::from(x[1][q]) + f64::from(x[2][q])) / 3.0
                     })
                 });
-                let mut w = across(x, off, centroid);
+                let nrm = [0, 1, 2].map(|k| normals[tri[k] as usize]);
+                let mut w = across(x, nrm, off, centroid);
                 // Along the surface's boundary no neighbour covers what a chord cuts off
                 // inside the tangent plane: there the whole offset across the chord counts.
                 let open = open[ptex as usize];
@@ -270,42 +290,6 @@ fn chord_errors_at(
         out[f as usize] = out[f as usize].max(w);
     }
     out
-}
-
-/// The positions of the queries of `p` (`all`) or of those the triangles of `measured` ptex
-/// faces join (the others read zero), through one [`CurveCache`] per chunk.
-fn evaluate_joined(
-    surface: &LimitSurface,
-    p: &AdaptivePlan,
-    all: bool,
-    measured: impl Fn(u32) -> bool,
-) -> Vec<[f32; 3]> {
-    let mut needed = vec![all; p.queries.len()];
-    if !all {
-        for (tri, &(ptex, _)) in p.triangles.iter().zip(&p.triangle_uv) {
-            if measured(ptex) {
-                tri.iter().for_each(|&i| needed[i as usize] = true);
-            }
-        }
-    }
-    // In chunks, one cache each, walked by plain loops: rayon's per-item adaptors move their
-    // state (the cache's 20 points) with every item.
-    let mut positions = vec![[0.0f32; 3]; p.queries.len()];
-    positions
-        .par_chunks_mut(CHUNK)
-        .zip(p.queries.par_chunks(CHUNK))
-        .zip(needed.par_chunks(CHUNK))
-        .for_each(|((out, q), need)| {
-            let mut cache = CurveCache::new();
-            for ((x, &(f, u, v)), &need) in out.iter_mut().zip(q).zip(need) {
-                if need {
-                    *x = cache
-                        .position(surface, f as usize, u, v)
-                        .unwrap_or_default();
-                }
-            }
-        });
-    positions
 }
 
 /// A tessellation of `surface` at `rates`, with the rates of base faces whose triangles miss
@@ -335,7 +319,7 @@ pub fn tessellate_within_tolerance(
     // plan's is the tessellation (every plan is evaluated once).
     let mut output = surface.eval_queries(&p.queries);
     for _ in 1..ROUNDS {
-        let known = Some(&output.0[..]);
+        let known = Some((&output.0[..], &output.1[..]));
         let errors = chord_errors_at(surface, &p, &face_of_ptex, only.as_deref(), known);
         if rates.faces.is_empty() {
             rates.faces = vec![0; t.num_faces()];
@@ -426,3 +410,48 @@ pub type Tessellated = (EdgeRates, AdaptiveTessellation, Vec<TriangleUv>);
 
 /// A triangle's ptex face and its corners' `(u, v)` there.
 pub type TriangleUv = (u32, [[f32; 2]; 3]);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed form of the largest second-order distance over a triangle is the largest
+    /// value on a fine barycentric grid, to the grid's resolution, for edge bendings of every
+    /// mix (one edge alone, equal, one small, random).
+    #[test]
+    fn largest_bending_is_the_grids_largest() {
+        const N: usize = 400;
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut cases = vec![
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [1.0, 1.0, 0.01],
+            [3.0, 1.0, 1.0],
+        ];
+        cases.extend((0..50).map(|_| [next(), next(), next()]));
+        for [p, q, r] in cases {
+            let mut grid = 0.0f64;
+            for i in 0..=N {
+                for j in 0..=N - i {
+                    let l = [i, j, N - i - j].map(|k| k as f64 / N as f64);
+                    grid = grid.max(0.5 * (l[0] * l[1] * p + l[1] * l[2] * q + l[2] * l[0] * r));
+                }
+            }
+            let exact = largest_bending(p, q, r);
+            assert!(
+                exact >= grid * (1.0 - 1e-12),
+                "{p} {q} {r}: {exact} < {grid}"
+            );
+            assert!(
+                exact <= grid * (1.0 + 1e-4),
+                "{p} {q} {r}: {exact} > {grid}"
+            );
+        }
+    }
+}
