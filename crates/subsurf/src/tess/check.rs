@@ -188,6 +188,9 @@ pub fn chord_errors(
     chord_errors_at(surface, p, face_of_ptex, only, None)
 }
 
+/// A plan's sample positions and normals, one each per query.
+type Samples<'a> = (&'a [[f32; 3]], &'a [[f32; 3]]);
+
 /// [`chord_errors`], the samples' positions and normals given (`known`: the output's, one
 /// per query of `p`) or evaluated here.
 fn chord_errors_at(
@@ -195,7 +198,7 @@ fn chord_errors_at(
     p: &AdaptivePlan,
     face_of_ptex: &[u32],
     only: Option<&[bool]>,
-    known: Option<(&[[f32; 3]], &[[f32; 3]])>,
+    known: Option<Samples<'_>>,
 ) -> Vec<f64> {
     let nf = surface.table.base.num_faces();
     let measured = |ptex: u32| only.is_none_or(|o| o[face_of_ptex[ptex as usize] as usize]);
