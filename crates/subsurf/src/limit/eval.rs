@@ -189,7 +189,11 @@ impl<R: Real> LimitSurface<R> {
 
     /// [`Self::eval_raw`] through `last`: a query in the patch `last` holds skips the gather
     /// (the same points, the same sums, bit for bit).
-    fn eval_raw_in(&self, last: &mut LastPatch<R>, q: (usize, R, R)) -> Option<LimitPoint<R>> {
+    pub(crate) fn eval_raw_in(
+        &self,
+        last: &mut LastPatch<R>,
+        q: (usize, R, R),
+    ) -> Option<LimitPoint<R>> {
         let (p, u, v) = self.locate(q)?;
         last.load(self, p);
         let t = &self.table;

@@ -71,18 +71,25 @@ const RATIO: (f64, f64) = (0.5, 0.8);
 
 /// Whether base face `f` touches a vertex where regular patches at the isolation level may
 /// still approximate: an interior infinitely sharp corner or crease vertex, or (under
-/// Chaikin's rule, whose sharpness varies along a crease) one on a semi-sharp crease.
-/// (Boundary vertices, whose edges are infinitely sharp too, are left out: their boundary
-/// patches are exact. Non-manifold vertices are left out too: measuring them changed nothing
-/// on `catmark_nonman_verts` or `catmark_val2_nonman`, whose misses were narrow bends that
-/// the tessellation's check resolves, not levels.)
+/// Chaikin's rule, whose sharpness varies along a crease) one on a semi-sharp crease, or an
+/// extraordinary boundary vertex that is not a corner (a smooth corner of one face under
+/// edge-only boundaries: `catmark_edgeonly`'s corners were 1.0e-3 of the diagonal off the
+/// limit surface at isolation 4, along the surface). (Other boundary vertices, whose edges
+/// are infinitely sharp too, are left out: their boundary patches are exact. Non-manifold
+/// vertices are left out too: measuring them changed nothing on `catmark_nonman_verts` or
+/// `catmark_val2_nonman`, whose misses were narrow bends that the tessellation's check
+/// resolves, not levels.)
 fn sharp_feature_face(base: &Topology, f: usize) -> bool {
     let chaikin = base.options.crease_method == CreaseMethod::Chaikin;
     base.face_vertices(f).iter().any(|&v| {
         let tag = base.vert_tags[v as usize];
         let interior = tag & (tags::V_BOUNDARY | tags::V_NON_MANIFOLD) == 0;
+        let smooth_boundary_corner = tag & tags::V_BOUNDARY != 0
+            && tag & tags::V_XORDINARY != 0
+            && tag & (tags::V_CORNER | tags::V_INF_SHARP | tags::V_NON_MANIFOLD) == 0;
         (interior && tag & (tags::V_INF_SHARP | tags::V_INF_SHARP_EDGES) != 0)
             || (chaikin && tag & tags::V_SEMI_SHARP_EDGES != 0)
+            || smooth_boundary_corner
     })
 }
 

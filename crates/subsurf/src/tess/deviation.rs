@@ -3,10 +3,14 @@
 //! bounding-box diagonal.
 //!
 //! - **Mesh to surface**: points sampled on every triangle (a barycentric grid, vertices and
-//!   edges included) are projected onto the surface: the nearest of a dense set of surface
-//!   samples gives a `(ptex, u, v)`, which Gauss-Newton steps on the limit surface refine to
-//!   the foot point (clamped to the ptex face). The distance to the foot point is the
-//!   sample's deviation.
+//!   edges included) are projected onto the surface by Gauss-Newton steps on the limit
+//!   surface (clamped to a ptex face) to their foot point; the distance to the foot point is
+//!   the sample's deviation. A tessellation that knows where its triangles came from (their
+//!   ptex face and corners' `(u, v)`, as [`super::AdaptivePlan::triangle_uv`]) starts each
+//!   sample from its own parameters; only where that foot point would leave the ptex face,
+//!   or a dense surface sample lies nearer than it, are the samples nearest to the point
+//!   tried as well (the best of each ptex face among the [`SEEDS`] nearest). A triangle
+//!   without parameters starts from those seeds alone.
 //! - **Surface to mesh**: the same dense surface samples, each at its exact distance to the
 //!   nearest triangle (a uniform grid of triangle bounding boxes, searched ring by ring until
 //!   no nearer triangle can exist).
@@ -15,9 +19,14 @@
 //! surface *and* where the surface is far from the mesh (a hole, a missing region), wherever
 //! the nearest point is — not the distance at the same `(u, v)`, which counts a tangential
 //! drift of the parametrization as error.
+//!
+//! A [`DeviationReference`] keeps the surface samples and their grid, so that many
+//! tessellations of one surface (candidates at several rates) are measured against one set;
+//! [`deviation`] builds one for a single measurement.
 
 use rayon::prelude::*;
 
+use crate::limit::eval::LastPatch;
 use crate::limit::LimitSurface;
 use crate::real::Real;
 use crate::util::vec3::{add, dot, scale, sub};
@@ -52,6 +61,12 @@ pub struct Deviation {
     pub mean_mesh_to_surface: f64,
     /// The bounding-box diagonal of the surface samples (the unit of the other fields).
     pub diagonal: f64,
+    /// The mesh sample furthest from the surface (world units; the origin without
+    /// triangles).
+    pub worst_mesh_point: [f64; 3],
+    /// The surface sample furthest from the mesh (world units; the origin without surface
+    /// samples).
+    pub worst_surface_point: [f64; 3],
 }
 
 impl Deviation {
@@ -63,8 +78,16 @@ impl Deviation {
 
 type P = [f64; 3];
 
-/// Surface samples a mesh sample is projected from (the best of each ptex face among them).
-const SEEDS: usize = 8;
+/// Surface samples a mesh sample is projected from where its own parameters do not do (the
+/// best of each ptex face among them).
+pub const SEEDS: usize = 8;
+
+/// Gauss-Newton steps at most per projection.
+const STEPS: usize = 12;
+
+/// How far (in ptex parameters) a foot point's next step may point past the face's side
+/// before the point counts as leaving the face.
+const OUTSIDE: f64 = 1e-6;
 
 fn widen<R: Real>(p: [R; 3]) -> P {
     p.map(Real::to_f64)
@@ -140,6 +163,29 @@ impl Grid {
         (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
     }
 
+    /// Whether an item lies within `r2` (a squared distance, by `dist`) of `p`: the cells
+    /// that box overlaps are searched.
+    fn any_within(&self, p: P, r2: f64, dist: impl Fn(u32) -> f64) -> bool {
+        let r = r2.sqrt();
+        let a = self.coords(sub(p, [r; 3]));
+        let b = self.coords(add(p, [r; 3]));
+        for z in a[2]..=b[2] {
+            for y in a[1]..=b[1] {
+                for x in a[0]..=b[0] {
+                    let cell = self.index([x, y, z]);
+                    let (s, e) = (self.offsets[cell], self.offsets[cell + 1]);
+                    if self.items[s as usize..e as usize]
+                        .iter()
+                        .any(|&i| dist(i) < r2)
+                    {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
     /// The item nearest to `p` by `dist` (a squared distance); `None` when the grid is
     /// empty.
     fn nearest(&self, p: P, dist: impl Fn(u32) -> f64) -> Option<(u32, f64)> {
@@ -148,7 +194,7 @@ impl Grid {
 
     /// The `k` items nearest to `p` by `dist` (a squared distance), nearest first: the cells
     /// are searched ring by ring around `p`'s cell until no cell outside can hold a nearer
-    /// item than the `k`-th.
+    /// item than the `k`-th (`p` is nearer to the searched box's walls than that item).
     fn nearest_k(&self, p: P, k: usize, dist: impl Fn(u32) -> f64) -> Vec<(u32, f64)> {
         let c = self.coords(p);
         let mut best: Vec<(u32, f64)> = Vec::with_capacity(k + 1);
@@ -179,12 +225,21 @@ impl Grid {
                     }
                 }
             }
-            // Every cell outside the rings searched is at least `ring` cells away.
-            if best.len() == k {
-                let reach = ring as f64 * self.cell;
-                if best[k - 1].1 <= reach * reach {
-                    break;
+            // Every cell outside the box searched lies beyond one of its walls (none beyond
+            // the grid's own sides).
+            let mut reach = f64::INFINITY;
+            for a in 0..3 {
+                if lo[a] > 0 {
+                    reach = reach.min(p[a] - (self.lo[a] + lo[a] as f64 * self.cell));
                 }
+                if hi[a] + 1 < self.dims[a] {
+                    reach = reach.min(self.lo[a] + (hi[a] + 1) as f64 * self.cell - p[a]);
+                }
+            }
+            if reach == f64::INFINITY
+                || (best.len() == k && best[k - 1].1 <= reach.max(0.0).powi(2))
+            {
+                break;
             }
         }
         best
@@ -239,18 +294,36 @@ fn point_triangle_d2(p: P, a: P, b: P, c: P) -> f64 {
     at(add(a, add(scale(v, ab), scale(w, ac))))
 }
 
+/// A Gauss-Newton projection's end: the squared distance reached and whether the foot point
+/// would leave the ptex face (its next step points past a side it is clamped to).
+#[derive(Debug, Clone, Copy)]
+struct Foot {
+    d2: f64,
+    leaves: bool,
+}
+
 /// The foot point of `q` on ptex face `ptex` of `surface`, from `(u, v)`: Gauss-Newton steps
-/// on `|S(u, v) - q|²`, clamped to the face; the squared distance reached.
-fn project<R: Real>(surface: &LimitSurface<R>, q: P, ptex: usize, mut u: f64, mut v: f64) -> f64 {
-    let at = |u: f64, v: f64| surface.eval(ptex, R::from_f64(u), R::from_f64(v));
+/// on `|S(u, v) - q|²`, clamped to the face (through `last`, the patch last evaluated).
+fn project<R: Real>(
+    surface: &LimitSurface<R>,
+    last: &mut LastPatch<R>,
+    q: P,
+    ptex: usize,
+    mut u: f64,
+    mut v: f64,
+) -> Foot {
+    let mut at = |u: f64, v: f64| surface.eval_raw_in(last, (ptex, R::from_f64(u), R::from_f64(v)));
     let Some(mut s) = at(u, v) else {
-        return f64::INFINITY;
+        return Foot {
+            d2: f64::INFINITY,
+            leaves: false,
+        };
     };
     let mut best = {
         let d = sub(q, widen(s.p));
         dot(d, d)
     };
-    for _ in 0..12 {
+    for step in 0..=STEPS {
         let (p, du, dv) = (widen(s.p), widen(s.du), widen(s.dv));
         let r = sub(q, p);
         let (a, b, c) = (dot(du, du), dot(du, dv), dot(dv, dv));
@@ -260,6 +333,13 @@ fn project<R: Real>(surface: &LimitSurface<R>, q: P, ptex: usize, mut u: f64, mu
             break;
         }
         let (mut su, mut sv) = ((c * g0 - b * g1) / det, (a * g1 - b * g0) / det);
+        // The step from the point reached: past a side of the face, the foot point lies in
+        // a neighbouring one.
+        let outside = |x: f64| !(-OUTSIDE..=1.0 + OUTSIDE).contains(&x);
+        let leaves = outside(u + su) || outside(v + sv);
+        if step == STEPS {
+            return Foot { d2: best, leaves };
+        }
         let mut improved = false;
         // Halve the step until it does not move away.
         for _ in 0..8 {
@@ -275,140 +355,280 @@ fn project<R: Real>(surface: &LimitSurface<R>, q: P, ptex: usize, mut u: f64, mu
             su *= 0.5;
             sv *= 0.5;
         }
-        if !improved || (su * su + sv * sv) < 1e-24 {
-            break;
+        if !improved {
+            return Foot { d2: best, leaves };
+        }
+        if su * su + sv * sv < 1e-24 {
+            // Converged: `leaves` of the point before this last, tiny step.
+            return Foot { d2: best, leaves };
         }
     }
-    best
+    Foot {
+        d2: best,
+        leaves: false,
+    }
+}
+
+/// A triangle's ptex face and its corners' `(u, v)` there (as
+/// [`super::AdaptivePlan::triangle_uv`]).
+pub type TriangleParameters = (u32, [[f32; 2]; 3]);
+
+/// The reference side of [`deviation`]: a limit surface with its dense samples and their
+/// grid, built once and kept for every mesh measured against it (module documentation).
+pub struct DeviationReference<'a, R: Real = f64> {
+    surface: &'a LimitSurface<R>,
+    options: DeviationOptions,
+    /// The surface samples and their `(ptex, u, v)`.
+    samples: Vec<P>,
+    sample_q: Vec<(u32, f64, f64)>,
+    /// The samples' bounding box and its diagonal.
+    lo: P,
+    hi: P,
+    diagonal: f64,
+    /// The samples by cell.
+    grid: Grid,
+}
+
+impl<R: Real> std::fmt::Debug for DeviationReference<'_, R> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DeviationReference")
+            .field("options", &self.options)
+            .field("samples", &self.samples.len())
+            .field("diagonal", &self.diagonal)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a, R: Real> DeviationReference<'a, R> {
+    /// The samples of `surface` at `options.surface_samples` per ptex-face side, and their
+    /// grid.
+    pub fn new(surface: &'a LimitSurface<R>, options: &DeviationOptions) -> Self {
+        let n = options.surface_samples.max(1);
+        let map = surface.table().patch_map();
+        let queries: Vec<(u32, R, R)> = (0..map.num_ptex())
+            .filter(|&f| map.has_patches(f))
+            .flat_map(|f| {
+                (0..=n).flat_map(move |j| {
+                    (0..=n).map(move |i| {
+                        let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
+                        (f as u32, R::from_f64(u), R::from_f64(v))
+                    })
+                })
+            })
+            .collect();
+        let evals = surface.eval_batch(&queries);
+        let (samples, sample_q): (Vec<P>, Vec<(u32, f64, f64)>) = evals
+            .iter()
+            .zip(&queries)
+            .filter_map(|(e, &(f, u, v))| e.map(|e| (widen(e.p), (f, u.to_f64(), v.to_f64()))))
+            .unzip();
+        let (lo, hi) = bounds(samples.iter().copied());
+        let diagonal = if samples.is_empty() {
+            0.0
+        } else {
+            dot(sub(hi, lo), sub(hi, lo)).sqrt()
+        };
+        let boxes: Vec<(P, P)> = samples.iter().map(|&p| (p, p)).collect();
+        let grid = if samples.is_empty() {
+            Grid::new([0.0; 3], [0.0; 3], 1, &[])
+        } else {
+            Grid::new(lo, hi, samples.len() / 4 + 1, &boxes)
+        };
+        DeviationReference {
+            surface,
+            options: *options,
+            samples,
+            sample_q,
+            lo,
+            hi,
+            diagonal,
+            grid,
+        }
+    }
+
+    /// The surface measured against.
+    pub fn surface(&self) -> &'a LimitSurface<R> {
+        self.surface
+    }
+
+    /// The bounding-box diagonal of the surface samples (the unit of every [`Deviation`]).
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
+    }
+
+    /// Number of surface samples.
+    pub fn num_samples(&self) -> usize {
+        self.samples.len()
+    }
+
+    /// The deviation of the triangle mesh (`positions`, `triangles` in any orientation)
+    /// from the surface (module documentation). `parameters`, one per triangle where given
+    /// (its ptex face and corners' `(u, v)` on this surface's ptex faces), starts each
+    /// triangle sample's projection from its own parameters. A mesh without triangles is
+    /// infinitely far from every surface sample.
+    ///
+    /// # Panics
+    /// When `parameters` is given with another length than `triangles`.
+    pub fn measure(
+        &self,
+        positions: &[[f32; 3]],
+        triangles: &[[u32; 3]],
+        parameters: Option<&[TriangleParameters]>,
+    ) -> Deviation {
+        if let Some(p) = parameters {
+            assert_eq!(
+                p.len(),
+                triangles.len(),
+                "one parameter triple per triangle"
+            );
+        }
+        let unit = if self.diagonal > 0.0 {
+            1.0 / self.diagonal
+        } else {
+            1.0
+        };
+        let verts: Vec<P> = positions.iter().map(|&p| widen(p)).collect();
+        let (vlo, vhi) = bounds(verts.iter().copied());
+        let lo: P = std::array::from_fn(|k| self.lo[k].min(vlo[k]));
+        let hi: P = std::array::from_fn(|k| self.hi[k].max(vhi[k]));
+
+        // Surface to mesh: exact nearest-triangle distances.
+        let tri_boxes: Vec<(P, P)> = triangles
+            .iter()
+            .map(|t| bounds(t.iter().map(|&i| verts[i as usize])))
+            .collect();
+        let tri_grid = Grid::new(lo, hi, triangles.len(), &tri_boxes);
+        let tri_d2 = |p: P, t: u32| {
+            let [a, b, c] = triangles[t as usize].map(|i| verts[i as usize]);
+            point_triangle_d2(p, a, b, c)
+        };
+        let (surface_to_mesh, worst_surface_point) = self
+            .samples
+            .par_iter()
+            .map(|&p| {
+                let d = tri_grid
+                    .nearest(p, |t| tri_d2(p, t))
+                    .map_or(f64::INFINITY, |(_, d2)| d2.sqrt());
+                (d, p)
+            })
+            .reduce(|| (0.0, [0.0; 3]), farther);
+
+        // Mesh to surface: triangle samples projected onto the surface.
+        let k = self.options.triangle_samples.max(1);
+        let bary: Vec<(f64, f64)> = (0..=k)
+            .flat_map(|i| (0..=k - i).map(move |j| (i as f64 / k as f64, j as f64 / k as f64)))
+            .collect();
+        let (sum, count, mesh_to_surface, worst_mesh_point) = triangles
+            .par_iter()
+            .enumerate()
+            .map(|(n, t)| {
+                let [a, b, c] = t.map(|i| verts[i as usize]);
+                let own = parameters.map(|p| p[n]);
+                let mut last = LastPatch::new();
+                let (mut sum, mut worst) = (0.0, (0.0f64, [0.0; 3]));
+                for &(s, r) in &bary {
+                    let q = add(a, add(scale(s, sub(b, a)), scale(r, sub(c, a))));
+                    let d = self.distance(q, own, s, r, &mut last).sqrt();
+                    sum += d;
+                    worst = farther(worst, (d, q));
+                }
+                (sum, bary.len(), worst.0, worst.1)
+            })
+            .reduce(
+                || (0.0, 0, 0.0, [0.0; 3]),
+                |x, y| {
+                    let (d, p) = farther((x.2, x.3), (y.2, y.3));
+                    (x.0 + y.0, x.1 + y.1, d, p)
+                },
+            );
+        Deviation {
+            mesh_to_surface: mesh_to_surface * unit,
+            surface_to_mesh: surface_to_mesh * unit,
+            mean_mesh_to_surface: if count > 0 {
+                sum / count as f64 * unit
+            } else {
+                0.0
+            },
+            diagonal: self.diagonal,
+            worst_mesh_point,
+            worst_surface_point,
+        }
+    }
+
+    /// The squared distance from mesh sample `q` (at barycentric `(s, r)` of a triangle with
+    /// parameters `own`, where known) to the surface.
+    fn distance(
+        &self,
+        q: P,
+        own: Option<TriangleParameters>,
+        s: f64,
+        r: f64,
+        last: &mut LastPatch<R>,
+    ) -> f64 {
+        let sample_d2 = |i: u32| {
+            let d = sub(q, self.samples[i as usize]);
+            dot(d, d)
+        };
+        let mut d2 = f64::INFINITY;
+        if let Some((ptex, c)) = own {
+            let w = [1.0 - s - r, s, r];
+            let at = |k: usize| (0..3).map(|i| w[i] * f64::from(c[i][k])).sum::<f64>();
+            let foot = project(self.surface, last, q, ptex as usize, at(0), at(1));
+            if !foot.leaves && foot.d2.is_finite() && !self.grid.any_within(q, foot.d2, sample_d2) {
+                return foot.d2;
+            }
+            d2 = foot.d2;
+        }
+        // The nearest samples, projected from the best one of each ptex face among them
+        // (the sample's own face again too, from another start): at a vertex shared by
+        // several ptex faces the foot point may lie in any of them.
+        let near = self.grid.nearest_k(q, SEEDS, sample_d2);
+        d2 = d2.min(near.first().map_or(f64::INFINITY, |e| e.1));
+        let mut faces: Vec<u32> = Vec::with_capacity(SEEDS);
+        for &(i, _) in &near {
+            let (f, u, v) = self.sample_q[i as usize];
+            if !faces.contains(&f) {
+                faces.push(f);
+                d2 = d2.min(project(self.surface, last, q, f as usize, u, v).d2);
+            }
+        }
+        d2
+    }
+}
+
+/// The farther of two `(distance, point)` pairs (the first on a tie, NaN counting farthest).
+fn farther(a: (f64, P), b: (f64, P)) -> (f64, P) {
+    if b.0 > a.0 || (b.0.is_nan() && !a.0.is_nan()) {
+        b
+    } else {
+        a
+    }
+}
+
+/// The bounding box of `points` (inverted for none).
+fn bounds(points: impl Iterator<Item = P>) -> (P, P) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
 }
 
 /// The deviation of the triangle mesh (`positions`, counter-clockwise or not, `triangles`)
-/// from `surface` (module documentation). A mesh without triangles is infinitely far from
-/// every surface sample.
+/// from `surface` (module documentation), every triangle sample projected from the surface
+/// samples nearest to it. A mesh without triangles is infinitely far from every surface
+/// sample. To measure several meshes against one surface, keep a [`DeviationReference`].
 pub fn deviation<R: Real>(
     surface: &LimitSurface<R>,
     positions: &[[f32; 3]],
     triangles: &[[u32; 3]],
     options: &DeviationOptions,
 ) -> Deviation {
-    let n = options.surface_samples.max(1);
-    let table = surface.table();
-    let map = table.patch_map();
-    // Dense surface samples with their (ptex, u, v).
-    let queries: Vec<(u32, R, R)> = (0..map.num_ptex())
-        .filter(|&f| map.has_patches(f))
-        .flat_map(|f| {
-            (0..=n).flat_map(move |j| {
-                (0..=n).map(move |i| {
-                    let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
-                    (f as u32, R::from_f64(u), R::from_f64(v))
-                })
-            })
-        })
-        .collect();
-    let evals = surface.eval_batch(&queries);
-    let (samples, sample_q): (Vec<P>, Vec<(u32, f64, f64)>) = evals
-        .iter()
-        .zip(&queries)
-        .filter_map(|(e, &(f, u, v))| e.map(|e| (widen(e.p), (f, u.to_f64(), v.to_f64()))))
-        .unzip();
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &samples {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    let diagonal = if samples.is_empty() {
-        0.0
-    } else {
-        dot(sub(hi, lo), sub(hi, lo)).sqrt()
-    };
-    let unit = if diagonal > 0.0 { 1.0 / diagonal } else { 1.0 };
-    let verts: Vec<P> = positions.iter().map(|&p| widen(p)).collect();
-    for p in &verts {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-
-    // Surface to mesh: exact nearest-triangle distances.
-    let tri_boxes: Vec<(P, P)> = triangles
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| verts[i as usize]);
-            (
-                std::array::from_fn(|k| a[k].min(b[k]).min(c[k])),
-                std::array::from_fn(|k| a[k].max(b[k]).max(c[k])),
-            )
-        })
-        .collect();
-    let tri_grid = Grid::new(lo, hi, triangles.len(), &tri_boxes);
-    let tri_d2 = |p: P, t: u32| {
-        let [a, b, c] = triangles[t as usize].map(|i| verts[i as usize]);
-        point_triangle_d2(p, a, b, c)
-    };
-    let surface_to_mesh = samples
-        .par_iter()
-        .map(|&p| {
-            tri_grid
-                .nearest(p, |t| tri_d2(p, t))
-                .map_or(f64::INFINITY, |(_, d2)| d2.sqrt())
-        })
-        .reduce(|| 0.0, f64::max);
-
-    // Mesh to surface: triangle samples projected from their nearest surface sample.
-    let point_boxes: Vec<(P, P)> = samples.iter().map(|&p| (p, p)).collect();
-    let point_grid = Grid::new(lo, hi, samples.len() / 4 + 1, &point_boxes);
-    let k = options.triangle_samples.max(1);
-    let bary: Vec<(f64, f64)> = (0..=k)
-        .flat_map(|i| (0..=k - i).map(move |j| (i as f64 / k as f64, j as f64 / k as f64)))
-        .collect();
-    let (sum, count, mesh_to_surface) = triangles
-        .par_iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| verts[i as usize]);
-            let (mut sum, mut worst) = (0.0, 0.0f64);
-            for &(s, r) in &bary {
-                let q = add(a, add(scale(s, sub(b, a)), scale(r, sub(c, a))));
-                // The nearest samples, projected from the best one of each ptex face
-                // among them: at a vertex shared by several ptex faces the foot point may
-                // lie in any of them.
-                let near = point_grid.nearest_k(q, SEEDS, |i| {
-                    let d = sub(q, samples[i as usize]);
-                    dot(d, d)
-                });
-                let mut d2 = near.first().map_or(f64::INFINITY, |e| e.1);
-                let mut tried: Vec<u32> = Vec::with_capacity(SEEDS);
-                for &(i, _) in &near {
-                    let (f, u, v) = sample_q[i as usize];
-                    if !tried.contains(&f) {
-                        tried.push(f);
-                        d2 = d2.min(project(surface, q, f as usize, u, v));
-                    }
-                }
-                let d = d2.sqrt();
-                sum += d;
-                worst = worst.max(d);
-            }
-            (sum, bary.len(), worst)
-        })
-        .reduce(
-            || (0.0, 0, 0.0),
-            |x, y| (x.0 + y.0, x.1 + y.1, x.2.max(y.2)),
-        );
-    Deviation {
-        mesh_to_surface: mesh_to_surface * unit,
-        surface_to_mesh: surface_to_mesh * unit,
-        mean_mesh_to_surface: if count > 0 {
-            sum / count as f64 * unit
-        } else {
-            0.0
-        },
-        diagonal,
-    }
+    DeviationReference::new(surface, options).measure(positions, triangles, None)
 }
 
 #[cfg(test)]
@@ -486,5 +706,85 @@ mod tests {
         let holed = deviation(&s, &t.positions, kept, &DeviationOptions::default());
         assert!(holed.surface_to_mesh > 0.1, "{holed:?}");
         assert!(holed.mesh_to_surface < 1e-3, "{holed:?}");
+    }
+
+    /// Brute force: the distance from `p` to the nearest of `triangles`.
+    fn nearest_triangle(p: P, positions: &[[f32; 3]], triangles: &[[u32; 3]]) -> f64 {
+        triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| widen(positions[i as usize]));
+                point_triangle_d2(p, a, b, c)
+            })
+            .fold(f64::INFINITY, f64::min)
+            .sqrt()
+    }
+
+    /// One reference measures every candidate as a fresh [`deviation`] does, and projecting
+    /// each triangle sample from its own `(ptex, u, v)` finds the foot points the seed search
+    /// finds (an adaptive tessellation of a shape with an extraordinary pole and
+    /// boundaries, at two rates); the worst points are where the distances are.
+    #[test]
+    fn own_parameters_find_the_seed_search_foot_points() {
+        let mesh = crate::shapes::pole(5);
+        let s = surface(&mesh);
+        let options = DeviationOptions::default();
+        let reference = DeviationReference::new(&s, &options);
+        let t = Topology::new(&mesh).unwrap();
+        let table = PatchTable::build(&t, &PatchOptions::default()).unwrap();
+        let plain = LimitSurface::new(table, &mesh.positions);
+        for rate in [2, 5] {
+            let rates = crate::tess::EdgeRates::uniform(&plain.table.base, rate);
+            let p = crate::tess::plan(&plain.table, &rates, "").unwrap();
+            let uv = p.triangle_uv.clone();
+            let out = plain.eval_plan(p);
+            let (positions, tris) = (out.positions, out.triangles);
+            let own = reference.measure(&positions, &tris, Some(&uv));
+            let seeds = reference.measure(&positions, &tris, None);
+            let fresh = deviation(&s, &positions, &tris, &options);
+            // The same maxima (the mean is summed in another order).
+            assert_eq!(
+                (seeds.mesh_to_surface, seeds.surface_to_mesh, seeds.diagonal),
+                (fresh.mesh_to_surface, fresh.surface_to_mesh, fresh.diagonal),
+                "rate {rate}"
+            );
+            assert!(
+                (seeds.mean_mesh_to_surface - fresh.mean_mesh_to_surface).abs()
+                    <= 1e-12 * fresh.mean_mesh_to_surface,
+                "rate {rate}"
+            );
+            let scale = own.mesh_to_surface.max(seeds.mesh_to_surface);
+            assert!(
+                (own.mesh_to_surface - seeds.mesh_to_surface).abs() <= 1e-3 * scale,
+                "rate {rate}: {own:?} {seeds:?}"
+            );
+            assert!(
+                (own.mean_mesh_to_surface - seeds.mean_mesh_to_surface).abs()
+                    <= 1e-3 * own.mean_mesh_to_surface,
+                "rate {rate}: {own:?} {seeds:?}"
+            );
+            assert_eq!(own.surface_to_mesh, seeds.surface_to_mesh);
+            assert!(own.hausdorff() > 0.0);
+            // The worst surface sample is that far from the mesh.
+            let d = nearest_triangle(own.worst_surface_point, &positions, &tris);
+            assert!(
+                (d / own.diagonal - own.surface_to_mesh).abs() <= 1e-12,
+                "{d} {own:?}"
+            );
+            // The worst mesh sample lies on a triangle, that far from the surface samples'
+            // projections (no surface sample nearer).
+            let on_mesh = nearest_triangle(own.worst_mesh_point, &positions, &tris);
+            assert!(on_mesh <= 1e-9 * own.diagonal, "{on_mesh}");
+            let nearest_sample = reference
+                .samples
+                .iter()
+                .map(|&q| dot(sub(q, own.worst_mesh_point), sub(q, own.worst_mesh_point)))
+                .fold(f64::INFINITY, f64::min)
+                .sqrt();
+            assert!(
+                nearest_sample >= own.mesh_to_surface * own.diagonal * (1.0 - 1e-9),
+                "{nearest_sample} {own:?}"
+            );
+        }
     }
 }

@@ -26,7 +26,9 @@ pub use check::{chord_errors, tessellate_within_tolerance};
 pub use curves::{
     measure, CurveMeasure, RateCurves, CURVE_POINTS, CURVE_SAMPLES, ISOLINES, ISOLINES_PER_PTEX,
 };
-pub use deviation::{deviation, Deviation, DeviationOptions};
+pub use deviation::{
+    deviation, Deviation, DeviationOptions, DeviationReference, TriangleParameters, SEEDS,
+};
 pub use mesh::{plan, plan_without_uv, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
 pub use pattern::{default_inner, QuadPattern};
 pub use rates::{parse_edge_rates, set_edge_rate, RatePolicy, ScreenCamera};

@@ -3,8 +3,8 @@
 //! - [`RatePolicy::Uniform`]: one rate everywhere (`--tess N` is rate `N − 1`);
 //! - [`RatePolicy::MaxEdgeLength`]: no output edge longer than `L` world units along the
 //!   limit surface;
-//! - [`RatePolicy::Tolerance`]: chordal error — every output edge's midpoint and facet's
-//!   centroid within `E ×` the bounding-box diagonal of the limit surface;
+//! - [`RatePolicy::Tolerance`]: chordal error — every output triangle, measured across along
+//!   its normal, within `E ×` the bounding-box diagonal of the limit surface;
 //! - [`RatePolicy::Screen`]: no edge longer than `P` pixels under a camera's
 //!   world-to-clip matrix;
 //! - [`RatePolicy::Explicit`]: rates given directly (see [`parse_edge_rates`]).
@@ -15,8 +15,8 @@
 //! `subsurf-gpu`'s `GpuRates`; both end in [`RatePolicy::rates_from_measures`]). A chord of
 //! parameter length `h` over a curve with second derivative `p''` deviates from it by about
 //! `|p''| h² / 8`, so the tolerance policy takes
-//! `R = ⌈√(max |p''| / (8 E'))⌉` with `E'` the tolerance in world units over a safety factor
-//! of 2; the length policies take the fastest stretch of the curve (length per unit
+//! `R = ⌈√(max |p''| / (8 E'))⌉` with `E'` the tolerance in world units (no safety factor:
+//! the triangles are checked afterwards, [`super::tessellate_within_tolerance`]); the length policies take the fastest stretch of the curve (length per unit
 //! parameter) over the length allowed, `/√2` for diagonals. A face's interior rate is chosen
 //! the same way from its isolines, and raises its edges to at least `1/GRADING` of it.
 
@@ -171,8 +171,7 @@ impl RatePolicy {
                 |speed, px| (speed / px).ceil().min(f64::from(MAX_RATE)),
                 f64::from(*pixels) / std::f64::consts::SQRT_2,
             ),
-            // Safety factor 2.
-            RatePolicy::Tolerance(e) => (chord_rate, f64::from(*e) * f64::from(diagonal) / 2.0),
+            RatePolicy::Tolerance(e) => (chord_rate, f64::from(*e) * f64::from(diagonal)),
         };
         if curves.num_curves() != measures.len()
             || curves.num_edges != t.num_edges()
