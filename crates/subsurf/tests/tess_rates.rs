@@ -207,3 +207,62 @@ fn bad_rates_and_values_are_typed_errors() {
         );
     }
 }
+
+/// `--tolerance E` spends no more triangles than the coarsest uniform rate (planned on the
+/// same surface) that comes as close to the true limit surface, two-sided: the rates the
+/// curves overestimate (the pawn's and `lefthanded`'s thin rims, `pole64`'s fan) are lowered
+/// where the check measures the triangles well inside the tolerance.
+#[test]
+fn tolerance_spends_no_more_than_the_uniform_rate_as_close() {
+    for (name, e) in [
+        ("catmark_pawn", 3e-3f32),
+        ("catmark_pawn", 1e-3),
+        ("catmark_lefthanded", 1e-3),
+        ("catmark_pole64", 3e-3),
+    ] {
+        let mesh = load_shape(name);
+        let t = Topology::new(&mesh).unwrap();
+        let exact = LimitSurface::<f64>::new(
+            PatchTable::build_real(&t, &isolated(10)).unwrap(),
+            &mesh.positions,
+        );
+        let reference = DeviationReference::new(&exact, &DeviationOptions::default());
+        let (s, chords) = adaptive_surface(
+            &t,
+            &mesh.positions,
+            &RatePolicy::Tolerance(e),
+            "--tolerance",
+            &PatchOptions::default(),
+        )
+        .unwrap();
+        let a = tessellate_adaptive(&s, &chords, "--tolerance", &Cpu).unwrap();
+        let out = &a.tessellation;
+        let reached = reference
+            .measure(&out.positions, &out.triangles, Some(&a.triangle_uv))
+            .hausdorff();
+        let uniform = (1..=32u32)
+            .find_map(|r| {
+                let p =
+                    subsurf::tess::plan(s.table(), &subsurf::tess::EdgeRates::uniform(&t, r), "")
+                        .unwrap();
+                let uv = p.triangle_uv.clone();
+                let u = s.eval_plan(p);
+                let d = reference.measure(&u.positions, &u.triangles, Some(&uv));
+                (d.hausdorff() <= reached).then_some((r, u.triangles.len()))
+            })
+            .expect("a uniform rate as close");
+        eprintln!(
+            "{name} E={e}: {} triangles at {reached:.2e}, uniform rate {} as close: {} triangles",
+            out.triangles.len(),
+            uniform.0,
+            uniform.1
+        );
+        assert!(
+            out.triangles.len() <= uniform.1,
+            "{name} E={e}: {} triangles, uniform rate {} {}",
+            out.triangles.len(),
+            uniform.0,
+            uniform.1
+        );
+    }
+}

@@ -27,7 +27,9 @@
 //! narrower than the triangles (within `2^-s` of a semi-sharp corner), which finer rates
 //! resolve once they pass its width: such a face's rates are doubled, up to 8x those of its
 //! first miss, and then left (no chord error there: the surface is not continuous at that
-//! scale). Each plan's output is evaluated before its check, whose corner positions it gives;
+//! scale). In the first round, faces measured well inside the tolerance have their rates
+//! lowered ([`relax`]): the rate curves overestimate where the surface bends in a direction
+//! no chord of the triangles crosses. Each plan's output is evaluated before its check, whose corner positions it gives;
 //! the last plan's is the tessellation.
 
 use super::mesh::{plan, AdaptivePlan, AdaptiveTessellation, EdgeRates, MAX_RATE};
@@ -389,6 +391,9 @@ pub fn tessellate_within_tolerance(
             }
             raised |= again[f];
         }
+        if only.is_none() {
+            raised |= relax(t, &mut rates, &old, &errors, bound, &mut again);
+        }
         if !raised {
             break;
         }
@@ -405,6 +410,81 @@ pub fn tessellate_within_tolerance(
         edge_rates: p.edge_rates,
     };
     Ok((rates, tessellation, uv))
+}
+
+/// Below this share of the tolerance a face's first measure lowers its rates.
+const SLACK: f64 = 0.5;
+
+/// The share of the tolerance lowered rates aim at.
+const AIM: f64 = 0.8;
+
+/// The first round's lowering: the rate curves see bending along and across each edge from
+/// second differences, which overestimates where the surface bends in a direction no chord
+/// of the triangles crosses (a thin rim: the curves across it are bent, the triangles' chords
+/// along it are not). A face whose triangles are measured within [`SLACK`] of the tolerance
+/// has its interior rate, and every edge whose faces all are such, scaled by
+/// `√(error / (AIM × tolerance))` (chord error falls as the square of the spacing), at least
+/// 1; the faces that miss after it are raised as any miss is. Returns whether a rate changed.
+fn relax(
+    t: &crate::topology::Topology,
+    rates: &mut EdgeRates,
+    old: &[u32],
+    errors: &[f64],
+    bound: f64,
+    again: &mut [bool],
+) -> bool {
+    // Per face its scale (1: kept).
+    let scale: Vec<f64> = errors
+        .iter()
+        .map(|&w| {
+            if w.is_nan() || w >= SLACK * bound {
+                1.0
+            } else {
+                (w.max(0.0) / (AIM * bound)).sqrt()
+            }
+        })
+        .collect();
+    let down = |r: u32, k: f64| ((f64::from(r) * k).ceil() as u32).clamp(1, r);
+    let mut changed = false;
+    for (e, &r) in old.iter().enumerate() {
+        if rates.edges[e] != r {
+            continue; // raised by a miss beside it
+        }
+        let k = t
+            .edge_faces(e)
+            .iter()
+            .map(|&g| scale[g as usize])
+            .fold(0.0f64, f64::max);
+        let lowered = down(r, k);
+        if lowered < r {
+            rates.edges[e] = lowered;
+            changed = true;
+            for &g in t.edge_faces(e) {
+                again[g as usize] = true;
+            }
+        }
+    }
+    for f in 0..t.num_faces() {
+        if scale[f] >= 1.0 || t.face_is_hole[f] {
+            continue;
+        }
+        let inner = if rates.faces[f] > 0 {
+            rates.faces[f]
+        } else {
+            t.face_edges(f)
+                .iter()
+                .map(|&e| old[e as usize])
+                .max()
+                .unwrap_or(1)
+        };
+        let lowered = down(inner, scale[f]);
+        if lowered < inner {
+            rates.faces[f] = lowered;
+            changed = true;
+            again[f] = true;
+        }
+    }
+    changed
 }
 
 /// What [`tessellate_within_tolerance`] gives: the rates used, the tessellation, and per
