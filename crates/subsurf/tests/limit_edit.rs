@@ -79,6 +79,46 @@ fn assert_same<R: Real>(what: &str, a: &PatchTable<R>, b: &PatchTable<R>) {
     );
 }
 
+/// The two tables make the same surface of `mesh`'s positions, bit for bit: the same ptex
+/// faces, patch counts by type, every evaluation (position and derivatives) on a dense grid
+/// of every ptex face, and the tessellation; the table `a` (edited, perhaps locally) with no
+/// more than twice the patches of `b` (a fresh build).
+fn assert_same_surface<R: Real>(what: &str, mesh: &Mesh, a: &PatchTable<R>, b: &PatchTable<R>) {
+    assert_eq!(a.ptex_offsets(), b.ptex_offsets(), "{what}");
+    assert_eq!(a.counts(), b.counts(), "{what}: patch counts");
+    assert_eq!(a.num_live_patches(), b.num_patches(), "{what}");
+    assert!(a.num_patches() <= 2 * b.num_patches(), "{what}: patches");
+    let (sa, sb) = (
+        subsurf::limit::LimitSurface::new(a.clone(), &mesh.positions),
+        subsurf::limit::LimitSurface::new(b.clone(), &mesh.positions),
+    );
+    let bits = |p: &subsurf::limit::LimitPoint<R>| {
+        [p.p, p.du, p.dv].map(|x| x.map(|c| c.to_f64().to_bits()))
+    };
+    const N: usize = 9;
+    for ptex in 0..b.num_ptex_faces() {
+        for i in 0..N {
+            for j in 0..N {
+                let (u, v) = (i as f64 / (N - 1) as f64, (j as f64 + 0.37) / N as f64);
+                let (u, v) = (R::from_f64(u), R::from_f64(v));
+                let (x, y) = (sa.eval_raw(ptex, u, v), sb.eval_raw(ptex, u, v));
+                assert_eq!(x.is_some(), y.is_some(), "{what}: ptex {ptex}");
+                if let (Some(x), Some(y)) = (x, y) {
+                    assert_eq!(bits(&x), bits(&y), "{what}: ptex {ptex} at ({i}, {j})");
+                }
+            }
+        }
+    }
+    let (ta, tb) = (sa.tessellate(4).unwrap(), sb.tessellate(4).unwrap());
+    assert_eq!(ta.quads, tb.quads, "{what}: tessellation");
+    let pbits = |t: &subsurf::limit::Tessellation| {
+        (t.positions.iter().chain(&t.normals))
+            .map(|p| p.map(f32::to_bits))
+            .collect::<Vec<_>>()
+    };
+    assert!(pbits(&ta) == pbits(&tb), "{what}: tessellation");
+}
+
 /// Every array of the two topologies is the same, sharpness compared by its bits.
 fn assert_same_topology(what: &str, a: &Topology, b: &Topology) {
     let bits = |s: &[f32]| s.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -226,7 +266,7 @@ fn random_edits(mesh: &Mesh, t: &Topology, rng: &mut Lcg, nudge: bool) -> Vec<Sh
 #[test]
 fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
     let mut rng = Lcg(0x5eed);
-    let (mut shapes, mut updated, mut rebuilt, mut resumed) = (0, 0, 0, 0);
+    let (mut shapes, mut updated, mut rebuilt, mut resumed, mut local) = (0, 0, 0, 0, 0);
     for name in shape_names() {
         let mesh = load_shape(&name);
         if mesh.creases.is_empty() && mesh.corners.is_empty() {
@@ -242,19 +282,47 @@ fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
             ..Default::default()
         };
         let mut table = PatchTable::build(&topo, &options).unwrap();
+        // Every other shape's changes of structure local whatever their region's size.
+        if shapes % 2 == 0 {
+            table.set_local_edit_share(1.0);
+        }
         let mut current = mesh.clone();
+        let mut spliced = false;
+        let mut built = table.num_points();
         for round in 0..4 {
             let edits = random_edits(&mesh, &topo, &mut rng, round % 2 == 1);
             match table.apply_sharpness(&edits).unwrap() {
                 EditOutcome::Updated => updated += 1,
-                EditOutcome::RebuiltFrom { .. } => resumed += 1,
-                EditOutcome::Rebuilt if round > 0 => rebuilt += 1,
-                _ => {}
+                EditOutcome::RebuiltFrom { .. } => {
+                    resumed += 1;
+                    spliced = false;
+                }
+                EditOutcome::Rebuilt => {
+                    rebuilt += (round > 0) as usize;
+                    spliced = false;
+                }
+                EditOutcome::Local { .. } => {
+                    local += 1;
+                    spliced = true;
+                }
+                EditOutcome::Unchanged => {}
             }
+            // Compacted when it would grow past twice the points of its last build.
+            if !spliced {
+                built = table.num_points();
+            }
+            assert!(table.num_points() <= 2 * built, "{name}: points");
             current = edit_mesh(&current, &edits);
             let t = Topology::new(&current).unwrap();
             let fresh = PatchTable::build(&t, &options).unwrap();
             let what = format!("{name} round {round} {edits:?}");
+            // A table edited locally makes the fresh build's surface (its numbering
+            // differs); any other, the fresh build's arrays.
+            assert_same_surface(&what, &current, &table, &fresh);
+            if spliced {
+                assert!(!table.is_editable(), "{what}");
+                continue;
+            }
             assert_same(&what, &table, &fresh);
             // A table keeps levels from its first edit that changes it.
             if table.is_editable() {
@@ -264,9 +332,11 @@ fn edited_tables_equal_fresh_builds_on_every_creased_shape() {
         }
     }
     assert!(shapes >= 20, "{shapes} creased shapes");
+    eprintln!("{updated} in place, {rebuilt} rebuilt, {resumed} resumed, {local} local");
     assert!(
-        updated >= 10 && rebuilt >= 5 && resumed >= 10,
-        "{updated} edits in place, {rebuilt} rebuilds, {resumed} rebuilt below kept levels"
+        updated >= 10 && rebuilt >= 5 && resumed >= 3 && local >= 10,
+        "{updated} edits in place, {rebuilt} rebuilds, {resumed} rebuilt below kept levels, \
+         {local} local"
     );
 }
 
@@ -297,9 +367,15 @@ fn editable_builds_make_their_first_edit_in_place() {
         assert_same(&format!("{name} editable build"), &editable, &plain);
         let edits = random_edits(&mesh, &topo, &mut rng, true);
         let outcome = editable.apply_sharpness(&edits).unwrap();
-        let fresh =
-            PatchTable::build(&Topology::new(&edit_mesh(&mesh, &edits)).unwrap(), &o).unwrap();
-        assert_same(&format!("{name} {edits:?}"), &editable, &fresh);
+        let edited = edit_mesh(&mesh, &edits);
+        let fresh = PatchTable::build(&Topology::new(&edited).unwrap(), &o).unwrap();
+        let what = format!("{name} {edits:?}");
+        if matches!(outcome, EditOutcome::Local { .. }) {
+            // A change of structure, made locally: the fresh build's surface.
+            assert_same_surface(&what, &edited, &editable, &fresh);
+        } else {
+            assert_same(&what, &editable, &fresh);
+        }
         if outcome == EditOutcome::Updated {
             in_place += 1;
             // The same edit on the plain build rebuilds it.

@@ -145,10 +145,18 @@ pub enum EditOutcome {
     /// change of structure at the base).
     Rebuilt,
     /// The isolation structure changed from `level` down: the levels above it were kept and
-    /// the table rebuilt from it (`super::edit_rebuild`).
+    /// the table rebuilt from it (`super::edit_rebuild`), where the region the edit changes
+    /// is too large to rebuild locally.
     RebuiltFrom {
         /// The first level (from the base) whose faces were decided differently.
         level: u32,
+    },
+    /// The base faces whose patches the edit can change were rebuilt from a sub-mesh around
+    /// them and their patches spliced into the table (`super::edit_local`): the structure
+    /// changed, or the table was edited locally before.
+    Local {
+        /// The base faces whose patches were re-made.
+        faces: u32,
     },
 }
 
@@ -222,22 +230,24 @@ impl<R: Real> PatchTable<R> {
         }
         if let Some(levels) = &self.face_levels {
             // Per-region levels: a fresh build with the same levels (no kept levels).
+            let share = self.local_share;
             *self = PatchTable::build_face_levels(&t, &self.options, levels)?;
+            self.local_share = share;
             return Ok(EditOutcome::Rebuilt);
+        }
+        if self.edit_state.is_none() && self.spliced.is_some() {
+            // Edited locally before: no levels kept, every edit is local.
+            return match self.local_region(&t) {
+                Some(region) => self.splice_local(t, region),
+                None => self.rebuild(t),
+            };
         }
         let t = match self.set_sharpness_incremental(t)? {
             Incremental::Updated => return Ok(EditOutcome::Updated),
             Incremental::Rebuilt(level) => return Ok(EditOutcome::RebuiltFrom { level }),
+            Incremental::Local(t, region) => return self.splice_local(*t, region),
             Incremental::Rebuild(t) => *t,
         };
-        *self = PatchTable::build_within_real(
-            &t,
-            &self.options,
-            Selection::Sparse,
-            Budget::of_available_memory(),
-            true,
-            None,
-        )?;
-        Ok(EditOutcome::Rebuilt)
+        self.rebuild(t)
     }
 }
