@@ -539,7 +539,10 @@ fn local_sequence<R: Real>(name: &str, mesh: &Mesh, rounds: usize, rng: &mut Lcg
             // In place (levels kept, structure kept) or compacted.
             _ => built = table.num_points(),
         }
-        assert!(table.num_points() <= 2 * built, "{name} round {round}: points");
+        assert!(
+            table.num_points() <= 2 * built,
+            "{name} round {round}: points"
+        );
         current = edit_mesh(&current, &edits);
         let fresh = PatchTable::<R>::build_real(&Topology::new(&current).unwrap(), &options);
         let what = format!("{name} round {round} {outcome:?} {edits:?}");
@@ -566,7 +569,10 @@ fn local_edits_make_the_fresh_surface_on_every_creased_shape() {
         local += local_sequence::<f32>(&name, &mesh, 6, &mut rng);
     }
     local += local_sequence::<f64>("car, f64", &load_shape("catmark_car"), 4, &mut rng);
-    assert!(shapes >= 20 && local >= shapes, "{local} local edits on {shapes} shapes");
+    assert!(
+        shapes >= 20 && local >= shapes,
+        "{local} local edits on {shapes} shapes"
+    );
 }
 
 /// On a table that shares its sub-meshes by default (one half of the base faces), an edit

@@ -191,14 +191,12 @@ impl<R: Real> PatchTable<R> {
             isolation_level: self.options.level_for(&t),
             ..self.options
         };
-        let built = PatchTable::<R>::build_within_real(
-            &sub.sub,
-            &options,
-            Selection::Sparse,
-            Budget::of_available_memory(),
-            false,
-            None,
-        );
+        // Only the faces of `A` are walked (decided, refined, made patches).
+        let only: Vec<u32> = (sub.faces.iter().enumerate())
+            .filter(|(_, &f)| region.remake[f as usize])
+            .map(|(m, _)| m as u32)
+            .collect();
+        let built = PatchTable::<R>::build_only(&sub.sub, &options, &only);
         let Ok(s) = built else {
             return self.rebuild(t);
         };

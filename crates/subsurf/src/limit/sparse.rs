@@ -266,6 +266,33 @@ pub fn build_traced<W: Real, T: Send>(
     leaves: &LeafFn<'_, T>,
     trace: Option<&mut Trace>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
+    build_only(
+        base,
+        max_level,
+        face_levels,
+        mask,
+        selection,
+        budget,
+        leaves,
+        trace,
+        None,
+    )
+}
+
+/// [`build_traced`] walking only the base faces `only` (increasing) where given: the other
+/// faces are neither decided nor refined but as the ring of those refined.
+#[allow(clippy::too_many_arguments)]
+pub fn build_only<W: Real, T: Send>(
+    base: &Topology,
+    max_level: usize,
+    face_levels: Option<&[u8]>,
+    mask: &FeatureMask,
+    selection: Selection,
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+    trace: Option<&mut Trace>,
+    only: Option<&[u32]>,
+) -> Result<(Hierarchy<W>, Vec<T>)> {
     if let Some(l) = face_levels {
         if l.len() != base.num_faces() || l.iter().any(|&x| x as usize > max_level) {
             return Err(Error::Internal(format!(
@@ -282,7 +309,9 @@ pub fn build_traced<W: Real, T: Send>(
     let start = Start {
         d: 0,
         level,
-        visited: (0..base.num_faces() as u32).collect(),
+        visited: only
+            .map(<[u32]>::to_vec)
+            .unwrap_or_else(|| (0..base.num_faces() as u32).collect()),
         h: Hierarchy {
             num_vertices: vec![base.num_vertices()],
             stencils: Vec::new(),

@@ -578,6 +578,34 @@ impl<R: Real> PatchTable<R> {
         Self::assemble(base, options, h, patches, trace, face_levels)
     }
 
+    /// The patches of the base faces `only` (increasing) of `base`, the other faces' ptex
+    /// faces left empty (a local crease edit's sub-mesh, [`super::edit_local`]): the faces
+    /// of `only` have the patches a build gives them. `options.isolation_level` applies.
+    pub(crate) fn build_only(
+        base: &Topology,
+        options: &PatchOptions,
+        only: &[u32],
+    ) -> Result<PatchTable<R>> {
+        let level = options.isolation_level as usize;
+        let leaf_options = LeafOptions::new(options, level);
+        let (h, patches) = sparse::build_only(
+            base,
+            level,
+            None,
+            &FeatureMask::new(options.single_crease),
+            Selection::Sparse,
+            &mut Budget::of_available_memory(),
+            &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
+            None,
+            Some(only),
+        )?;
+        let mut walked = vec![false; base.num_faces()];
+        for &f in only {
+            walked[f as usize] = true;
+        }
+        Self::assemble_only(base, options, h, patches, None, None, Some(&walked))
+    }
+
     /// The table of `base` from its levels `h` and their leaves' patches: the walk of every
     /// base face's quadtree, its patches placed in quadtree order; `trace` kept for edits.
     pub(crate) fn assemble(
@@ -587,6 +615,19 @@ impl<R: Real> PatchTable<R> {
         patches: Vec<LevelPatches<R>>,
         trace: Option<sparse::Trace>,
         face_levels: Option<Vec<u8>>,
+    ) -> Result<PatchTable<R>> {
+        Self::assemble_only(base, options, h, patches, trace, face_levels, None)
+    }
+
+    /// [`PatchTable::assemble`] of the base faces `walked` only, where given.
+    fn assemble_only(
+        base: &Topology,
+        options: &PatchOptions,
+        h: sparse::Hierarchy<R>,
+        patches: Vec<LevelPatches<R>>,
+        trace: Option<sparse::Trace>,
+        face_levels: Option<Vec<u8>>,
+        walked: Option<&[bool]>,
     ) -> Result<PatchTable<R>> {
         let mut level_offsets = vec![0u32];
         for &nv in &h.num_vertices {
@@ -621,7 +662,10 @@ impl<R: Real> PatchTable<R> {
                 };
                 for f in c * chunk..((c + 1) * chunk).min(nf) {
                     let (n, ptex) = (base.face_size(f), ptex_offsets[f]);
-                    if n == 4 {
+                    if walked.is_some_and(|w| !w[f]) {
+                        b.roots
+                            .extend(std::iter::repeat_n(EMPTY, if n == 4 { 1 } else { n }));
+                    } else if n == 4 {
                         let r = b.visit(0, f, ptex, 0, 0, false)?;
                         b.roots.push(r);
                     } else if base.face_is_hole[f] {
