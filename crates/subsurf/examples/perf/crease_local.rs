@@ -22,6 +22,9 @@ use subsurf::mesh::Mesh;
 use subsurf::surface::{refine_mesh, Cpu};
 use subsurf::Topology;
 
+/// The edits of the `i`-th edit of a case.
+type EditAt<'a> = dyn Fn(usize) -> Vec<SharpnessEdit> + 'a;
+
 /// `mesh` with the edits' crease values.
 fn edited(mesh: &Mesh, edits: &[SharpnessEdit]) -> Mesh {
     let mut m = mesh.clone();
@@ -82,7 +85,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }]
     };
     let all = |s: f32| SharpnessEdit::creases(&mesh.creases, Some(s));
-    let cases: [(&str, Box<dyn Fn(usize) -> Vec<SharpnessEdit>>); 2] = [
+    let cases: [(&str, Box<EditAt>); 2] = [
         (
             "one crease 0 <-> own",
             Box::new(|i| one(if i % 2 == 0 { 0.0 } else { c.sharpness })),
