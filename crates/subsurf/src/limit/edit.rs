@@ -11,9 +11,12 @@
 //! [`crate::SHARPNESS_INFINITE`] are clamped, as [`crate::Topology::new`] clamps the tags).
 //!
 //! The table is then updated in place where the edit keeps its isolation structure
-//! ([`super::edit_region`]); where the faces of a level are decided differently, it is
-//! rebuilt from that level down, the levels above kept ([`super::edit_rebuild`]), and in full
-//! where that level is the base. Edits that change nothing (the same values, or edges and
+//! ([`super::edit_region`]); where the faces of a level are decided differently, the base
+//! faces whose patches the edit can change are rebuilt from a sub-mesh around them and
+//! spliced in ([`super::edit_local`]: the same surface, bit for bit, numbered differently),
+//! unless that region is too large: it is then rebuilt from that level down, the levels above
+//! kept ([`super::edit_rebuild`]), and in full where that level is the base. A table edited
+//! locally keeps no levels: its later edits are local too. Edits that change nothing (the same values, or edges and
 //! vertices that boundary and non-manifold sharpening keep infinitely sharp) leave it
 //! untouched.
 
@@ -216,7 +219,9 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
-    /// isolation structure is kept (`super::edit_region`), rebuilt from the first level
+    /// isolation structure is kept (`super::edit_region`), locally where it changes over a
+    /// region whose sub-mesh holds at most half of the base faces (`super::edit_local`;
+    /// every edit of a table edited locally), rebuilt from the first level
     /// whose faces are decided differently where that is below the base (the levels above
     /// kept, `super::edit_rebuild`), else rebuilt. The first edit of a table that does not
     /// keep its levels ([`PatchTable::is_editable`]) rebuilds it, keeping them for the next
