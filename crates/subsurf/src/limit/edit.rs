@@ -1,6 +1,6 @@
 //! Crease edits on a built [`PatchTable`]: new sharpness for edges and vertices of the base
-//! mesh, the table made equal, bit for bit, to a fresh [`PatchTable::build`] of the edited
-//! mesh.
+//! mesh, the table made to give the surface of a fresh [`PatchTable::build`] of the edited
+//! mesh, bit for bit (and its arrays, unless the edit was made locally).
 //!
 //! Sharpness enters a table in three places: which faces are isolated (a semi-sharp edge is
 //! an irregular feature unless it makes a single-crease patch), the stored sharpness of the
@@ -209,8 +209,9 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
-    /// same element winning) and updates the table to equal a fresh build of the edited mesh
-    /// (see the module documentation). Returns whether the table changed.
+    /// same element winning) and updates the table to make the surface of a fresh build of the
+    /// edited mesh, bit for bit (see the module documentation). Returns whether the table
+    /// changed.
     ///
     /// Bad edits are refused before any work with [`MeshError::BadSharpnessEdit`], naming
     /// the edit and the value or element; the table is then unchanged.
