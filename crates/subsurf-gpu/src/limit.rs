@@ -280,6 +280,14 @@ impl GpuLimit {
         let num_points = table.num_points();
         let points = VertexBuffer::zeroed(ctx, num_points, 3)?;
         let lp = &table.local_points();
+        if table.local_segments().iter().filter(|&&r| r > 0).count() > 1 {
+            // Rows that read local points of earlier segments (a table edited locally).
+            return Err(GpuError::BufferMismatch(
+                "the table was edited locally (local points in segments, \
+                 PatchTable::local_segments): upload a fresh build of the edited mesh"
+                    .into(),
+            ));
+        }
         let local = if lp.num_rows() > 0 {
             let t = StencilTable::new(lp.offsets(), lp.indices(), lp.weights())?;
             // Relative rows, as `PatchTable::points` (long rows at high-valence vertices).

@@ -80,4 +80,25 @@ fn edited_upload_evaluates_as_a_fresh_upload() {
         gpu.apply_edit(&ctx, &table),
         Err(GpuError::BufferMismatch(_))
     ));
+
+    // One crease smoothed: a change of structure made locally (the patches of the faces
+    // around it spliced in, their points in segments of local points): refused by the
+    // upload's edit and by a fresh upload (its segments are not computed on the GPU yet).
+    let c = mesh.creases[0];
+    let one = [SharpnessEdit::Edge {
+        v0: c.v0,
+        v1: c.v1,
+        sharpness: 0.0,
+    }];
+    let outcome = table.apply_sharpness(&one).unwrap();
+    assert!(matches!(outcome, EditOutcome::Local { .. }), "{outcome:?}");
+    assert!(table.local_segments().len() > 2);
+    assert!(matches!(
+        gpu.apply_edit(&ctx, &table),
+        Err(GpuError::BufferMismatch(_))
+    ));
+    assert!(matches!(
+        GpuLimit::new(&ctx, &table),
+        Err(GpuError::BufferMismatch(_))
+    ));
 }

@@ -312,10 +312,11 @@ impl PyLimit {
     /// New crease sharpness for the base edges `creases` (vertex pairs, `crease_sharpness` one
     /// value each) and corner sharpness for the vertices `corners` (`corner_sharpness`), later
     /// entries of the same element winning: the patch table is updated in place where its
-    /// isolation structure is kept and rebuilt otherwise (from the first level whose faces
-    /// are decided differently, the levels above kept), equal either way to the table of
-    /// the edited mesh, and the points are made again from the current control points.
-    /// Returns `"unchanged"`, `"updated"` or `"rebuilt"`. Every edit is checked first
+    /// isolation structure is kept, rebuilt locally where it changes over a bounded region
+    /// (`"local"`) and rebuilt otherwise (from the first level whose faces are decided
+    /// differently, the levels above kept), its surface either way that of the edited mesh,
+    /// and the points are made again from the current control points.
+    /// Returns `"unchanged"`, `"updated"`, `"local"` or `"rebuilt"`. Every edit is checked first
     /// (`MeshError` naming the edit, `.edit`); Loop meshes are refused.
     fn set_sharpness(
         &self,
@@ -371,6 +372,7 @@ impl PyLimit {
             Ok(EditOutcome::Unchanged) => Ok("unchanged"),
             Ok(EditOutcome::Updated) => Ok("updated"),
             Ok(EditOutcome::Rebuilt | EditOutcome::RebuiltFrom { .. }) => Ok("rebuilt"),
+            Ok(EditOutcome::Local { .. }) => Ok("local"),
             Err(Some(e)) => Err(lib_error(py, e, None)),
             Err(None) => Err(poisoned(())),
         }

@@ -478,10 +478,11 @@ class LimitSurface:
         one value for all, or one (c, 3) array; ``corners``: (c,) vertices with
         ``corner_sharpness`` ((c,) or one value), or one (c, 2) array; 0 smooth, 10 or more
         infinitely sharp), later entries of the same element winning. The patch table is updated in place where
-        its isolation structure is kept and rebuilt otherwise (from the first isolation level
+        its isolation structure is kept, rebuilt locally (the faces around the edit) where it
+        changes over a bounded region, and rebuilt otherwise (from the first isolation level
         whose faces change, the levels above kept); either way the surface is,
         bit for bit, that of a ``LimitSurface`` of the edited mesh at the current control
-        points. Returns ``"unchanged"``, ``"updated"`` or ``"rebuilt"``.
+        points. Returns ``"unchanged"``, ``"updated"``, ``"local"`` or ``"rebuilt"``.
 
         Every edit is checked before any work: an edge that is not in the mesh, a vertex out
         of range or a negative or NaN sharpness raises ``MeshError`` with ``.edit`` (its

@@ -1,6 +1,6 @@
 //! Crease edits on a built [`PatchTable`]: new sharpness for edges and vertices of the base
-//! mesh, the table made equal, bit for bit, to a fresh [`PatchTable::build`] of the edited
-//! mesh.
+//! mesh, the table made to give the surface of a fresh [`PatchTable::build`] of the edited
+//! mesh, bit for bit (and its arrays, unless the edit was made locally).
 //!
 //! Sharpness enters a table in three places: which faces are isolated (a semi-sharp edge is
 //! an irregular feature unless it makes a single-crease patch), the stored sharpness of the
@@ -11,9 +11,12 @@
 //! [`crate::SHARPNESS_INFINITE`] are clamped, as [`crate::Topology::new`] clamps the tags).
 //!
 //! The table is then updated in place where the edit keeps its isolation structure
-//! ([`super::edit_region`]); where the faces of a level are decided differently, it is
-//! rebuilt from that level down, the levels above kept ([`super::edit_rebuild`]), and in full
-//! where that level is the base. Edits that change nothing (the same values, or edges and
+//! ([`super::edit_region`]); where the faces of a level are decided differently, the base
+//! faces whose patches the edit can change are rebuilt from a sub-mesh around them and
+//! spliced in ([`super::edit_local`]: the same surface, bit for bit, numbered differently),
+//! unless that region is too large: it is then rebuilt from that level down, the levels above
+//! kept ([`super::edit_rebuild`]), and in full where that level is the base. A table edited
+//! locally keeps no levels: its later edits are local too. Edits that change nothing (the same values, or edges and
 //! vertices that boundary and non-manifold sharpening keep infinitely sharp) leave it
 //! untouched.
 
@@ -145,10 +148,18 @@ pub enum EditOutcome {
     /// change of structure at the base).
     Rebuilt,
     /// The isolation structure changed from `level` down: the levels above it were kept and
-    /// the table rebuilt from it (`super::edit_rebuild`).
+    /// the table rebuilt from it (`super::edit_rebuild`), where the region the edit changes
+    /// is too large to rebuild locally.
     RebuiltFrom {
         /// The first level (from the base) whose faces were decided differently.
         level: u32,
+    },
+    /// The base faces whose patches the edit can change were rebuilt from a sub-mesh around
+    /// them and their patches spliced into the table (`super::edit_local`): the structure
+    /// changed, or the table was edited locally before.
+    Local {
+        /// The base faces whose patches were re-made.
+        faces: u32,
     },
 }
 
@@ -198,8 +209,9 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// Sets the sharpness of base edges and vertices (any number at once, later edits of the
-    /// same element winning) and updates the table to equal a fresh build of the edited mesh
-    /// (see the module documentation). Returns whether the table changed.
+    /// same element winning) and updates the table to make the surface of a fresh build of the
+    /// edited mesh, bit for bit (see the module documentation). Returns whether the table
+    /// changed.
     ///
     /// Bad edits are refused before any work with [`MeshError::BadSharpnessEdit`], naming
     /// the edit and the value or element; the table is then unchanged.
@@ -208,7 +220,9 @@ impl<R: Real> PatchTable<R> {
     }
 
     /// [`PatchTable::set_sharpness`], saying how the table was updated: in place where the
-    /// isolation structure is kept (`super::edit_region`), rebuilt from the first level
+    /// isolation structure is kept (`super::edit_region`), locally where it changes over a
+    /// region whose sub-mesh holds at most half of the base faces (`super::edit_local`;
+    /// every edit of a table edited locally), rebuilt from the first level
     /// whose faces are decided differently where that is below the base (the levels above
     /// kept, `super::edit_rebuild`), else rebuilt. The first edit of a table that does not
     /// keep its levels ([`PatchTable::is_editable`]) rebuilds it, keeping them for the next
@@ -222,22 +236,24 @@ impl<R: Real> PatchTable<R> {
         }
         if let Some(levels) = &self.face_levels {
             // Per-region levels: a fresh build with the same levels (no kept levels).
+            let share = self.local_share;
             *self = PatchTable::build_face_levels(&t, &self.options, levels)?;
+            self.local_share = share;
             return Ok(EditOutcome::Rebuilt);
+        }
+        if self.edit_state.is_none() && self.spliced.is_some() {
+            // Edited locally before: no levels kept, every edit is local.
+            return match self.local_region(&t) {
+                Some(region) => self.splice_local(t, region),
+                None => self.rebuild(t),
+            };
         }
         let t = match self.set_sharpness_incremental(t)? {
             Incremental::Updated => return Ok(EditOutcome::Updated),
             Incremental::Rebuilt(level) => return Ok(EditOutcome::RebuiltFrom { level }),
+            Incremental::Local(t, region) => return self.splice_local(*t, region),
             Incremental::Rebuild(t) => *t,
         };
-        *self = PatchTable::build_within_real(
-            &t,
-            &self.options,
-            Selection::Sparse,
-            Budget::of_available_memory(),
-            true,
-            None,
-        )?;
-        Ok(EditOutcome::Rebuilt)
+        self.rebuild(t)
     }
 }

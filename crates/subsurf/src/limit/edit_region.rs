@@ -117,6 +117,9 @@ pub(crate) enum Incremental {
     Rebuilt(u32),
     /// To be rebuilt in full from this base (the table is unchanged).
     Rebuild(Box<Topology>),
+    /// The structure changed: to be made locally over the region ([`super::edit_local`]; the
+    /// table is unchanged but for its kept levels, dropped).
+    Local(Box<Topology>, super::edit_local::Region),
 }
 
 /// The rows of one step formed again: vertex rows, edge rows (increasing).
@@ -270,11 +273,19 @@ impl<R: Real> PatchTable<R> {
             }
             // The levels above the change are kept ([`super::edit_rebuild`]); an error
             // leaves the table as it was (its levels dropped), as one of the decisions does.
+            // A change of structure is made locally where its region is bounded.
+            Some(_) if self.local_region_from(&old_base, &self.base).is_some() => {
+                let region = self.local_region_from(&old_base, &self.base);
+                let t = std::mem::replace(&mut self.base, old_base);
+                Ok(Incremental::Local(Box::new(t), region.expect("bounded")))
+            }
             Some(d) if d > 0 => {
                 let rules = (&mask, &leaf_options);
                 match self.rebuilt_from(d, st, rows, params, rules) {
                     Ok(table) => {
+                        let share = self.local_share;
                         *self = table;
+                        self.local_share = share;
                         Ok(Incremental::Rebuilt(d as u32))
                     }
                     Err(e) => {

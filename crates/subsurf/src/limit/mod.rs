@@ -75,6 +75,7 @@
 pub(crate) mod budget;
 pub(crate) mod curve_eval;
 pub(crate) mod edit;
+pub(crate) mod edit_local;
 pub(crate) mod edit_rebuild;
 pub(crate) mod edit_region;
 pub(crate) mod endcap;

@@ -26,9 +26,19 @@ pub fn apply_relative<'s, R: Real, const N: usize>(
     out: &mut [[R; N]],
     x: impl Fn(usize) -> &'s [R; N] + Sync,
 ) {
+    apply_relative_from(t, 0, out, x);
+}
+
+/// [`apply_relative`] of the rows `first..first + out.len()` of `t`.
+pub fn apply_relative_from<'s, R: Real, const N: usize>(
+    t: &StencilTable<R>,
+    first: usize,
+    out: &mut [[R; N]],
+    x: impl Fn(usize) -> &'s [R; N] + Sync,
+) {
     out.par_chunks_mut(CHUNK).enumerate().for_each(|(c, o)| {
         for (i, y) in o.iter_mut().enumerate() {
-            let r = c * CHUNK + i;
+            let r = first + c * CHUNK + i;
             let (lo, hi) = (t.offsets[r] as usize, t.offsets[r + 1] as usize);
             *y = row(&t.indices[lo..hi], &t.weights[lo..hi], &x);
         }

@@ -266,6 +266,33 @@ pub fn build_traced<W: Real, T: Send>(
     leaves: &LeafFn<'_, T>,
     trace: Option<&mut Trace>,
 ) -> Result<(Hierarchy<W>, Vec<T>)> {
+    build_only(
+        base,
+        max_level,
+        face_levels,
+        mask,
+        selection,
+        budget,
+        leaves,
+        trace,
+        None,
+    )
+}
+
+/// [`build_traced`] walking only the base faces `only` (increasing) where given: the other
+/// faces are neither decided nor refined but as the ring of those refined.
+#[allow(clippy::too_many_arguments)]
+pub fn build_only<W: Real, T: Send>(
+    base: &Topology,
+    max_level: usize,
+    face_levels: Option<&[u8]>,
+    mask: &FeatureMask,
+    selection: Selection,
+    budget: &mut Budget,
+    leaves: &LeafFn<'_, T>,
+    trace: Option<&mut Trace>,
+    only: Option<&[u32]>,
+) -> Result<(Hierarchy<W>, Vec<T>)> {
     if let Some(l) = face_levels {
         if l.len() != base.num_faces() || l.iter().any(|&x| x as usize > max_level) {
             return Err(Error::Internal(format!(
@@ -282,7 +309,9 @@ pub fn build_traced<W: Real, T: Send>(
     let start = Start {
         d: 0,
         level,
-        visited: (0..base.num_faces() as u32).collect(),
+        visited: only
+            .map(<[u32]>::to_vec)
+            .unwrap_or_else(|| (0..base.num_faces() as u32).collect()),
         h: Hierarchy {
             num_vertices: vec![base.num_vertices()],
             stencils: Vec::new(),
@@ -557,134 +586,30 @@ impl Step {
                 ),
             };
         }
-        let faces: Vec<u32> = (0..s.num_faces() as u32)
-            .filter(|&f| keep[f as usize])
-            .collect();
-        let mut fmap = vec![NONE; s.num_faces()];
-        for (m, &f) in faces.iter().enumerate() {
-            fmap[f as usize] = m as u32;
-        }
-        let (mut vmap, mut emap) = (vec![NONE; s.num_vertices()], vec![NONE; s.num_edges()]);
-        // Capacities: about one vertex and two edges per quad, each edge in two faces.
-        let nc: usize = faces.iter().map(|&f| s.face_size(f as usize)).sum();
-        let (mut verts, mut edges) = (Vec::with_capacity(nc / 2), Vec::with_capacity(nc));
-        let mut face_offsets = Vec::with_capacity(faces.len() + 1);
-        let (mut face_verts, mut face_edges) = (Vec::with_capacity(nc), Vec::with_capacity(nc));
-        face_offsets.push(0u32);
-        let take = |map: &mut [u32], list: &mut Vec<u32>, x: u32| -> u32 {
-            if map[x as usize] == NONE {
-                map[x as usize] = list.len() as u32;
-                list.push(x);
-            }
-            map[x as usize]
-        };
-        for &f in &faces {
-            let r = s.face_offsets[f as usize] as usize..s.face_offsets[f as usize + 1] as usize;
-            for c in r {
-                face_verts.push(take(&mut vmap, &mut verts, s.face_verts[c]));
-                face_edges.push(take(&mut emap, &mut edges, s.face_edges[c]));
-            }
-            face_offsets.push(face_verts.len() as u32);
-        }
-        // Every relation is the level's, restricted to the kept faces: elements whose faces
-        // are all kept keep their exact rings (order included).
-        let mut edge_face_offsets = Vec::with_capacity(edges.len() + 1);
-        edge_face_offsets.push(0u32);
-        let (mut edge_faces, mut edge_face_local) =
-            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
-        for &e in &edges {
-            for (&f, &l) in s
-                .edge_faces(e as usize)
-                .iter()
-                .zip(s.edge_faces_local(e as usize))
-            {
-                if fmap[f as usize] != NONE {
-                    edge_faces.push(fmap[f as usize]);
-                    edge_face_local.push(l);
-                }
-            }
-            edge_face_offsets.push(edge_faces.len() as u32);
-        }
-        let mut vert_face_offsets = Vec::with_capacity(verts.len() + 1);
-        vert_face_offsets.push(0u32);
-        let (mut vert_faces, mut vert_face_local) =
-            (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
-        let mut vert_edge_offsets = Vec::with_capacity(verts.len() + 1);
-        vert_edge_offsets.push(0u32);
-        let mut vert_edges = Vec::with_capacity(2 * edges.len() + 8);
-        for &v in &verts {
-            let v = v as usize;
-            for (&f, &l) in s.vertex_faces(v).iter().zip(s.vertex_faces_local(v)) {
-                if fmap[f as usize] != NONE {
-                    vert_faces.push(fmap[f as usize]);
-                    vert_face_local.push(l);
-                }
-            }
-            vert_face_offsets.push(vert_faces.len() as u32);
-            vert_edges.extend(
-                s.vertex_edges(v)
-                    .iter()
-                    .filter(|&&e| emap[e as usize] != NONE)
-                    .map(|&e| emap[e as usize]),
-            );
-            vert_edge_offsets.push(vert_edges.len() as u32);
-        }
-        let mut t = Topology {
-            options: s.options,
-            num_vertices: verts.len(),
-            face_offsets,
-            face_verts,
-            face_edges,
-            edge_verts: edges
-                .iter()
-                .map(|&e| s.edge_verts[e as usize].map(|v| vmap[v as usize]))
-                .collect(),
-            edge_face_offsets,
-            edge_faces,
-            edge_face_local,
-            vert_face_offsets,
-            vert_faces,
-            vert_face_local,
-            vert_edge_offsets,
-            vert_edges,
-            edge_sharpness: edges
-                .iter()
-                .map(|&e| s.edge_sharpness[e as usize])
-                .collect(),
-            vert_sharpness: verts
-                .iter()
-                .map(|&v| s.vert_sharpness[v as usize])
-                .collect(),
-            face_is_hole: faces.iter().map(|&f| s.face_is_hole[f as usize]).collect(),
-            edge_tags: edges.iter().map(|&e| s.edge_tags[e as usize]).collect(),
-            vert_tags: verts.iter().map(|&v| s.vert_tags[v as usize]).collect(),
-            vert_rule: verts.iter().map(|&v| s.vert_rule[v as usize]).collect(),
-        };
-        let mut edge_ok = vec![false; edges.len()];
-        for (e, &se) in edges.iter().enumerate() {
-            let se = se as usize;
-            if t.edge_faces(e).len() == s.edge_faces(se).len() {
-                edge_ok[e] = lv.edge_ok[se];
-            } else {
-                let mut tag = (t.edge_tags[e] & tags::E_NON_MANIFOLD) | tags::E_INF_SHARP;
-                if t.edge_faces(e).len() < 2 {
-                    tag |= tags::E_BOUNDARY;
-                }
-                t.edge_tags[e] = tag;
-                t.edge_sharpness[e] = SHARPNESS_INFINITE;
+        let r = restrict(s, keep);
+        let t = &r.sub;
+        let mut edge_ok = vec![false; r.edges.len()];
+        for (e, &se) in r.edges.iter().enumerate() {
+            if t.edge_faces(e).len() == s.edge_faces(se as usize).len() {
+                edge_ok[e] = lv.edge_ok[se as usize];
             }
         }
-        let mut sound = vec![false; verts.len()];
-        let mut exact = vec![false; verts.len()];
-        for (v, &sv) in verts.iter().enumerate() {
+        let mut sound = vec![false; r.verts.len()];
+        let mut exact = vec![false; r.verts.len()];
+        for (v, &sv) in r.verts.iter().enumerate() {
             let sv = sv as usize;
             exact[v] = lv.exact[sv];
             if t.vertex_faces(v).len() == s.vertex_faces(sv).len() {
                 sound[v] = lv.sound[sv];
-            } else {
-                border_vertex(&mut t, v);
             }
         }
+        let Restricted {
+            sub: t,
+            faces,
+            verts,
+            in_sub,
+            ..
+        } = r;
         Step {
             sub: t,
             faces,
@@ -692,7 +617,7 @@ impl Step {
             sound,
             edge_ok,
             exact,
-            in_sub: (vmap, emap),
+            in_sub,
         }
     }
 
@@ -728,6 +653,154 @@ impl Step {
             c.exact[nv + nf + e] =
                 self.edge_ok[e] && p.edge_faces(e).iter().all(|&f| fexact[f as usize]);
         }
+    }
+}
+
+/// The faces `keep` of `s` as a mesh of their own ([`restrict`]).
+pub(crate) struct Restricted {
+    /// The sub-mesh: the level's relations restricted to the kept faces (the rings of
+    /// complete elements in the level's order), its border an infinitely sharp boundary.
+    pub sub: Topology,
+    /// Sub-mesh face → level face.
+    pub faces: Vec<u32>,
+    /// Sub-mesh vertex → level vertex.
+    pub verts: Vec<u32>,
+    /// Sub-mesh edge → level edge.
+    pub edges: Vec<u32>,
+    /// Level vertex → sub-mesh vertex and level edge → sub-mesh edge, [`NONE`] outside.
+    pub in_sub: (Vec<u32>, Vec<u32>),
+}
+
+/// The sub-mesh of the faces `keep` of `s`, with the level's sharpness, tags, rules and
+/// holes on every element whose faces are all kept, and the border made an infinitely sharp
+/// boundary (its edges) of infinitely sharp non-manifold corners (its vertices,
+/// [`border_vertex`]).
+pub(crate) fn restrict(s: &Topology, keep: &[bool]) -> Restricted {
+    let faces: Vec<u32> = (0..s.num_faces() as u32)
+        .filter(|&f| keep[f as usize])
+        .collect();
+    let mut fmap = vec![NONE; s.num_faces()];
+    for (m, &f) in faces.iter().enumerate() {
+        fmap[f as usize] = m as u32;
+    }
+    let (mut vmap, mut emap) = (vec![NONE; s.num_vertices()], vec![NONE; s.num_edges()]);
+    // Capacities: about one vertex and two edges per quad, each edge in two faces.
+    let nc: usize = faces.iter().map(|&f| s.face_size(f as usize)).sum();
+    let (mut verts, mut edges) = (Vec::with_capacity(nc / 2), Vec::with_capacity(nc));
+    let mut face_offsets = Vec::with_capacity(faces.len() + 1);
+    let (mut face_verts, mut face_edges) = (Vec::with_capacity(nc), Vec::with_capacity(nc));
+    face_offsets.push(0u32);
+    let take = |map: &mut [u32], list: &mut Vec<u32>, x: u32| -> u32 {
+        if map[x as usize] == NONE {
+            map[x as usize] = list.len() as u32;
+            list.push(x);
+        }
+        map[x as usize]
+    };
+    for &f in &faces {
+        let r = s.face_offsets[f as usize] as usize..s.face_offsets[f as usize + 1] as usize;
+        for c in r {
+            face_verts.push(take(&mut vmap, &mut verts, s.face_verts[c]));
+            face_edges.push(take(&mut emap, &mut edges, s.face_edges[c]));
+        }
+        face_offsets.push(face_verts.len() as u32);
+    }
+    // Every relation is the level's, restricted to the kept faces: elements whose faces
+    // are all kept keep their exact rings (order included).
+    let mut edge_face_offsets = Vec::with_capacity(edges.len() + 1);
+    edge_face_offsets.push(0u32);
+    let (mut edge_faces, mut edge_face_local) =
+        (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
+    for &e in &edges {
+        for (&f, &l) in s
+            .edge_faces(e as usize)
+            .iter()
+            .zip(s.edge_faces_local(e as usize))
+        {
+            if fmap[f as usize] != NONE {
+                edge_faces.push(fmap[f as usize]);
+                edge_face_local.push(l);
+            }
+        }
+        edge_face_offsets.push(edge_faces.len() as u32);
+    }
+    let mut vert_face_offsets = Vec::with_capacity(verts.len() + 1);
+    vert_face_offsets.push(0u32);
+    let (mut vert_faces, mut vert_face_local) =
+        (Vec::with_capacity(nc + 8), Vec::with_capacity(nc + 8));
+    let mut vert_edge_offsets = Vec::with_capacity(verts.len() + 1);
+    vert_edge_offsets.push(0u32);
+    let mut vert_edges = Vec::with_capacity(2 * edges.len() + 8);
+    for &v in &verts {
+        let v = v as usize;
+        for (&f, &l) in s.vertex_faces(v).iter().zip(s.vertex_faces_local(v)) {
+            if fmap[f as usize] != NONE {
+                vert_faces.push(fmap[f as usize]);
+                vert_face_local.push(l);
+            }
+        }
+        vert_face_offsets.push(vert_faces.len() as u32);
+        vert_edges.extend(
+            s.vertex_edges(v)
+                .iter()
+                .filter(|&&e| emap[e as usize] != NONE)
+                .map(|&e| emap[e as usize]),
+        );
+        vert_edge_offsets.push(vert_edges.len() as u32);
+    }
+    let mut t = Topology {
+        options: s.options,
+        num_vertices: verts.len(),
+        face_offsets,
+        face_verts,
+        face_edges,
+        edge_verts: edges
+            .iter()
+            .map(|&e| s.edge_verts[e as usize].map(|v| vmap[v as usize]))
+            .collect(),
+        edge_face_offsets,
+        edge_faces,
+        edge_face_local,
+        vert_face_offsets,
+        vert_faces,
+        vert_face_local,
+        vert_edge_offsets,
+        vert_edges,
+        edge_sharpness: edges
+            .iter()
+            .map(|&e| s.edge_sharpness[e as usize])
+            .collect(),
+        vert_sharpness: verts
+            .iter()
+            .map(|&v| s.vert_sharpness[v as usize])
+            .collect(),
+        face_is_hole: faces.iter().map(|&f| s.face_is_hole[f as usize]).collect(),
+        edge_tags: edges.iter().map(|&e| s.edge_tags[e as usize]).collect(),
+        vert_tags: verts.iter().map(|&v| s.vert_tags[v as usize]).collect(),
+        vert_rule: verts.iter().map(|&v| s.vert_rule[v as usize]).collect(),
+    };
+    for (e, &se) in edges.iter().enumerate() {
+        let se = se as usize;
+        if t.edge_faces(e).len() != s.edge_faces(se).len() {
+            let mut tag = (t.edge_tags[e] & tags::E_NON_MANIFOLD) | tags::E_INF_SHARP;
+            if t.edge_faces(e).len() < 2 {
+                tag |= tags::E_BOUNDARY;
+            }
+            t.edge_tags[e] = tag;
+            t.edge_sharpness[e] = SHARPNESS_INFINITE;
+        }
+    }
+    for (v, &sv) in verts.iter().enumerate() {
+        if t.vertex_faces(v).len() != s.vertex_faces(sv as usize).len() {
+            border_vertex(&mut t, v);
+        }
+    }
+    Restricted {
+        sub: t,
+        faces,
+        verts,
+        edges,
+        in_sub: (vmap, emap),
     }
 }
 

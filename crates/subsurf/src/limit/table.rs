@@ -157,8 +157,20 @@ pub struct PatchTable<R = f32> {
     /// Offsets of each level's vertices in the flat point array (one more than the number of
     /// levels, which stops early where nothing is left to isolate).
     pub(crate) level_offsets: Vec<u32>,
-    /// End-cap points as stencils over the level vertices (flat indices).
+    /// End-cap points as stencils over the level vertices (flat indices); after a local
+    /// crease edit ([`super::edit_local`]) also the refined points of the regions it rebuilt,
+    /// whose rows read earlier local points: `local_segments` orders them.
     pub(crate) local_points: StencilTable<R>,
+    /// Row offsets of the local points' segments: the rows of a segment read the level
+    /// vertices and the local points of the segments before it only (`[0, rows]` after a
+    /// build).
+    pub(crate) local_segments: Vec<u32>,
+    /// What local crease edits left in the table ([`super::edit_local`]); `None` after a
+    /// build.
+    pub(crate) spliced: Option<Box<super::edit_local::Spliced>>,
+    /// The largest share of the base faces a local crease edit's sub-mesh may hold
+    /// ([`super::edit_local`]; default one half).
+    pub(crate) local_share: f32,
     /// [`PatchType`] per patch.
     pub(crate) kinds: Vec<u8>,
     /// `P + 1` offsets into `cvs`.
@@ -215,9 +227,19 @@ impl<R> PatchTable<R> {
         &self.level_offsets
     }
 
-    /// End-cap points as stencils over the level vertices (flat indices).
+    /// End-cap points as stencils over the level vertices (flat indices); after a local
+    /// crease edit, also the refined points of the regions it rebuilt, which read earlier
+    /// local points ([`PatchTable::local_segments`]).
     pub fn local_points(&self) -> &StencilTable<R> {
         &self.local_points
+    }
+
+    /// Row offsets of the segments of [`PatchTable::local_points`]: the rows of a segment
+    /// read the level vertices and the local points of the segments before it only, so a
+    /// segment is applied once the ones before it are (one segment after a build; a local
+    /// crease edit appends a few, [`PatchTable::apply_sharpness`]).
+    pub fn local_segments(&self) -> &[u32] {
+        &self.local_segments
     }
 
     /// [`PatchType`] per patch.
@@ -556,6 +578,34 @@ impl<R: Real> PatchTable<R> {
         Self::assemble(base, options, h, patches, trace, face_levels)
     }
 
+    /// The patches of the base faces `only` (increasing) of `base`, the other faces' ptex
+    /// faces left empty (a local crease edit's sub-mesh, [`super::edit_local`]): the faces
+    /// of `only` have the patches a build gives them. `options.isolation_level` applies.
+    pub(crate) fn build_only(
+        base: &Topology,
+        options: &PatchOptions,
+        only: &[u32],
+    ) -> Result<PatchTable<R>> {
+        let level = options.isolation_level as usize;
+        let leaf_options = LeafOptions::new(options, level);
+        let (h, patches) = sparse::build_only(
+            base,
+            level,
+            None,
+            &FeatureMask::new(options.single_crease),
+            Selection::Sparse,
+            &mut Budget::of_available_memory(),
+            &|lv, d, off, faces| level_patches(lv, d, off, faces, &leaf_options),
+            None,
+            Some(only),
+        )?;
+        let mut walked = vec![false; base.num_faces()];
+        for &f in only {
+            walked[f as usize] = true;
+        }
+        Self::assemble_only(base, options, h, patches, None, None, Some(&walked))
+    }
+
     /// The table of `base` from its levels `h` and their leaves' patches: the walk of every
     /// base face's quadtree, its patches placed in quadtree order; `trace` kept for edits.
     pub(crate) fn assemble(
@@ -565,6 +615,19 @@ impl<R: Real> PatchTable<R> {
         patches: Vec<LevelPatches<R>>,
         trace: Option<sparse::Trace>,
         face_levels: Option<Vec<u8>>,
+    ) -> Result<PatchTable<R>> {
+        Self::assemble_only(base, options, h, patches, trace, face_levels, None)
+    }
+
+    /// [`PatchTable::assemble`] of the base faces `walked` only, where given.
+    fn assemble_only(
+        base: &Topology,
+        options: &PatchOptions,
+        h: sparse::Hierarchy<R>,
+        patches: Vec<LevelPatches<R>>,
+        trace: Option<sparse::Trace>,
+        face_levels: Option<Vec<u8>>,
+        walked: Option<&[bool]>,
     ) -> Result<PatchTable<R>> {
         let mut level_offsets = vec![0u32];
         for &nv in &h.num_vertices {
@@ -599,7 +662,10 @@ impl<R: Real> PatchTable<R> {
                 };
                 for f in c * chunk..((c + 1) * chunk).min(nf) {
                     let (n, ptex) = (base.face_size(f), ptex_offsets[f]);
-                    if n == 4 {
+                    if walked.is_some_and(|w| !w[f]) {
+                        b.roots
+                            .extend(std::iter::repeat_n(EMPTY, if n == 4 { 1 } else { n }));
+                    } else if n == 4 {
                         let r = b.visit(0, f, ptex, 0, 0, false)?;
                         b.roots.push(r);
                     } else if base.face_is_hole[f] {
@@ -649,6 +715,7 @@ impl<R: Real> PatchTable<R> {
         let edit_state = trace
             .map(|t| super::edit_region::EditState::new(t, base.num_faces(), &leaves))
             .map(std::sync::Arc::new);
+        let local_segments = vec![0, local_points.num_rows() as u32];
         Ok(PatchTable::<R> {
             options: *options,
             base: base.clone(),
@@ -656,6 +723,9 @@ impl<R: Real> PatchTable<R> {
             level_inputs: h.inputs,
             level_offsets,
             local_points,
+            local_segments,
+            spliced: None,
+            local_share: super::edit_local::LOCAL_SHARE,
             kinds,
             cv_offsets,
             cvs,
@@ -680,9 +750,23 @@ impl<R: Real> PatchTable<R> {
             .get_or_init(|| std::sync::Arc::new(super::rate_curves::RateCurves::new(self)))
     }
 
-    /// Number of patches.
+    /// Number of patches (the per-patch arrays' length; after local crease edits, the
+    /// patches of the regions they replaced are still there, unreached by the patch map:
+    /// [`PatchTable::num_live_patches`]).
     pub fn num_patches(&self) -> usize {
         self.kinds.len()
+    }
+
+    /// Number of patches the patch map reaches (those of a fresh build of the base):
+    /// [`PatchTable::num_patches`] less the patches local crease edits replaced.
+    pub fn num_live_patches(&self) -> usize {
+        self.kinds.len() - self.spliced.as_ref().map_or(0, |s| s.dead_patches)
+    }
+
+    /// Whether patch `p` is reached by the patch map (every patch but those local crease
+    /// edits replaced).
+    pub fn is_live(&self, p: usize) -> bool {
+        self.spliced.as_ref().is_none_or(|s| !s.is_dead(p))
     }
 
     /// Number of ptex faces.
@@ -710,7 +794,7 @@ impl<R: Real> PatchTable<R> {
         out
     }
 
-    /// Patch counts by type.
+    /// Patch counts by type (of the patches the patch map reaches).
     pub fn counts(&self) -> PatchCounts {
         let mut c = PatchCounts::default();
         for &k in &self.kinds {
@@ -719,6 +803,11 @@ impl<R: Real> PatchTable<R> {
                 PatchType::SingleCrease => c.single_crease += 1,
                 PatchType::Gregory => c.gregory += 1,
             }
+        }
+        if let Some(s) = &self.spliced {
+            c.regular -= s.dead.regular;
+            c.single_crease -= s.dead.single_crease;
+            c.gregory -= s.dead.gregory;
         }
         c
     }
@@ -776,9 +865,17 @@ impl<R: Real> PatchTable<R> {
             super::points::level_apply_relative(s, &src, &mut dst);
             all.extend_from_slice(&dst);
         }
-        let mut local = vec![[R::ZERO; N]; self.local_points.num_rows()];
-        super::points::apply_relative(&self.local_points, &mut local, |k| &all[k]);
-        all.extend_from_slice(&local);
+        // Segment by segment: a segment's rows may read the local points before it.
+        let nl = all.len();
+        all.resize(nl + self.local_points.num_rows(), [R::ZERO; N]);
+        for w in self.local_segments.windows(2) {
+            let (a, b) = (w[0] as usize, w[1] as usize);
+            let (done, rest) = all.split_at_mut(nl + a);
+            let done: &[[R; N]] = done;
+            super::points::apply_relative_from(&self.local_points, a, &mut rest[..b - a], |k| {
+                &done[k]
+            });
+        }
         all
     }
 }
