@@ -454,4 +454,52 @@ mod tests {
             r.map(|l| l.patches.len())
         );
     }
+
+    /// The memory estimate of the isolation covers what a `LoopLimit` holds at its peak:
+    /// the stencils, points and leaves of every level and the patches with their points
+    /// (heap bytes counted from the arrays' lengths), and is not far above it.
+    #[test]
+    fn the_memory_estimate_covers_the_built_surface() {
+        use std::mem::size_of;
+        let (mesh, topo) = shape("loop_pole64.obj");
+        for level in [4, 8] {
+            let l = super::super::loop_patches::loop_isolation::<f32>(
+                &topo,
+                level,
+                Selection::Sparse,
+                true,
+            )
+            .unwrap();
+            let h = &l.hierarchy;
+            let table =
+                |t: &crate::refine::StencilTable<f32>| 4 * t.offsets.len() + 8 * t.indices.len();
+            let stencils: usize = h
+                .stencils
+                .iter()
+                .map(|s| table(&s.vertex) + table(&s.edge))
+                .sum();
+            let inputs: usize = h.inputs.iter().map(|i| 4 * i.len()).sum();
+            let points: usize = h.num_vertices.iter().map(|n| 12 * n).sum();
+            let leaves: usize = l
+                .levels
+                .iter()
+                .map(|lv| {
+                    let rows: usize = lv.rows.iter().map(|r| 24 + 16 * r.len()).sum();
+                    4 * lv.slot.len() + 12 * lv.leaves.len() + 4 * lv.cvs.len() + rows
+                })
+                .sum();
+            let limit = LoopLimit::new(&topo, &mesh.positions, level).unwrap();
+            let patches: usize = limit
+                .patches
+                .iter()
+                .map(|p| size_of::<LoopPatch>() + 24 * p.points.len())
+                .sum();
+            let held = (stencils + inputs + points + leaves + patches) as u64;
+            let e = l.estimated_bytes;
+            assert!(
+                e >= held && e < 6 * held,
+                "level {level}: {e} estimated, {held} held"
+            );
+        }
+    }
 }

@@ -190,6 +190,9 @@ pub struct LoopIsolation<W> {
     pub hierarchy: Hierarchy<W>,
     /// The leaves of each level.
     pub levels: Vec<LoopLevel>,
+    /// The bytes the levels were estimated at and counted against the memory limit
+    /// ([`super::budget::child_level_bytes`]).
+    pub estimated_bytes: u64,
 }
 
 /// The leaves of the faces `faces` of `lv` (level `d`), and with `gather` their points,
@@ -273,7 +276,11 @@ pub fn loop_isolation<W: Real>(
         &|lv, d, _, faces| level_leaves(lv, d, faces, gather),
         None,
     )?;
-    Ok(LoopIsolation { hierarchy, levels })
+    Ok(LoopIsolation {
+        hierarchy,
+        levels,
+        estimated_bytes: budget.used(),
+    })
 }
 
 impl<W> LoopIsolation<W> {
