@@ -2,15 +2,22 @@
 //! process (run each side in a fresh process, alternately):
 //!
 //! ```text
-//! cargo run --release -p osd-ref --example loop_memory -- MESH.obj LEVEL osd|subsurf
+//! cargo run --release -p osd-ref --example loop_memory -- MESH.obj LEVEL osd|subsurf|subsurf-f64
 //! ```
 //!
 //! A mesh with faces other than triangles is fan-triangulated with its tags
 //! ([`osd_ref::fan_triangulated_loop`]). `osd`: `TopologyRefiner::RefineAdaptive`,
 //! `PatchTableFactory::Create` (default options, Gregory-triangle end caps), the patch map and
 //! the points of every level and end cap; `subsurf`: `LoopLimit::new` (the sparse levels,
-//! every patch with its points, the patch map). Prints the patch counts, the time and the
+//! every patch with its points, the patch map), `subsurf-f64`: `LoopLimit::new_f64` (the
+//! points refined in `f64`, as `eval` refines a file's digits that `f32` cannot hold). Prints the patch counts, the time and the
 //! process's peak resident memory (`VmHWM`).
+
+/// With `--features mimalloc`, subsurf's allocations use mimalloc, as the `subsurf` CLI's do
+/// (OpenSubdiv's go through C++ `new`).
+#[cfg(feature = "mimalloc")]
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 use osd_ref::{patch_stats, EndCap, OsdMesh, PatchOptions};
 use std::time::Instant;
@@ -30,7 +37,7 @@ fn peak_rss_mib() -> f64 {
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [path, level, side] = args.as_slice() else {
-        return Err("usage: loop_memory MESH.obj LEVEL osd|subsurf".into());
+        return Err("usage: loop_memory MESH.obj LEVEL osd|subsurf|subsurf-f64".into());
     };
     let level: u32 = level.parse()?;
     let mut mesh = subsurf::io::read_path(path)?;
@@ -50,9 +57,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let s = patch_stats(&OsdMesh::from(&mesh), &o)?;
             (s.num_regular_patches, s.num_patches - s.num_regular_patches)
         }
-        "subsurf" => {
+        "subsurf" | "subsurf-f64" => {
             let topo = Topology::new(&mesh)?;
-            let l = LoopLimit::new(&topo, &mesh.positions, level)?;
+            let l = match side.as_str() {
+                "subsurf" => LoopLimit::new(&topo, &mesh.positions, level)?,
+                _ => LoopLimit::new_f64(&topo, &mesh.positions, level)?,
+            };
             let regular = l.patches.iter().filter(|p| p.regular).count();
             (regular, l.patches.len() - regular)
         }

@@ -381,7 +381,7 @@ mod tests {
 
     fn shape(name: &str) -> (crate::mesh::Mesh, Topology) {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes");
-        let mesh = obj::read_file(&std::path::Path::new(dir).join(name)).unwrap();
+        let mesh = obj::read_file(std::path::Path::new(dir).join(name)).unwrap();
         let topo = Topology::new(&mesh).unwrap();
         (mesh, topo)
     }

@@ -191,7 +191,8 @@ pub struct LoopIsolation<W> {
     /// The leaves of each level.
     pub levels: Vec<LoopLevel>,
     /// The bytes the levels were estimated at and counted against the memory limit
-    /// ([`super::budget::child_level_bytes`]).
+    /// ([`super::budget::child_level_bytes`]; kept for the tests of the estimate).
+    #[cfg(test)]
     pub estimated_bytes: u64,
 }
 
@@ -279,6 +280,7 @@ pub fn loop_isolation<W: Real>(
     Ok(LoopIsolation {
         hierarchy,
         levels,
+        #[cfg(test)]
         estimated_bytes: budget.used(),
     })
 }
