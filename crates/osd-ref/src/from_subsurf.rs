@@ -60,3 +60,34 @@ impl<'a> From<&'a subsurf::Mesh> for OsdMesh<'a> {
         }
     }
 }
+
+/// `mesh` as a Loop mesh: every face fanned into triangles from its first corner, the
+/// triangles of a hole holes, creases (edges kept by the fans) and corners kept, UVs dropped —
+/// the Loop shapes made from Catmull-Clark ones in the tests and the memory comparison.
+pub fn fan_triangulated_loop(mesh: &subsurf::Mesh) -> subsurf::Mesh {
+    let mut hole = vec![false; mesh.face_counts.len()];
+    for &h in &mesh.holes {
+        if let Some(x) = hole.get_mut(h as usize) {
+            *x = true;
+        }
+    }
+    let (mut faces, mut holes) = (Vec::new(), Vec::new());
+    let mut at = 0usize;
+    for (f, &n) in mesh.face_counts.iter().enumerate() {
+        let poly = &mesh.face_indices[at..at + n as usize];
+        at += n as usize;
+        for k in 1..poly.len().saturating_sub(1) {
+            if hole[f] {
+                holes.push(faces.len() as u32);
+            }
+            faces.push([poly[0], poly[k], poly[k + 1]]);
+        }
+    }
+    let mut out = subsurf::Mesh::from_faces(mesh.positions.clone(), &faces);
+    out.creases = mesh.creases.clone();
+    out.corners = mesh.corners.clone();
+    out.holes = holes;
+    out.options = mesh.options;
+    out.options.scheme = Scheme::Loop;
+    out
+}

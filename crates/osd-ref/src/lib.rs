@@ -33,6 +33,7 @@ pub use adaptive::{
     LimitSample, PatchOptions, PatchStats, PatchTableBuild,
 };
 pub use adaptive_f64::{eval_limit_grid_f64, LimitSampleF64};
+pub use from_subsurf::fan_triangulated_loop;
 pub use mesh::{OsdBoundary, OsdCreaseMethod, OsdMesh, OsdOptions, OsdScheme};
 pub use patch_basis::{patch_basis, OsdBasis, OsdPatchType};
 pub use tessellation::{bfr_tessellation, BfrParam, BfrPattern};

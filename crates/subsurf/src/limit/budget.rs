@@ -3,8 +3,9 @@
 //! with [`crate::MeshError::TooLarge`] instead of failing an allocation.
 //!
 //! One refinement step of a sub-mesh with `V` vertices, `E` edges, `F` faces and `C` face
-//! corners makes `F' = C` quads, `E' = 2 E + C` edges and `V' = V + E + F` vertices. Their
-//! bytes are counted from the arrays that hold them:
+//! corners makes `F' = C` quads, `E' = 2 E + C` edges and `V' = V + E + F` vertices (a Loop
+//! step of triangles: `F' = 4 F` triangles, `E' = 2 E + C` edges, `V' = V + E` vertices).
+//! Their bytes are counted from the arrays that hold them:
 //!
 //! ```text
 //! topology   61 F' + 37 E' + 14 V'   face/edge/vertex relations, sharpness, tags, rules
@@ -15,16 +16,8 @@
 //!
 //! The levels are counted against a `crate::util::budget::Budget` (80% of the available memory by default).
 
+use crate::options::Scheme;
 use crate::topology::Topology;
-
-/// Estimated bytes of the level one Loop refinement step of a triangle mesh of `faces`
-/// triangles makes, with what the Loop isolation keeps of it: `4 F` triangles at about 150
-/// bytes each (topology about 110: faces 28, edges 44, vertices 38; stencil rows 32; points 6;
-/// the walk's per-face records), measured as the peak resident memory of the isolation per
-/// refined face.
-pub(crate) fn tri_child_level_bytes(faces: u64) -> u64 {
-    faces.saturating_mul(4 * 150)
-}
 
 /// Estimated bytes of the level one refinement step of `sub` makes (module documentation).
 pub(crate) fn child_level_bytes(sub: &Topology) -> u64 {
@@ -34,6 +27,9 @@ pub(crate) fn child_level_bytes(sub: &Topology) -> u64 {
         sub.num_edges() as u64,
         sub.num_faces() as u64,
     );
-    let (f1, e1, v1) = (c, 2 * e + c, v + e + f);
+    let (f1, e1, v1) = match sub.options.scheme {
+        Scheme::Loop => (4 * f, 2 * e + c, v + e),
+        _ => (c, 2 * e + c, v + e + f),
+    };
     (61 + 5 + 90) * f1 + (37 + 1) * e1 + (14 + 60 + 6) * v1
 }

@@ -1,5 +1,5 @@
 //! The Loop limit surface on its regular patches: the 12 box-spline points of every regular
-//! leaf triangle ([`super::loop_patches`]) gathered from the refined level, and evaluation
+//! leaf triangle ([`super::loop_patches`]) gathered from its sparsely refined level, and evaluation
 //! at a base face's `(u, v)`, `u + v ≤ 1`.
 //!
 //! # Gathering the 12 points
@@ -20,13 +20,12 @@
 //! Irregular leaves get OpenSubdiv's end caps, quartic Gregory triangles
 //! ([`super::loop_endcap`]), evaluated with [`TriPatchKind::GregoryTriangle`].
 
-use super::loop_endcap::gregory_tri_points;
-use super::loop_patches::{loop_leaves, LoopLeaf};
+use super::loop_patches::{loop_isolation, LoopLeaf, LoopLevel};
 use super::patch_map::PatchMap;
+use super::sparse::Selection;
 use crate::error::{Error, Result};
 use crate::patch::{tri_patch_weights, PatchParam, PatchParamFields, TriPatchKind};
 use crate::real::{Real, VertexData};
-use crate::refine::{loop_level_stencils, loop_level_stencils_real};
 use crate::topology::tags;
 use crate::topology::Topology;
 
@@ -165,12 +164,7 @@ impl LoopLimit {
         positions: &(impl VertexData<3> + ?Sized),
         isolation_level: u32,
     ) -> Result<Self> {
-        Self::build::<f32>(base, positions, isolation_level, |p, c, src| {
-            let s = loop_level_stencils(p, c);
-            let mut dst = vec![[0.0f32; 3]; s.num_rows()];
-            s.apply(src, &mut dst);
-            dst
-        })
+        Self::build::<f32>(base, positions, isolation_level)
     }
 
     /// [`LoopLimit::new`] in double precision: `positions` as they are held (a file's
@@ -181,9 +175,7 @@ impl LoopLimit {
         positions: &(impl VertexData<3> + ?Sized),
         isolation_level: u32,
     ) -> Result<Self> {
-        Self::build::<f64>(base, positions, isolation_level, |p, c, src| {
-            loop_level_stencils_real::<f64>(p, c).apply_real(src)
-        })
+        Self::build::<f64>(base, positions, isolation_level)
     }
 
     /// [`LoopLimit::new_f64`] where `positions` are held in `f64` (digits of a file that `f32`
@@ -200,12 +192,22 @@ impl LoopLimit {
         }
     }
 
-    /// The patches, the level points refined in `R` by `step(parent, child, parent points)`.
+    /// The patches, the level points refined in `R` through the sparse levels.
     fn build<R: Real>(
         base: &Topology,
         positions: &(impl VertexData<3> + ?Sized),
         isolation_level: u32,
-        step: impl Fn(&Topology, &Topology, &[[R; 3]]) -> Vec<[R; 3]>,
+    ) -> Result<Self> {
+        Self::build_with::<R>(base, positions, isolation_level, Selection::Sparse)
+    }
+
+    /// [`LoopLimit::build`] with the levels refined as `selection` says (the uniform
+    /// refinement is the reference of the sparse one's tests).
+    pub(crate) fn build_with<R: Real>(
+        base: &Topology,
+        positions: &(impl VertexData<3> + ?Sized),
+        isolation_level: u32,
+        selection: Selection,
     ) -> Result<Self> {
         if positions.num_vertices() != base.num_vertices() {
             return Err(Error::Unsupported(format!(
@@ -214,25 +216,31 @@ impl LoopLimit {
                 base.num_vertices()
             )));
         }
-        let l = loop_leaves(base, isolation_level)?;
+        let l = loop_isolation::<R>(base, isolation_level, selection, true)?;
+        let h = &l.hierarchy;
         let first: Vec<[R; 3]> = (0..base.num_vertices())
             .map(|i| positions.vertex::<R>(i))
             .collect();
         let mut points = vec![first];
-        for d in 1..l.levels.len() {
-            let next = step(&l.levels[d - 1], &l.levels[d], &points[d - 1]);
-            points.push(next);
+        for (s, inputs) in h.stencils.iter().zip(&h.inputs) {
+            let last = &points[points.len() - 1];
+            let sub: Vec<[R; 3]> = inputs.iter().map(|&v| last[v as usize]).collect();
+            points.push(s.apply_real(&sub));
         }
-        let mut patches = Vec::with_capacity(l.leaves.len());
+        let mut patches = Vec::new();
         let mut offsets = vec![0u32; base.num_faces() + 1];
-        for leaf in &l.leaves {
-            patches.push(Self::patch(&l.levels, &points, leaf)?);
+        let patch_map = l.walk(base, |leaf| {
+            patches.push(Self::patch(
+                &l.levels[leaf.depth],
+                &points[leaf.depth],
+                leaf,
+            )?);
             offsets[leaf.base_face as usize + 1] += 1;
-        }
+            Ok(())
+        })?;
         for f in 0..base.num_faces() {
             offsets[f + 1] += offsets[f];
         }
-        let patch_map = PatchMap::of_triangles(base.num_faces(), &l.leaves);
         Ok(LoopLimit {
             patches,
             offsets,
@@ -240,40 +248,30 @@ impl LoopLimit {
         })
     }
 
-    fn patch<R: Real>(
-        levels: &[Topology],
-        points: &[Vec<[R; 3]>],
-        leaf: &LoopLeaf,
-    ) -> Result<LoopPatch> {
-        let t = &levels[leaf.depth];
-        let f = leaf.face as usize;
-        let boundary = if leaf.regular {
-            tri_boundary_mask(t, f)
-        } else {
-            0
-        };
+    fn patch<R: Real>(level: &LoopLevel, points: &[[R; 3]], leaf: &LoopLeaf) -> Result<LoopPatch> {
+        let l = level.leaves[leaf.index as usize];
         let param = PatchParam::new(PatchParamFields {
             face_id: leaf.base_face,
             u: leaf.uv.0,
             v: leaf.uv.1,
             depth: leaf.depth as u8,
-            boundary,
-            regular: leaf.regular,
+            boundary: l.boundary,
+            regular: l.regular,
             ..Default::default()
         })?;
-        let level = &points[leaf.depth];
-        let pts = if leaf.regular {
-            gather_box_spline_points(t, f)
+        let first = l.first as usize;
+        let pts = if l.regular {
+            level.cvs[12 * first..12 * first + 12]
                 .iter()
-                .map(|&i| level[i as usize].map(R::to_f64))
+                .map(|&i| points[i as usize].map(R::to_f64))
                 .collect()
         } else {
-            gregory_tri_points(t, f)
+            level.rows[18 * first..18 * first + 18]
                 .iter()
                 .map(|r| {
                     let mut x = [0.0f64; 3];
                     for &(i, w) in r {
-                        let q = level[i as usize];
+                        let q = points[i as usize];
                         for c in 0..3 {
                             x[c] += w * q[c].to_f64();
                         }
@@ -284,7 +282,7 @@ impl LoopLimit {
         };
         Ok(LoopPatch {
             param,
-            regular: leaf.regular,
+            regular: l.regular,
             points: pts,
         })
     }
@@ -378,6 +376,130 @@ mod tests {
             if s > 1e-6 && t > 1e-6 && s + t < 1.0 - 1e-6 {
                 assert_eq!(Some(p), l.find_linear(f, u, v));
             }
+        }
+    }
+
+    fn shape(name: &str) -> (crate::mesh::Mesh, Topology) {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes");
+        let mesh = obj::read_file(std::path::Path::new(dir).join(name)).unwrap();
+        let topo = Topology::new(&mesh).unwrap();
+        (mesh, topo)
+    }
+
+    /// The sparse isolation gives the uniform one's patches, bit for bit (parameters, kinds,
+    /// points in `f32` and `f64`, offsets and patch map), on every Loop shape.
+    #[test]
+    fn sparse_isolation_equals_uniform_bit_for_bit() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../testdata/shapes");
+        let mut names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .filter(|n| n.starts_with("loop_") && n.ends_with(".obj"))
+            .collect();
+        names.sort();
+        assert!(names.len() >= 31, "{names:?}");
+        let (mut compared, mut end_caps) = (0, 0);
+        for name in &names {
+            let (mesh, topo) = shape(name);
+            for level in 1..=5 {
+                let build = |sel| {
+                    let a = LoopLimit::build_with::<f32>(&topo, &mesh.positions, level, sel);
+                    let b = LoopLimit::build_with::<f64>(&topo, &mesh.positions, level, sel);
+                    (a.unwrap(), b.unwrap())
+                };
+                let (sparse, uniform) = (build(Selection::Sparse), build(Selection::Uniform));
+                for (s, u) in [(&sparse.0, &uniform.0), (&sparse.1, &uniform.1)] {
+                    assert!(s.patches == u.patches, "{name} isolation {level}");
+                    assert_eq!(s.offsets, u.offsets, "{name} isolation {level}");
+                    assert_eq!(s.patch_map.roots, u.patch_map.roots, "{name} {level}");
+                    assert_eq!(s.patch_map.nodes, u.patch_map.nodes, "{name} {level}");
+                }
+                compared += sparse.0.patches.len();
+                end_caps += sparse.0.patches.iter().filter(|p| !p.regular).count();
+            }
+        }
+        assert!(
+            compared > 50_000 && end_caps > 10_000,
+            "{compared} {end_caps}"
+        );
+    }
+
+    /// Around isolated extraordinary vertices a sparse level stays the same size from level to
+    /// level once the features are apart (level 4 here), where a uniform one grows fourfold.
+    #[test]
+    fn sparse_levels_stay_small() {
+        let (_, topo) = shape("loop_xord_interior.obj");
+        let sizes = |sel| {
+            let l = super::super::loop_patches::loop_isolation::<f32>(&topo, 6, sel, false);
+            l.unwrap().hierarchy.num_vertices
+        };
+        let (sparse, uniform) = (sizes(Selection::Sparse), sizes(Selection::Uniform));
+        assert_eq!(sparse.len(), 7);
+        assert_eq!(sparse.len(), uniform.len());
+        for d in 5..7 {
+            assert!(sparse[d] <= sparse[d - 1], "{sparse:?}");
+        }
+        assert!(uniform[6] > 50 * sparse[6], "{sparse:?} {uniform:?}");
+    }
+
+    /// Without the ring around the refined faces, patches would read points that are not the
+    /// uniform refinement's: the construction refuses instead of building them.
+    #[test]
+    fn too_small_a_sub_mesh_is_refused() {
+        let (mesh, topo) = shape("loop_xord_interior.obj");
+        let r = LoopLimit::build_with::<f32>(&topo, &mesh.positions, 3, Selection::Rings(0));
+        assert!(
+            matches!(r, Err(Error::Internal(_))),
+            "{:?}",
+            r.map(|l| l.patches.len())
+        );
+    }
+
+    /// The memory estimate of the isolation covers what a `LoopLimit` holds at its peak:
+    /// the stencils, points and leaves of every level and the patches with their points
+    /// (heap bytes counted from the arrays' lengths), and is not far above it.
+    #[test]
+    fn the_memory_estimate_covers_the_built_surface() {
+        use std::mem::size_of;
+        let (mesh, topo) = shape("loop_pole64.obj");
+        for level in [4, 8] {
+            let l = super::super::loop_patches::loop_isolation::<f32>(
+                &topo,
+                level,
+                Selection::Sparse,
+                true,
+            )
+            .unwrap();
+            let h = &l.hierarchy;
+            let table =
+                |t: &crate::refine::StencilTable<f32>| 4 * t.offsets.len() + 8 * t.indices.len();
+            let stencils: usize = h
+                .stencils
+                .iter()
+                .map(|s| table(&s.vertex) + table(&s.edge))
+                .sum();
+            let inputs: usize = h.inputs.iter().map(|i| 4 * i.len()).sum();
+            let points: usize = h.num_vertices.iter().map(|n| 12 * n).sum();
+            let leaves: usize = l
+                .levels
+                .iter()
+                .map(|lv| {
+                    let rows: usize = lv.rows.iter().map(|r| 24 + 16 * r.len()).sum();
+                    4 * lv.slot.len() + 12 * lv.leaves.len() + 4 * lv.cvs.len() + rows
+                })
+                .sum();
+            let limit = LoopLimit::new(&topo, &mesh.positions, level).unwrap();
+            let patches: usize = limit
+                .patches
+                .iter()
+                .map(|p| size_of::<LoopPatch>() + 24 * p.points.len())
+                .sum();
+            let held = (stencils + inputs + points + leaves + patches) as u64;
+            let e = l.estimated_bytes;
+            assert!(
+                e >= held && e < 6 * held,
+                "level {level}: {e} estimated, {held} held"
+            );
         }
     }
 }

@@ -18,22 +18,36 @@
 //!   boundary corners of one face (both face edges at the corner on the boundary), which are
 //!   treated as sharp corners, and non-manifold corners whose manifold span is regular.
 //!
-//! The levels are uniform refinements ([`crate::refine::refine_tri_topology`]): the isolation walks
-//! each base triangle's tree of children (child `k` of face `f` is face `4 f + k`, child 3
-//! the middle one) through the refined faces.
+//! The levels are those of the sparse construction ([`super::sparse`]), built with the
+//! triangle split ([`crate::refine::refine_tri_topology`]): level `d + 1` refines only the
+//! faces chosen at level `d` and the ring of faces sharing a vertex with them, a sub-mesh
+//! whose border is made infinitely sharp. One ring is what the Loop rules need: a patch of
+//! a child `c` of a chosen face `f` reads the one-ring of `c`'s corners (the 12 box-spline
+//! points, or the Gregory triangle's corner rings), which are children of `f`'s vertices
+//! and edge points of the edges at `f`'s vertices; the child of a vertex reads the vertex's
+//! neighbours, an edge point its ends and the two vertices opposite it, all vertices of
+//! faces around a vertex of `f`, hence in the ring. The exactness flags of
+//! [`super::sparse`] check this on every patch: a patch reading a point that is not the
+//! uniform refinement's is refused as an internal error. The walk then follows each base
+//! triangle's tree of children (the four children of a refined face are consecutive,
+//! child 3 the middle one) through the refined faces.
 
-use super::budget::tri_child_level_bytes;
 use super::features::{
     inf_sharp_vtag_has_features, FeatureMask, VTag, T_BOUNDARY, T_INF_SHARP, T_INF_SHARP_EDGES,
     T_NON_MANIFOLD, T_SEMI_SHARP, T_SEMI_SHARP_EDGES, T_XORDINARY,
 };
+use super::leaves::UNWALKED;
+use super::loop_endcap::{gregory_tri_points, Row};
+use super::loop_eval::{gather_box_spline_points, tri_boundary_mask};
+use super::patch_map::{PatchMap, EMPTY, LEAF};
+use super::sparse::{self, Hierarchy, Level, Selection};
 use super::table::MAX_ISOLATION_LEVEL;
 use crate::error::{Error, Result};
 use crate::options::Scheme;
-use crate::refine::refine_tri_topology;
+use crate::real::Real;
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
-use crate::util::budget::check;
+use crate::util::budget::Budget;
 
 /// Patch counts of a Loop patch table.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
@@ -126,10 +140,10 @@ pub fn is_tri_patch_regular(t: &Topology, tags: &[VTag], f: usize) -> bool {
 /// A leaf triangle of the isolation: a patch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct LoopLeaf {
-    /// Refinement level of the patch (the index into [`LoopLeaves::levels`]).
+    /// Refinement level of the patch.
     pub depth: usize,
-    /// The face of that level.
-    pub face: u32,
+    /// Its index among the leaves of its level ([`LoopLevel::leaves`]).
+    pub index: u32,
     /// Sub-triangle origin in the base face at `depth` (see
     /// [`crate::patch::tri_basis`]): children 0, 1, 2 of `(U, V)` are `(2U, 2V)`,
     /// `(2U + 1, 2V)`, `(2U, 2V + 1)`; the middle child 3 is `(2^(d+1) − 2U − 1, 2^(d+1) − 2V − 1)`,
@@ -141,18 +155,107 @@ pub struct LoopLeaf {
     pub regular: bool,
 }
 
-/// The levels refined for isolation and the leaves, base face by base face (each base
-/// face's leaves in depth-first order of its tree).
-#[derive(Debug, Clone)]
-pub struct LoopLeaves {
-    /// Level 0 (the base) and every uniformly refined level the walk reached.
-    pub levels: Vec<Topology>,
-    /// Every leaf.
-    pub leaves: Vec<LoopLeaf>,
+/// What a leaf face of a level becomes, computed while the level is built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct LevelLeaf {
+    /// A regular box-spline patch (otherwise an end cap).
+    pub regular: bool,
+    /// Its boundary mask ([`super::loop_eval::tri_boundary_mask`]; 0 for an end cap).
+    pub boundary: u8,
+    /// Its first point: in [`LoopLevel::cvs`] (12 per regular leaf) or
+    /// [`LoopLevel::rows`] (18 per end cap).
+    pub first: u32,
 }
 
-/// The leaves of the feature-adaptive isolation of `base` at `isolation_level`.
-pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> {
+/// The leaves of one level of the isolation.
+#[derive(Debug, Clone, Default)]
+pub struct LoopLevel {
+    /// Per face of the level: `LEAF | leaf`, its first child face (refined), or
+    /// [`UNWALKED`] (not reached by the walk, or a hole).
+    pub slot: Vec<u32>,
+    /// The leaves, in the order the level's walk decided them.
+    pub leaves: Vec<LevelLeaf>,
+    /// The 12 box-spline points of every regular leaf (vertices of the level).
+    pub cvs: Vec<u32>,
+    /// The 18 Gregory-triangle points of every end cap, as stencils over the level's
+    /// vertices.
+    pub rows: Vec<Row>,
+}
+
+/// The levels of the sparse isolation ([`super::sparse`]): their sizes and the stencils
+/// between them, and every level's leaves.
+#[derive(Debug, Clone)]
+pub struct LoopIsolation<W> {
+    /// Sizes, stencils and sub-mesh inputs of the levels.
+    pub hierarchy: Hierarchy<W>,
+    /// The leaves of each level.
+    pub levels: Vec<LoopLevel>,
+    /// The bytes the levels were estimated at and counted against the memory limit
+    /// ([`super::budget::child_level_bytes`]; kept for the tests of the estimate).
+    #[cfg(test)]
+    pub estimated_bytes: u64,
+}
+
+/// The leaves of the faces `faces` of `lv` (level `d`), and with `gather` their points,
+/// each checked to be exact.
+fn level_leaves(lv: &Level, d: usize, faces: &[u32], gather: bool) -> Result<LoopLevel> {
+    let t = &lv.topo;
+    let mut out = LoopLevel {
+        slot: vec![UNWALKED; t.num_faces()],
+        ..Default::default()
+    };
+    for f in (0..t.num_faces()).filter(|&f| lv.refine[f]) {
+        out.slot[f] = lv.child[f];
+    }
+    let inexact = |f: u32, i: u32| {
+        Error::Internal(format!(
+            "sparse Loop isolation: patch of face {f} at level {d} reads vertex {i}, \
+             which is not exact"
+        ))
+    };
+    for &f in faces {
+        let fi = f as usize;
+        let regular = is_tri_patch_regular(t, &lv.tags, fi);
+        out.slot[fi] = LEAF | out.leaves.len() as u32;
+        let (boundary, first) = match regular {
+            true => (tri_boundary_mask(t, fi), out.cvs.len() as u32 / 12),
+            false => (0, out.rows.len() as u32 / 18),
+        };
+        out.leaves.push(LevelLeaf {
+            regular,
+            boundary,
+            first,
+        });
+        if !gather {
+            continue;
+        }
+        if regular {
+            let cvs = gather_box_spline_points(t, fi);
+            if let Some(&i) = cvs.iter().find(|&&i| !lv.exact[i as usize]) {
+                return Err(inexact(f, i));
+            }
+            out.cvs.extend_from_slice(&cvs);
+        } else {
+            let rows = gregory_tri_points(t, fi);
+            let mut read = rows.iter().flatten().map(|&(i, _)| i);
+            if let Some(i) = read.find(|&i| !lv.exact[i as usize]) {
+                return Err(inexact(f, i));
+            }
+            out.rows.extend(rows);
+        }
+    }
+    Ok(out)
+}
+
+/// The sparse feature-adaptive isolation of `base` at `isolation_level`: each level refines
+/// the faces chosen at the level above and the ring of faces around them
+/// ([`super::sparse`]); with `gather`, the points of every leaf.
+pub fn loop_isolation<W: Real>(
+    base: &Topology,
+    isolation_level: u32,
+    selection: Selection,
+    gather: bool,
+) -> Result<LoopIsolation<W>> {
     if base.options.scheme != Scheme::Loop {
         return Err(Error::Unsupported(
             "Loop patches need a mesh with the Loop scheme".into(),
@@ -163,104 +266,110 @@ pub fn loop_leaves(base: &Topology, isolation_level: u32) -> Result<LoopLeaves> 
             "isolation level {isolation_level} exceeds the maximum {MAX_ISOLATION_LEVEL}"
         )));
     }
-    let level = isolation_level as usize;
-    let mut levels = vec![base.clone()];
-    let mut decided = Vec::new();
-    // `front`: (face, U, V, base face) of the faces of the current level the walk reaches.
-    let mut front: Vec<(u32, u16, u16, u32)> = (0..base.num_faces() as u32)
-        .filter(|&f| !base.face_is_hole[f as usize])
-        .map(|f| (f, 0, 0, f))
-        .collect();
-    for d in 0..=level {
-        let topo = &levels[d];
-        let tags: Vec<VTag> = (0..topo.num_vertices())
-            .map(|v| VTag::of(topo, v, false))
-            .collect();
-        let mut next = Vec::new();
-        for &(f, u, v, b) in &front {
-            let fi = f as usize;
-            if d < level && tri_face_has_features(topo, &tags, fi, d) {
-                let side = 2u16 << d;
-                next.extend([
-                    (4 * f, 2 * u, 2 * v, b),
-                    (4 * f + 1, 2 * u + 1, 2 * v, b),
-                    (4 * f + 2, 2 * u, 2 * v + 1, b),
-                    (4 * f + 3, side - 2 * u - 1, side - 2 * v - 1, b),
-                ]);
-                decided.push((d, f, u, v, b, None));
-            } else {
-                let regular = is_tri_patch_regular(topo, &tags, fi);
-                decided.push((d, f, u, v, b, Some(regular)));
-            }
-        }
-        if next.is_empty() {
-            break;
-        }
-        // Refused up front, with the estimate, before any level is allocated: the isolation
-        // refines every level whole (each four times the last), and a feature found at the
-        // base (an extraordinary vertex, a boundary, a crease) is met again at every level
-        // down to `level`, so all of them are counted at once.
-        if d == 0 {
-            let faces = base.num_faces() as u64;
-            let total = (1..=level as u32).fold(0u64, |sum, k| {
-                sum.saturating_add(tri_child_level_bytes(faces << (2 * (k - 1))))
-            });
-            check(total as f64, || {
-                format!(
-                    "isolating the Loop features of {faces} triangles to level {isolation_level} \
-                     ({} triangles at the last level)",
-                    faces << (2 * level)
-                )
-            })?;
-        }
-        let child = refine_tri_topology(topo)?;
-        levels.push(child);
-        front = next;
-    }
-    // Depth-first order per base face: sort the leaves by base face, then by their path.
-    let mut leaves: Vec<LoopLeaf> = decided
-        .into_iter()
-        .filter_map(|(depth, face, u, v, base_face, regular)| {
-            regular.map(|regular| LoopLeaf {
-                depth,
-                face,
-                uv: (u, v),
-                base_face,
-                regular,
-            })
-        })
-        .collect();
-    leaves.sort_by_key(|l| (l.base_face, path_key(l)));
-    Ok(LoopLeaves { levels, leaves })
+    let mut budget = Budget::of_available_memory();
+    let (hierarchy, levels) = sparse::build_traced(
+        base,
+        isolation_level as usize,
+        None,
+        &FeatureMask::new(false),
+        selection,
+        &mut budget,
+        &|lv, d, _, faces| level_leaves(lv, d, faces, gather),
+        None,
+    )?;
+    Ok(LoopIsolation {
+        hierarchy,
+        levels,
+        #[cfg(test)]
+        estimated_bytes: budget.used(),
+    })
 }
 
-/// A key ordering leaves depth-first: the child index at each depth, from the face index
-/// (child `k` of face `f` is `4 f + k`), padded to the maximum depth.
-fn path_key(l: &LoopLeaf) -> u64 {
-    let mut key = 0u64;
-    let mut f = l.face as u64;
-    for _ in 0..l.depth {
-        key = (key >> 2) | ((f & 3) << 62);
-        f >>= 2;
+impl<W> LoopIsolation<W> {
+    /// Walks every base face's tree of children depth first (children 0, 1, 2, 3), giving
+    /// each leaf to `emit` in that order (the patch order), and returns the patch map.
+    pub fn walk(
+        &self,
+        base: &Topology,
+        mut emit: impl FnMut(&LoopLeaf) -> Result<()>,
+    ) -> Result<PatchMap> {
+        let mut map = PatchMap {
+            roots: Vec::with_capacity(base.num_faces()),
+            nodes: Vec::new(),
+        };
+        let mut patches = 0u32;
+        for f in 0..base.num_faces() {
+            let root = match base.face_is_hole[f] {
+                true => EMPTY,
+                false => self.visit(&mut map, &mut patches, &mut emit, 0, f, (0, 0), f as u32)?,
+            };
+            map.roots.push(root);
+        }
+        Ok(map)
     }
-    key
+
+    #[allow(clippy::too_many_arguments)]
+    fn visit(
+        &self,
+        map: &mut PatchMap,
+        patches: &mut u32,
+        emit: &mut impl FnMut(&LoopLeaf) -> Result<()>,
+        d: usize,
+        f: usize,
+        (u, v): (u16, u16),
+        base_face: u32,
+    ) -> Result<u32> {
+        let slot = self.levels.get(d).map_or(UNWALKED, |l| l.slot[f]);
+        if slot == UNWALKED {
+            return Err(Error::Internal(format!(
+                "face {f} at level {d} is walked but was not decided"
+            )));
+        }
+        if slot & LEAF != 0 {
+            let index = slot & !LEAF;
+            emit(&LoopLeaf {
+                depth: d,
+                index,
+                uv: (u, v),
+                base_face,
+                regular: self.levels[d].leaves[index as usize].regular,
+            })?;
+            *patches += 1;
+            return Ok(LEAF | (*patches - 1));
+        }
+        let node = map.nodes.len();
+        map.nodes.push([EMPTY; 4]);
+        let side = 2u16 << d;
+        let child_uv = [
+            (2 * u, 2 * v),
+            (2 * u + 1, 2 * v),
+            (2 * u, 2 * v + 1),
+            (side - 2 * u - 1, side - 2 * v - 1),
+        ];
+        for (k, &uv) in child_uv.iter().enumerate() {
+            let h = self.visit(map, patches, emit, d + 1, slot as usize + k, uv, base_face)?;
+            map.nodes[node][k] = h;
+        }
+        Ok(node as u32)
+    }
 }
 
 /// Counts the patches of the feature-adaptive Loop patch table of `base` at
 /// `isolation_level` (`0..=10`).
 pub fn loop_patch_counts(base: &Topology, isolation_level: u32) -> Result<LoopPatchCounts> {
-    let l = loop_leaves(base, isolation_level)?;
+    let l = loop_isolation::<f32>(base, isolation_level, Selection::Sparse, false)?;
     let mut counts = LoopPatchCounts {
         by_depth: vec![0; isolation_level as usize + 1],
         ..Default::default()
     };
-    for leaf in &l.leaves {
+    l.walk(base, |leaf| {
         if leaf.regular {
             counts.regular += 1;
         } else {
             counts.irregular += 1;
         }
         counts.by_depth[leaf.depth] += 1;
-    }
+        Ok(())
+    })?;
     Ok(counts)
 }

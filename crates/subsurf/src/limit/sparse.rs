@@ -54,10 +54,14 @@
 //! and non-manifold edge instances included.
 
 use super::features::{face_has_features, level_tags, FeatureMask, VTag};
+use super::loop_patches::tri_face_has_features;
 use crate::error::{Error, MeshError, Result};
-use crate::options::CreaseMethod;
+use crate::options::{CreaseMethod, Scheme};
 use crate::real::Real;
-use crate::refine::{level_stencils_real, refine_topology, LevelStencils};
+use crate::refine::{
+    level_stencils_real, loop_level_stencils_real, refine_topology, refine_tri_topology,
+    LevelStencils,
+};
 use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
 use crate::util::budget::Budget;
@@ -147,7 +151,8 @@ impl Level {
         let (nv, ne, nf) = (topo.num_vertices(), topo.num_edges(), topo.num_faces());
         Level {
             tags: if base {
-                level_tags(&topo, base)
+                // Loop levels have no irregular faces to record.
+                level_tags(&topo, !is_loop(&topo))
             } else {
                 vec![VTag::default(); nv]
             },
@@ -372,6 +377,7 @@ pub fn resume<W: Real, T: Send>(
         )));
     }
     let face_levels = !level.levels.is_empty();
+    let tri = is_loop(&level.topo);
     let mut total_vertices: u64 = h.num_vertices.iter().map(|&n| n as u64).sum();
     let mut offset = (total_vertices - level.topo.num_vertices() as u64) as u32;
     let mut prev_sub: Option<Topology> = None;
@@ -392,7 +398,11 @@ pub fn resume<W: Real, T: Send>(
                     "sparse refinement: corner {v} of face {f} at level {d} is not exact"
                 )));
             }
-            if d < cur.level_of(f, max_level) && face_has_features(t, &cur.tags, f, d, mask) {
+            let features = match tri {
+                true => tri_face_has_features(t, &cur.tags, f, d),
+                false => face_has_features(t, &cur.tags, f, d, mask),
+            };
+            if d < cur.level_of(f, max_level) && features {
                 cur.refine[f] = true;
                 chosen.push(f as u32);
             } else {
@@ -403,7 +413,7 @@ pub fn resume<W: Real, T: Send>(
             let cur: &Level = cur;
             let (patches, stencils) = rayon::join(
                 || leaves(cur, d, offset, &leaf_faces),
-                || prev_sub.as_ref().map(|p| level_stencils_real(p, &cur.topo)),
+                || prev_sub.as_ref().map(|p| step_stencils(p, &cur.topo)),
             );
             out.push(patches?);
             h.stencils.extend(stencils);
@@ -443,7 +453,10 @@ pub fn resume<W: Real, T: Send>(
             )
         })?;
         for (m, &f) in step.faces.iter().enumerate() {
-            cur.child[f as usize] = step.sub.face_offsets[m];
+            cur.child[f as usize] = match tri {
+                true => 4 * m as u32,
+                false => step.sub.face_offsets[m],
+            };
         }
         let cur: &Level = cur;
         // The stencils of the step that made this level are computed with its leaves, while
@@ -452,24 +465,29 @@ pub fn resume<W: Real, T: Send>(
             || {
                 rayon::join(
                     || leaves(cur, d, offset, &leaf_faces),
-                    || prev_sub.as_ref().map(|p| level_stencils_real(p, &cur.topo)),
+                    || prev_sub.as_ref().map(|p| step_stencils(p, &cur.topo)),
                 )
             },
-            || {
-                let mut next = Level::new(refine_topology(&step.sub), false);
+            || -> Result<Level> {
+                let child = match tri {
+                    true => refine_tri_topology(&step.sub)?,
+                    false => refine_topology(&step.sub),
+                };
+                let mut next = Level::new(child, false);
                 step.propagate(&mut next);
                 if face_levels {
                     // A child takes its parent's level (the level of their base face).
                     next.levels = vec![0; next.topo.num_faces()];
                     for &f in &chosen {
                         let first = cur.child[f as usize] as usize;
-                        let n = cur.topo.face_size(f as usize);
+                        let n = num_children(&cur.topo, f as usize) as usize;
                         next.levels[first..first + n].fill(cur.levels[f as usize]);
                     }
                 }
-                next
+                Ok(next)
             },
         );
+        let next = next?;
         out.push(patches?);
         h.stencils.extend(stencils);
         offset += cur.topo.num_vertices() as u32;
@@ -478,7 +496,7 @@ pub fn resume<W: Real, T: Send>(
             .iter()
             .flat_map(|&f| {
                 let first = cur.child[f as usize];
-                first..first + cur.topo.face_size(f as usize) as u32
+                first..first + num_children(&cur.topo, f as usize)
             })
             .collect();
         h.inputs.push(step.verts);
@@ -492,6 +510,28 @@ pub fn resume<W: Real, T: Send>(
         }
     }
     Ok((h, out))
+}
+
+/// Whether `t` is refined by the Loop scheme (triangle split, no face points).
+fn is_loop(t: &Topology) -> bool {
+    t.options.scheme == Scheme::Loop
+}
+
+/// The number of child faces of face `f` of `t`: one per corner (quad split), four
+/// (triangle split).
+fn num_children(t: &Topology, f: usize) -> u32 {
+    match is_loop(t) {
+        true => 4,
+        false => t.face_size(f) as u32,
+    }
+}
+
+/// The stencils of one step from the sub-mesh `p` to its child `c`, by `p`'s scheme.
+fn step_stencils<W: Real>(p: &Topology, c: &Topology) -> LevelStencils<W> {
+    match is_loop(p) {
+        true => loop_level_stencils_real(p, c),
+        false => level_stencils_real(p, c),
+    }
 }
 
 /// Tags the corners of the faces `faces` of a refined level.
@@ -639,18 +679,24 @@ impl Step {
                 && self.exact[v]
                 && p.vertex_faces(v).iter().all(|&f| fexact[f as usize]);
         }
-        for f in 0..nf {
+        // Face points (quad split only), then edge points.
+        let face_points = match is_loop(p) {
+            true => 0,
+            false => nf,
+        };
+        for f in 0..face_points {
             c.sound[nv + f] = true;
             c.exact[nv + f] = fexact[f];
         }
+        let ev = nv + face_points;
         for e in 0..ne {
             let [a, b] = p.edge_verts[e];
             let half_ok = |x: u32| self.edge_ok[e] && (!chaikin || self.sound[x as usize]);
             let (ha, hb) = (half_ok(a), half_ok(b));
             c.edge_ok[nc + 2 * e] = ha;
             c.edge_ok[nc + 2 * e + 1] = hb;
-            c.sound[nv + nf + e] = self.edge_ok[e] && ha && hb;
-            c.exact[nv + nf + e] =
+            c.sound[ev + e] = self.edge_ok[e] && ha && hb;
+            c.exact[ev + e] =
                 self.edge_ok[e] && p.edge_faces(e).iter().all(|&f| fexact[f as usize]);
         }
     }

@@ -13,7 +13,6 @@
 //!
 //! Each child's coordinates are its own, so the descent needs no orientation flag.
 
-use super::loop_patches::LoopLeaf;
 use super::patch_map::{PatchMap, EMPTY, LEAF};
 use crate::real::Real;
 
@@ -50,44 +49,5 @@ impl PatchMap {
             t = nt;
             h = self.nodes.get(h as usize)?[k];
         }
-    }
-
-    /// The map of `num_faces` triangular base faces over `leaves` (patch `i` is leaf `i`;
-    /// child `k` of a level face `f` is face `4 f + k` of the next level).
-    pub fn of_triangles(num_faces: usize, leaves: &[LoopLeaf]) -> PatchMap {
-        let mut map = PatchMap {
-            roots: vec![EMPTY; num_faces],
-            nodes: Vec::new(),
-        };
-        for (i, leaf) in leaves.iter().enumerate() {
-            // The child index at each depth, from the top.
-            let mut path = Vec::with_capacity(leaf.depth);
-            let mut f = leaf.face as usize;
-            for _ in 0..leaf.depth {
-                path.push(f & 3);
-                f >>= 2;
-            }
-            let mut handle = map.roots[leaf.base_face as usize];
-            let mut parent: Option<(usize, usize)> = None;
-            for &k in path.iter().rev() {
-                if handle == EMPTY {
-                    let n = map.nodes.len() as u32;
-                    map.nodes.push([EMPTY; 4]);
-                    match parent {
-                        None => map.roots[leaf.base_face as usize] = n,
-                        Some((p, j)) => map.nodes[p][j] = n,
-                    }
-                    handle = n;
-                }
-                parent = Some((handle as usize, k));
-                handle = map.nodes[handle as usize][k];
-            }
-            let h = LEAF | i as u32;
-            match parent {
-                None => map.roots[leaf.base_face as usize] = h,
-                Some((p, j)) => map.nodes[p][j] = h,
-            }
-        }
-        map
     }
 }

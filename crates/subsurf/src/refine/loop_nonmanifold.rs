@@ -11,7 +11,8 @@
 //! - the child of vertex `v`: the corner child of each parent face of `v` at `v`, in the
 //!   parent's order, with the same corner; the child of each parent edge of `v` that touches
 //!   `v`, in the parent's order;
-//! - the edge point of edge `e`, for each parent face `f` of `e` in the parent's order (`e`
+//! - the edge point of edge `e`, for each parent face `f` of `e` in the parent's order (a
+//!   manifold interior edge: the face running along the edge's direction first; `e`
 //!   being its edge `k`): the corner child `k + 1` (at its corner `k`), the middle child
 //!   (corner `k + 2`) and the corner child `k` (corner `k + 1`); its edges are the interior
 //!   edges `3f + k + 1` and `3f + k` of each face, those of the first face bracketed by the
@@ -26,7 +27,7 @@
 //! apart. The ring order at a manifold vertex is the one [`Topology`] documents.
 
 use super::level::child_end_at_vertex;
-use crate::topology::tags::rule;
+use crate::topology::tags::{self, rule};
 use crate::topology::Topology;
 
 /// Face vertices, face edges and edge vertices of the child of the all-triangle level `p`.
@@ -140,7 +141,26 @@ pub(super) fn child_relations(p: &Topology) -> Topology {
         let ev = p.edge_verts[e];
         let c0 = (nc + 2 * e) as u32;
         let (faces, locals) = (p.edge_faces(e), p.edge_faces_local(e));
-        for (i, (&f, &k)) in faces.iter().zip(locals).enumerate() {
+        // A manifold interior edge's point starts its ring at the face running along the
+        // edge's direction, as the manifold refinement does, so that the rings of a level do
+        // not depend on which relations it was refined with (the sparse isolation refines
+        // sub-meshes whose borders are non-manifold).
+        let forward = |j: usize| corner(faces[j], locals[j] as usize) == ev[0];
+        let turned = faces.len() == 2
+            && ev[0] != ev[1]
+            && p.edge_tags[e] & tags::E_NON_MANIFOLD == 0
+            && !forward(0)
+            && forward(1);
+        let ring = match turned {
+            true => [1usize, 0],
+            false => [0, 1],
+        };
+        let ring = ring
+            .into_iter()
+            .chain(2..faces.len())
+            .take(faces.len())
+            .map(|j| (faces[j], locals[j]));
+        for (i, (f, k)) in ring.enumerate() {
             let k = k as u32;
             let (k1, k2) = ((k + 1) % 3, (k + 2) % 3);
             vert_faces.extend_from_slice(&[4 * f + k1, 4 * f + 3, 4 * f + k]);
@@ -237,11 +257,9 @@ mod tests {
             assert_eq!(a.edge_faces, b.edge_faces, "level {level}");
             assert_eq!(a.edge_face_local, b.edge_face_local, "level {level}");
             for v in 0..a.num_vertices() {
-                // Interior edge points may start their rings at the other parent face.
                 assert_eq!(ring(&a, v), ring(&b, v), "level {level} vertex {v}");
-                if a.is_boundary_vertex(v) {
-                    assert_eq!(a.vertex_edges(v), b.vertex_edges(v), "level {level} {v}");
-                }
+                assert_eq!(a.vertex_faces(v), b.vertex_faces(v), "level {level} {v}");
+                assert_eq!(a.vertex_edges(v), b.vertex_edges(v), "level {level} {v}");
             }
             p = a;
         }
