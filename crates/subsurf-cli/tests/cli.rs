@@ -109,8 +109,8 @@ fn errors_name_the_problem_and_exit_non_zero() {
 
 /// Requests that cannot fit are refused before anything large is allocated, with the true
 /// size of the estimate: past 2^64 bytes it is said as such (not wrapped, not saturated at
-/// 16 EiB, no overflow panic), and the Loop isolation, uniform limit tessellations and
-/// `eval`'s samples are checked as an oversize `--level` is (issue 40).
+/// 16 EiB, no overflow panic), and uniform limit tessellations and `eval`'s samples (Catmull-Clark
+/// and Loop) are checked as an oversize `--level` is (issue 40).
 #[test]
 fn oversize_requests_are_refused_with_the_true_estimate() {
     let car = example("car.obj");
@@ -120,9 +120,24 @@ fn oversize_requests_are_refused_with_the_true_estimate() {
         (&car, &["limit", "--tess", "4000"]),
         (&car, &["limit", "--max-edge-length", "1e-9"]),
         (&car, &["eval", "--tess", "4096"]),
-        (&loop_mesh, &["eval", "--isolation", "10"]),
+        (&loop_mesh, &["eval", "--tess", "4096"]),
         (&loop_mesh, &["refine", "--level", "30"]),
     ];
+    // The Loop isolation is sparse: the deepest isolation fits (it was refused when every
+    // level was refined whole).
+    let deep = bin()
+        .args(["eval"])
+        .arg(&loop_mesh)
+        .args(["--isolation", "10", "-o"])
+        .arg(tmp("deep.obj"))
+        .output()
+        .unwrap();
+    assert_eq!(
+        deep.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&deep.stderr)
+    );
     for (input, args) in cases {
         let out = bin()
             .arg(args[0])
